@@ -1,0 +1,47 @@
+// Intrinsic fairing of a mesh region with G1 boundary conditions: the discrete solution of
+// Δ_B H = 0 (Schneider & Kobbelt 2001, eqs. (4), (12); construction of section 7).
+#pragma once
+
+#include "geofair/types.h"
+
+#include <vector>
+
+namespace geofair {
+
+/// Outcome of geofair::fair.
+struct FairingResult {
+  Positions vertices;      ///< #V×3; rows of fixed vertices are bit-identical to the input
+  bool converged = false;  ///< residual <= tolerance was reached
+  int iterations = 0;      ///< iterations M_k -> M_{k+1} performed
+  double residual = 0.0;   ///< normalized residual of the returned mesh (see fair)
+};
+
+/// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,
+/// with the G1 boundary condition of positions and unit normals at the fixed vertices that
+/// share a triangle with a free vertex.
+///
+/// Steps: inner fairness weights λ on the input mesh (7.3); the linear Δ²f = 0 initial
+/// mesh with those weights (7.4); then, per iteration, normals and Moreton–Séquin H at all
+/// region vertices (6), the cotangent Dirichlet matrix S (6), (7), target curvatures H~
+/// from S H~ = b by one Gauss–Seidel sweep (even iterations) or n preconditioned CG
+/// iterations (odd iterations) (7.1), and the vertex update along the normal (7.2), (13).
+///
+/// Residual: L · max_i |Σ_j w_ij (H_j − H_i)| / Σ_j w_ij over the free vertices, i.e. the
+/// largest difference between a vertex's H and the cotangent-weighted mean H of its
+/// neighbours, times the bounding-box diagonal L of the region (free and G1 boundary
+/// vertices). It is dimensionless, so the same tolerance means the same on a mesh scaled
+/// by any factor; it is zero exactly when S H = b, the discrete eq. (12).
+///
+/// \param V       #V×3 positions, finite where used
+/// \param F       #F×3 triangles, consistently oriented, manifold in the region
+/// \param free    #V flags, true where a vertex may move; every free vertex must be
+///                surrounded by triangles (not on the mesh border)
+/// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
+///                for the area-weighted normal of the surrounding triangles without a free
+///                vertex
+/// \throw InvalidInputError for invalid input (see extract_region); SolverError if a
+///        linear solve fails or the iteration diverges (non-finite or exploding residual).
+FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const Positions* boundary_normals, const FairingOptions& options);
+
+}  // namespace geofair

@@ -1,0 +1,54 @@
+// Cotangent Laplace–Beltrami operator and the Dirichlet matrix S of Δ_B H = 0.
+//
+// Schneider & Kobbelt 2001, section 5, eqs. (5)-(7) (Pinkall & Polthier 1993; Desbrun et
+// al. 1999).
+#pragma once
+
+#include "geofair/region.h"
+#include "geofair/types.h"
+
+#include <Eigen/Sparse>
+
+#include <vector>
+
+namespace geofair {
+
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// Cotangent weights w_ij = cot α_ij + cot β_ij of the ring slots of vertex i, written to
+/// w[0 .. valence). α, β are the angles opposite edge (q_i, q_j) in the (one or two)
+/// triangles at that edge (eq. (5)). Dimensionless. A triangle whose area vanishes
+/// contributes cot = ±1e12 instead of ±inf.
+void cotangent_weights(const OneRings& rings, const Positions& X, int i, double* w);
+
+/// The discrete Dirichlet problem Σ_j w_ij (H_i - H_j) = 0 at the free vertices,
+/// S H_I = b with S_ii = Σ_j w_ij (6), S_ij = -w_ij for free q_j (7),
+/// b_i = Σ_{q_j ∈ V_B} w_ij H_j.
+///
+/// S is #V_I×#V_I, symmetric and positive definite while no triangle area vanishes and the
+/// weights are positive. The sparsity pattern is built once; assemble() refreshes values.
+class DirichletMatrix {
+ public:
+  explicit DirichletMatrix(const FairingRegion& region);
+
+  /// Recomputes the cotangent weights of every free vertex from positions X (#region×3).
+  void assemble(const Positions& X);
+
+  /// b for the current weights and the mean curvatures H (#region, boundary rows used).
+  Eigen::VectorXd rhs(const Eigen::VectorXd& H) const;
+
+  /// Normalized residual max_i |(b - S H)_i| / S_ii over the free vertices: the largest
+  /// difference between H_i and the cotangent-weighted mean of its neighbours' H, 1/length.
+  double max_defect(const Eigen::VectorXd& H) const;
+
+  const SparseRowMatrix& S() const { return S_; }
+
+ private:
+  const FairingRegion& region_;
+  SparseRowMatrix S_;
+  std::vector<double> slot_weight_;  // w_ij per ring slot of the free vertices
+  std::vector<int> slot_value_;      // index into S_'s values, or -1 for a boundary neighbour
+  std::vector<int> diag_value_;      // index of S_ii
+};
+
+}  // namespace geofair

@@ -1,0 +1,76 @@
+// Mesh connectivity as ordered one-rings, and the fairing region with its G1 boundary.
+//
+// Schneider & Kobbelt 2001, section 4: V_I are the free (inner) vertices, V_B the fixed
+// vertices next to them; N(q_i) is the one-ring, D(q_i) the one-disk.
+#pragma once
+
+#include "geofair/types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace geofair {
+
+/// Ordered one-rings of a triangle mesh, in flat (CSR) arrays for the inner loops.
+///
+/// For vertex i the neighbours are ring[offset[i] .. offset[i+1]), counter-clockwise
+/// around the vertex normal. Slot k (a global index into ring) with successor k+1 (cyclic
+/// within the vertex) spans the triangle (i, ring[k], ring[k+1]) iff has_face[k] != 0.
+/// A closed fan has every has_face set; a vertex on the mesh border has one gap per
+/// border fan. across[k] is the third vertex of the other triangle at edge
+/// (ring[k], ring[k+1]), or -1 if that edge is on the border.
+struct OneRings {
+  std::vector<int> offset;        ///< #V+1
+  std::vector<int> ring;          ///< neighbour vertex ids
+  std::vector<std::uint8_t> has_face;  ///< per slot: triangle (i, ring[k], next) exists
+  std::vector<int> across;        ///< per slot: opposite vertex across edge (ring[k], next)
+
+  int valence(int i) const { return offset[i + 1] - offset[i]; }
+  /// The slot after k around the same vertex i (cyclic).
+  int next_slot(int i, int k) const { return k + 1 < offset[i + 1] ? k + 1 : offset[i]; }
+  int prev_slot(int i, int k) const { return k > offset[i] ? k - 1 : offset[i + 1] - 1; }
+  /// True if the fan of i is closed (i is not on the mesh border).
+  bool closed(int i) const;
+};
+
+/// Builds the one-rings of a triangle mesh with OpenMesh.
+///
+/// \param n_vertices  number of vertices #V (vertices in no triangle get an empty ring)
+/// \param triangles   #F×3 vertex indices in [0, #V), consistently oriented
+/// \param caller      function name used at the start of error messages
+/// \param triangle_ids optional #F original triangle indices, used in error messages
+/// \throw InvalidInputError for an index out of range, a triangle with a repeated vertex,
+///        a non-manifold edge or an orientation that disagrees with a neighbour (the
+///        offending triangle index is named).
+OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char* caller,
+                         const std::vector<int>* triangle_ids = nullptr);
+
+/// The part of a mesh that fairing works on.
+///
+/// Local vertex ids: [0, n_free) are the free vertices V_I, [n_free, n) the G1 boundary
+/// V_B (fixed vertices that share a triangle with a free vertex). The region's triangles
+/// are those with at least one free vertex.
+struct FairingRegion {
+  int n_free = 0;
+  int n = 0;
+  std::vector<int> global;  ///< local -> index in the caller's mesh
+  OneRings rings;           ///< one-rings within the region's triangles (local ids)
+  Triangles triangles;      ///< region triangles (local ids)
+  Positions g1_normals;     ///< (n - n_free)×3 prescribed unit normals of V_B
+};
+
+/// Extracts the fairing region of a mesh.
+///
+/// \param V        #V×3 positions (only checked for finiteness where used)
+/// \param F        #F×3 consistently oriented triangles
+/// \param free     #V flags, true where a vertex may move
+/// \param boundary_normals  #V×3 prescribed unit normals, read at G1 boundary vertices
+///        only; nullptr: the area-weighted normal of the triangles at the vertex that
+///        contain no free vertex (the surrounding surface).
+/// \throw InvalidInputError if no vertex is free, a free vertex is in no triangle or on
+///        the mesh border, a boundary normal is missing (no surrounding triangle), zero,
+///        not unit length (|1-|n|| > 1e-6) or not finite, or the topology is invalid.
+FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                             const Positions* boundary_normals);
+
+}  // namespace geofair

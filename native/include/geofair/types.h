@@ -1,0 +1,75 @@
+// Common types, options and exceptions of the geofair library.
+//
+// Units: lengths are in mesh units; mean curvature H is in 1/length. Sign convention:
+// H > 0 on a sphere whose normals point outward (H = 1/r there).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace geofair {
+
+/// #V×3 vertex positions (row-major, float64).
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+/// #F×3 triangle vertex indices (row-major), counter-clockwise seen from the normal side.
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Vec3 = Eigen::Vector3d;
+
+/// A violated precondition of a public function (bad shapes, indices, NaN, topology).
+/// Messages start with the function name. Mapped to Python's ValueError.
+class InvalidInputError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// A numerical failure (a solver broke down, the iteration diverged).
+/// Mapped to Python's RuntimeError.
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How the tangent plane of a free vertex is estimated (Schneider & Kobbelt 2001, section 6).
+enum class NormalWeighting {
+  Area,   ///< normalized sum of face cross products: the paper's choice (section 6)
+  Angle,  ///< face normals weighted by the incident angle (Thürmer & Wüthrich 1998)
+  Max,    ///< cross products divided by the squared edge lengths (Max 1999)
+};
+
+/// Inner fairness: where vertices sit on the surface (Schneider & Kobbelt 2001, section 7.3).
+enum class InnerFairness {
+  Uniform,    ///< λ_ij = 1/valence: regular vertex distribution
+  Conformal,  ///< λ_ij ∝ cot α_ij + cot β_ij of the ORIGINAL mesh: discrete harmonic map
+};
+
+/// Outer fairness: which surface is computed.
+enum class OuterFairness {
+  Intrinsic,    ///< Δ_B H = 0, eq. (4)/(12): the paper's intrinsic fairing
+  Bilaplacian,  ///< the linear Δ²f = 0 solution alone (section 7.4's initial mesh)
+};
+
+/// Progress report: (iteration, residual). Return false to cancel the run.
+using ProgressCallback = std::function<bool(int iteration, double residual)>;
+
+/// Options of geofair::fair. Defaults follow the paper.
+struct FairingOptions {
+  InnerFairness inner_fairness = InnerFairness::Uniform;
+  OuterFairness outer_fairness = OuterFairness::Intrinsic;
+  NormalWeighting normal_weighting = NormalWeighting::Area;
+  /// Stop when the normalized residual (see fairing.h) falls below this. Dimensionless.
+  double tolerance = 1e-6;
+  /// Upper bound on the number of iterations M_k -> M_{k+1}.
+  int max_iterations = 2000;
+  /// Damping s of the vertex update q <- q~ + s t n (section 7.2); 0 < s <= 1.
+  double damping = 0.9;
+  /// Conjugate-gradient iterations n of a global step (section 7.1).
+  int cg_iterations = 10;
+  /// Called once per iteration; may be empty.
+  ProgressCallback progress;
+};
+
+}  // namespace geofair

@@ -1,0 +1,250 @@
+// Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
+// content (indices, finiteness, topology) happen in the C++ library.
+#include "geofair/fairing.h"
+#include "geofair/mean_curvature.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+namespace py = pybind11;
+using namespace geofair;
+
+namespace {
+
+std::string shape_of(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) s += (d ? ", " : "") + std::to_string(a.shape(d));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+std::string dtype_of(const py::array& a) { return py::str(a.dtype()).cast<std::string>(); }
+
+py::array as_array(const py::handle& obj, const char* name) {
+  if (!py::isinstance<py::array>(obj))
+    throw InvalidInputError(std::string(name) + " must be a numpy array, got " +
+                            py::str(py::type::of(obj).attr("__name__")).cast<std::string>());
+  return py::reinterpret_borrow<py::array>(obj);
+}
+
+Positions to_positions(const py::handle& obj, const char* name) {
+  const py::array a = as_array(obj, name);
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw InvalidInputError(std::string(name) + " must have shape (n, 3), got " + shape_of(a));
+  if (!a.dtype().is(py::dtype::of<double>()))
+    throw InvalidInputError(std::string(name) + " must have dtype float64, got " + dtype_of(a) +
+                            " (use numpy.asarray(x, dtype=numpy.float64))");
+  const auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  return Eigen::Map<const Positions>(c.data(), c.shape(0), 3);
+}
+
+Triangles to_triangles(const py::handle& obj) {
+  const py::array a = as_array(obj, "faces");
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw InvalidInputError("faces must have shape (m, 3) (triangles), got " + shape_of(a));
+  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+    throw InvalidInputError("faces must have an integer dtype, got " + dtype_of(a));
+  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  Triangles F(c.shape(0), 3);
+  const long long* p = c.data();
+  for (py::ssize_t i = 0; i < 3 * c.shape(0); ++i) {
+    if (p[i] < 0 || p[i] > std::numeric_limits<int>::max())
+      throw InvalidInputError("faces[" + std::to_string(i / 3) + "] has vertex index " +
+                              std::to_string(p[i]) + ", out of range");
+    F.data()[i] = int(p[i]);
+  }
+  return F;
+}
+
+std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
+  const py::array a = as_array(obj, "free");
+  if (a.ndim() != 1 || a.shape(0) != n)
+    throw InvalidInputError("free must have shape (" + std::to_string(n) + ",), got " + shape_of(a));
+  if (a.dtype().kind() != 'b')
+    throw InvalidInputError("free must have dtype bool, got " + dtype_of(a));
+  const auto c = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(a);
+  return std::vector<bool>(c.data(), c.data() + n);
+}
+
+template <class Enum>
+Enum parse(const std::string& value, const char* name,
+           std::initializer_list<std::pair<const char*, Enum>> choices) {
+  std::string allowed;
+  for (const auto& [key, e] : choices) {
+    if (value == key) return e;
+    allowed += std::string(allowed.empty() ? "" : ", ") + "'" + key + "'";
+  }
+  throw InvalidInputError(std::string(name) + " must be one of " + allowed + ", got '" + value + "'");
+}
+
+NormalWeighting parse_weighting(const std::string& s) {
+  return parse<NormalWeighting>(s, "normal_weighting",
+                                {{"area", NormalWeighting::Area},
+                                 {"angle", NormalWeighting::Angle},
+                                 {"max", NormalWeighting::Max}});
+}
+
+FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
+                      const py::object& boundary_normals, const std::string& inner_fairness,
+                      const std::string& outer_fairness, const std::string& normal_weighting,
+                      double tolerance, int max_iterations, double damping, int cg_iterations,
+                      const py::object& progress) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  const std::vector<bool> mask = to_mask(free, V.rows());
+  std::optional<Positions> normals;
+  if (!boundary_normals.is_none()) {
+    normals = to_positions(boundary_normals, "boundary_normals");
+    if (normals->rows() != V.rows())
+      throw InvalidInputError("boundary_normals must have the shape of vertices " +
+                              std::to_string(V.rows()) + "×3");
+  }
+  FairingOptions options;
+  options.inner_fairness = parse<InnerFairness>(
+      inner_fairness, "inner_fairness",
+      {{"uniform", InnerFairness::Uniform}, {"conformal", InnerFairness::Conformal}});
+  options.outer_fairness = parse<OuterFairness>(
+      outer_fairness, "outer_fairness",
+      {{"intrinsic", OuterFairness::Intrinsic}, {"bilaplacian", OuterFairness::Bilaplacian}});
+  options.normal_weighting = parse_weighting(normal_weighting);
+  options.tolerance = tolerance;
+  options.max_iterations = max_iterations;
+  options.damping = damping;
+  options.cg_iterations = cg_iterations;
+
+  // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
+  // KeyboardInterrupt) stops the run and is re-raised.
+  std::optional<py::error_already_set> callback_error;
+  if (!progress.is_none()) {
+    auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    options.progress = [&, last](int k, double r) mutable {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(100)) return true;
+      last = now;
+      py::gil_scoped_acquire gil;
+      try {
+        const py::object ret = progress(k, r);
+        return ret.is_none() || ret.cast<bool>();
+      } catch (py::error_already_set& e) {
+        callback_error = std::move(e);
+        return false;
+      }
+    };
+  }
+  FairingResult result;
+  {
+    py::gil_scoped_release release;
+    result = fair(V, F, mask, normals ? &*normals : nullptr, options);
+  }
+  if (callback_error) throw *callback_error;
+  return result;
+}
+
+Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
+                                  const py::object& normals, const std::string& weighting) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  std::optional<Positions> N;
+  if (!normals.is_none()) N = to_positions(normals, "normals");
+  const NormalWeighting w = parse_weighting(weighting);
+  py::gil_scoped_release release;
+  return mean_curvature(V, F, N ? &*N : nullptr, w);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(geofair, m) {
+  m.doc() =
+      "Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary conditions\n"
+      "(Schneider & Kobbelt, Geometric fairing of irregular meshes for free-form surface\n"
+      "design, CAGD 18, 2001).";
+  m.attr("__version__") = "0.1.0";
+  py::register_exception<InvalidInputError>(m, "InvalidInputError", PyExc_ValueError);
+  py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError);
+
+  py::class_<FairingResult>(m, "FairingResult", "Result of geofair.fair.")
+      .def_readonly("vertices", &FairingResult::vertices,
+                    "(n, 3) float64 positions; fixed rows are bit-identical to the input.")
+      .def_readonly("converged", &FairingResult::converged,
+                    "True if the residual reached the tolerance.")
+      .def_readonly("iterations", &FairingResult::iterations,
+                    "Number of iterations M_k -> M_{k+1} performed.")
+      .def_readonly("residual", &FairingResult::residual,
+                    "Normalized residual of the returned mesh (dimensionless, see fair).")
+      .def("__repr__", [](const FairingResult& r) {
+        return "FairingResult(converged=" + std::string(r.converged ? "True" : "False") +
+               ", iterations=" + std::to_string(r.iterations) +
+               ", residual=" + std::to_string(r.residual) + ")";
+      });
+
+  m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+        py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
+        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
+        py::arg("tolerance") = 1e-6, py::arg("max_iterations") = 2000,
+        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("progress") = py::none(),
+        R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
+(Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
+condition (fixed positions and unit normals) at the fixed vertices next to free ones.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, triangles, consistently oriented (counter-clockwise seen from
+    the normal side), manifold around the free region.
+free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
+    by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
+    vertex form the G1 boundary.
+boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
+    prescribed unit normals (other rows are ignored). None: the area-weighted normal of the
+    triangles at that vertex that contain no free vertex (the surrounding surface).
+inner_fairness : "uniform" (regular vertex distribution) or "conformal" (weights of the
+    input mesh: discrete-conformal to it, keeps texture distortion low), section 7.3.
+outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
+    of section 7.4 alone, for comparison).
+normal_weighting : free-vertex normals: "area" (the paper's: sum of face cross products),
+    "angle" or "max" (Max 1999).
+tolerance : stop when the residual is at most this (dimensionless). The residual is
+    L * max_i |Σ_j w_ij (H_j - H_i)| / Σ_j w_ij over the free vertices (w cotangent weights,
+    H mean curvature, L the bounding-box diagonal of the region): scale invariant.
+max_iterations : upper bound on iterations.
+damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
+cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
+progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
+    returning False stops the run early (converged is then False).
+
+Returns
+-------
+FairingResult with .vertices (n, 3) float64, .converged, .iterations, .residual.
+
+Raises
+------
+ValueError for invalid input (the message names the problem and the vertex or face),
+RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
+
+  m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
+        py::arg("normals") = py::none(), py::arg("normal_weighting") = "area",
+        R"doc(Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
+2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
+valence 3 or 4 and on the mesh border.
+
+Parameters
+----------
+vertices : (n, 3) float64 array.
+faces : (m, 3) integer array of consistently oriented triangles.
+normals : (n, 3) float64 unit normals (tangent planes) or None to estimate them from the
+    triangles with `normal_weighting` ("area", the paper's choice, "angle" or "max").
+
+Returns
+-------
+(n,) float64 mean curvature in 1/length: H = 1/r on a sphere of radius r whose faces are
+oriented outward, 1/(2r) on a cylinder, 0 on a plane; 0 at vertices in no triangle.
+
+Raises
+------
+ValueError for invalid input.)doc");
+}

@@ -1,0 +1,107 @@
+// Cotangent weights and the Dirichlet matrix S (Schneider & Kobbelt 2001, eqs. (6), (7)).
+#include "geofair/laplace_beltrami.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace geofair {
+namespace {
+
+// cot of the angle at o in the triangle (o, a, b).
+inline double cot_at(const Vec3& o, const Vec3& a, const Vec3& b) {
+  const Vec3 u = a - o, v = b - o;
+  const double cross = u.cross(v).norm();
+  const double dot = u.dot(v);
+  const double floor = 1e-12 * std::abs(dot);
+  return dot / std::max(cross, floor > 0.0 ? floor : 1e-300);
+}
+
+}  // namespace
+
+void cotangent_weights(const OneRings& rings, const Positions& X, int i, double* w) {
+  const int begin = rings.offset[i], end = rings.offset[i + 1];
+  const Vec3 qi = X.row(i);
+  for (int k = begin; k < end; ++k) w[k - begin] = 0.0;
+  for (int k = begin; k < end; ++k) {
+    if (!rings.has_face[k]) continue;
+    const int k1 = rings.next_slot(i, k);
+    const Vec3 qj = X.row(rings.ring[k]), qj1 = X.row(rings.ring[k1]);
+    // Triangle (i, j, j1): the angle at j1 is opposite edge (i, j), the angle at j
+    // opposite edge (i, j1).
+    w[k - begin] += cot_at(qj1, qi, qj);
+    w[k1 - begin] += cot_at(qj, qi, qj1);
+  }
+}
+
+DirichletMatrix::DirichletMatrix(const FairingRegion& region) : region_(region) {
+  const OneRings& r = region.rings;
+  const int nf = region.n_free;
+  std::vector<Eigen::Triplet<double>> pattern;
+  pattern.reserve(r.offset[nf] + nf);
+  for (int i = 0; i < nf; ++i) {
+    pattern.emplace_back(i, i, 1.0);
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      if (r.ring[k] < nf) pattern.emplace_back(i, r.ring[k], 1.0);
+  }
+  S_.resize(nf, nf);
+  S_.setFromTriplets(pattern.begin(), pattern.end());
+  S_.makeCompressed();
+  slot_weight_.assign(r.offset[nf], 0.0);
+  slot_value_.assign(r.offset[nf], -1);
+  diag_value_.assign(nf, -1);
+  const int* outer = S_.outerIndexPtr();
+  const int* inner = S_.innerIndexPtr();
+  auto find = [&](int row, int col) {
+    const int* it = std::lower_bound(inner + outer[row], inner + outer[row + 1], col);
+    return int(it - inner);
+  };
+  for (int i = 0; i < nf; ++i) {
+    diag_value_[i] = find(i, i);
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      if (r.ring[k] < nf) slot_value_[k] = find(i, r.ring[k]);
+  }
+}
+
+void DirichletMatrix::assemble(const Positions& X) {
+  const OneRings& r = region_.rings;
+  double* values = S_.valuePtr();
+  std::fill(values, values + S_.nonZeros(), 0.0);
+  for (int i = 0; i < region_.n_free; ++i) {
+    cotangent_weights(r, X, i, slot_weight_.data() + r.offset[i]);
+    double diag = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+      diag += slot_weight_[k];
+      if (slot_value_[k] >= 0) values[slot_value_[k]] -= slot_weight_[k];
+    }
+    values[diag_value_[i]] += diag;
+  }
+}
+
+Eigen::VectorXd DirichletMatrix::rhs(const Eigen::VectorXd& H) const {
+  const OneRings& r = region_.rings;
+  const int nf = region_.n_free;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(nf);
+  for (int i = 0; i < nf; ++i)
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      if (r.ring[k] >= nf) b(i) += slot_weight_[k] * H(r.ring[k]);
+  return b;
+}
+
+double DirichletMatrix::max_defect(const Eigen::VectorXd& H) const {
+  const OneRings& r = region_.rings;
+  const int nf = region_.n_free;
+  double worst = 0.0;
+  for (int i = 0; i < nf; ++i) {
+    double sum_w = 0.0, sum = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+      sum_w += slot_weight_[k];
+      sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
+    }
+    const double defect = std::abs(sum) / std::max(std::abs(sum_w), 1e-300);
+    if (std::isnan(defect)) return defect;
+    worst = std::max(worst, defect);
+  }
+  return worst;
+}
+
+}  // namespace geofair

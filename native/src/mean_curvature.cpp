@@ -1,0 +1,164 @@
+// Moreton–Séquin mean curvature (Schneider & Kobbelt 2001, section 6).
+#include "geofair/mean_curvature.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <string>
+
+namespace geofair {
+namespace {
+
+// Orthonormal basis (bx, by) of the plane with unit normal n.
+void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
+  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  bx = n.cross(helper).normalized();
+  by = n.cross(bx);
+}
+
+// Accumulates the normal equations (11) of the least-squares fit (9), (10).
+struct NormalEquations {
+  Vec3 p, n, bx, by;
+  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  Vec3 Atb = Vec3::Zero();  // right-hand side from κ_j, eq. (8)
+  Vec3 Atc = Vec3::Zero();  // right-hand side from dκ_j/dt = 2/|q_j - p|², section 7.2
+
+  NormalEquations(const Vec3& p_, const Vec3& n_) : p(p_), n(n_) { tangent_basis(n, bx, by); }
+
+  void add(const Vec3& q) {
+    const Vec3 d = q - p;
+    const double dd = d.squaredNorm();
+    const double dn = d.dot(n);
+    const double tx = d.dot(bx), ty = d.dot(by);
+    const double tt = tx * tx + ty * ty;
+    if (!(tt > 1e-24 * dd) || !(dd > 0.0)) return;  // sample on the normal line: no direction
+    const Vec3 row(tx * tx / tt, tx * ty / tt, ty * ty / tt);
+    AtA.noalias() += row * row.transpose();
+    Atb += row * (-2.0 * dn / dd);
+    Atc += row * (2.0 / dd);
+  }
+
+  CurvatureEstimate solve() const {
+    Eigen::Matrix3d M = AtA;
+    const double reg = 1e-12 * M.trace();
+    if (!(reg > 0.0)) return {};
+    M.diagonal().array() += reg;
+    // H = (x0 + x2)/2 = g·Atb / 2 with g = M⁻¹ (1, 0, 1), M symmetric.
+    const Vec3 g = M.ldlt().solve(Vec3(1.0, 0.0, 1.0));
+    return {0.5 * g.dot(Atb), 0.5 * g.dot(Atc)};
+  }
+};
+
+}  // namespace
+
+Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeighting weighting) {
+  const Vec3 q = X.row(i);
+  Vec3 sum = Vec3::Zero();
+  for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
+    if (!rings.has_face[k]) continue;
+    const Vec3 e1 = X.row(rings.ring[k]).transpose() - q;
+    const Vec3 e2 = X.row(rings.ring[rings.next_slot(i, k)]).transpose() - q;
+    const Vec3 c = e1.cross(e2);
+    switch (weighting) {
+      case NormalWeighting::Area:
+        sum += c;
+        break;
+      case NormalWeighting::Angle: {
+        const double cn = c.norm();
+        if (cn > 0.0) sum += std::atan2(cn, e1.dot(e2)) / cn * c;
+        break;
+      }
+      case NormalWeighting::Max: {
+        const double w = e1.squaredNorm() * e2.squaredNorm();
+        if (w > 0.0) sum += c / w;
+        break;
+      }
+    }
+  }
+  const double len = sum.norm();
+  return len > 0.0 && std::isfinite(len) ? Vec3(sum / len) : Vec3::Zero();
+}
+
+Vec3 spiral_sample(const Vec3& a, const Vec3& normal_a, const Vec3& b, const Vec3& normal_b,
+                   const Vec3& plane_direction) {
+  const Vec3 mid = 0.5 * (a + b);
+  const Vec3 d = b - a;
+  const double len = d.norm();
+  if (!(len > 0.0)) return mid;
+  const Vec3 ex = d / len;
+  Vec3 m = d.cross(plane_direction);  // normal of the plane E_j
+  const double mn = m.norm();
+  if (!(mn > 1e-12 * len * plane_direction.norm())) return mid;
+  m /= mn;
+  const Vec3 ey = m.cross(ex);  // in E_j, perpendicular to ab
+  // Height above ab at the bisector of the arc through a and b tangent to t at a (or at b,
+  // with the opposite sign): h·tan(θ/2) = h·sinθ/(1 + cosθ), θ the angle of t to ab.
+  auto arc_height = [&](const Vec3& normal) {
+    Vec3 t = normal.cross(m);
+    const double tn = t.norm();
+    if (!(tn > 0.0)) return 0.0;
+    t /= tn;
+    if (t.dot(ex) < 0.0) t = -t;  // the direction with the smaller angle to b - a
+    return 0.5 * len * t.dot(ey) / (1.0 + t.dot(ex));
+  };
+  const double y = 0.5 * (arc_height(normal_a) - arc_height(normal_b));
+  return mid + y * ey;
+}
+
+CurvatureEstimate moreton_sequin(const OneRings& rings, const Positions& X, const Positions& N,
+                                 int i, const Vec3& p, const Vec3& n, bool spiral) {
+  NormalEquations eq(p, n);
+  for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
+    const int j = rings.ring[k];
+    const Vec3 qj = X.row(j);
+    eq.add(qj);
+    if (!spiral || !rings.has_face[k]) continue;
+    const int j1 = rings.ring[rings.next_slot(i, k)];
+    const Vec3 qj1 = X.row(j1);
+    Vec3 plane_direction = (qj - p).cross(qj1 - p).normalized();
+    if (rings.across[k] >= 0) {
+      const Vec3 x = X.row(rings.across[k]);
+      plane_direction += (qj - qj1).cross(x - qj1).normalized();
+    }
+    eq.add(spiral_sample(qj, N.row(j), qj1, N.row(j1), plane_direction));
+  }
+  return eq.solve();
+}
+
+Eigen::VectorXd mean_curvature(const Positions& V, const Triangles& F, const Positions* normals,
+                               NormalWeighting weighting) {
+  const char* fn = "mean_curvature";
+  const int nv = int(V.rows());
+  if (!V.allFinite()) {
+    for (int v = 0; v < nv; ++v)
+      if (!V.row(v).allFinite())
+        throw InvalidInputError(std::string(fn) + ": vertex " + std::to_string(v) +
+                                " has a non-finite coordinate");
+  }
+  const OneRings rings = build_one_rings(nv, F, fn);
+  Positions N(nv, 3);
+  if (normals) {
+    if (normals->rows() != nv)
+      throw InvalidInputError(std::string(fn) + ": normals has " + std::to_string(normals->rows()) +
+                              " rows for " + std::to_string(nv) + " vertices");
+    for (int v = 0; v < nv; ++v) {
+      const double len = normals->row(v).norm();
+      if (!std::isfinite(len) || std::abs(len - 1.0) > 1e-6)
+        throw InvalidInputError(std::string(fn) + ": normals[" + std::to_string(v) +
+                                "] is not a finite unit vector");
+      N.row(v) = normals->row(v) / len;
+    }
+  } else {
+    for (int v = 0; v < nv; ++v) N.row(v) = vertex_normal(rings, V, v, weighting);
+  }
+  Eigen::VectorXd H = Eigen::VectorXd::Zero(nv);
+  for (int v = 0; v < nv; ++v) {
+    if (rings.valence(v) == 0) continue;
+    const Vec3 n = N.row(v);
+    if (n.squaredNorm() == 0.0) continue;
+    H(v) = moreton_sequin(rings, V, N, v, V.row(v), n, needs_spiral_samples(rings, v)).H;
+  }
+  return H;
+}
+
+}  // namespace geofair
