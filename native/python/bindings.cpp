@@ -185,7 +185,7 @@ PYBIND11_MODULE(geofair, m) {
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
         py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
         py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
-        py::arg("tolerance") = 1e-6, py::arg("max_iterations") = 2000,
+        py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
         py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("progress") = py::none(),
         R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -209,8 +209,11 @@ outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0
 normal_weighting : free-vertex normals: "area" (the paper's: sum of face cross products),
     "angle" or "max" (Max 1999).
 tolerance : stop when the residual is at most this (dimensionless). The residual is
-    L * max_i |Σ_j w_ij (H_j - H_i)| / Σ_j w_ij over the free vertices (w cotangent weights,
-    H mean curvature, L the bounding-box diagonal of the region): scale invariant.
+    L**3 * max_i |Δ_B H(q_i)| over the free vertices, with the cotangent Laplace–Beltrami
+    operator of eq. (5), Δ_B H(q_i) = 3/(2 A_i) Σ_j w_ij (H_j - H_i), and L the
+    bounding-box diagonal of the region: invariant under scaling, and about the same for a
+    coarse and a fine mesh of one shape. 1e-4 leaves an iteration error well below the
+    discretization error on meshes of up to some 10^4 vertices.
 max_iterations : upper bound on iterations.
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).

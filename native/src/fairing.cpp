@@ -60,7 +60,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   for (int k = 0;; ++k) {
     estimate_curvature(region, X, options.normal_weighting, N, H);
     dirichlet.assemble(X);
-    const double residual = L * dirichlet.max_defect(H);
+    const double residual = L * L * L * dirichlet.max_laplace_beltrami(H);
     if (!std::isfinite(residual))
       throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
                         std::to_string(k) + ")");
@@ -85,7 +85,11 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       gauss_seidel_sweep(dirichlet.S(), b, H_target);
     else
       solver.global_step(dirichlet.S(), b, H_target);
-    update_free_vertices(region, lambda, H_target, options.normal_weighting, options.damping, X, N);
+    const double step = update_free_vertices(region, lambda, H_target, options.normal_weighting,
+                                             options.damping, X, N);
+    if (!(step <= L))
+      throw SolverError("fair: the iteration diverged (a vertex moved by more than the region's "
+                        "size in iteration " + std::to_string(k) + ")");
   }
 
   result.vertices = V;

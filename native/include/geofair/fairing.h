@@ -26,11 +26,13 @@ struct FairingResult {
 /// from S H~ = b by one Gauss–Seidel sweep (even iterations) or n preconditioned CG
 /// iterations (odd iterations) (7.1), and the vertex update along the normal (7.2), (13).
 ///
-/// Residual: L · max_i |Σ_j w_ij (H_j − H_i)| / Σ_j w_ij over the free vertices, i.e. the
-/// largest difference between a vertex's H and the cotangent-weighted mean H of its
-/// neighbours, times the bounding-box diagonal L of the region (free and G1 boundary
-/// vertices). It is dimensionless, so the same tolerance means the same on a mesh scaled
-/// by any factor; it is zero exactly when S H = b, the discrete eq. (12).
+/// Residual: L³ · max_i |Δ_B H(q_i)| over the free vertices, with Δ_B of eq. (5),
+/// Δ_B H(q_i) = 3/(2 A_i) Σ_j w_ij (H_j − H_i) (A_i the 1-disk area, w_ij cotangent
+/// weights), and L the bounding-box diagonal of the region (free and G1 boundary vertices).
+/// Δ_B H has units 1/length³, so the residual is dimensionless: the same tolerance means
+/// the same on a mesh scaled by any factor, and since Δ_B H approximates the continuous
+/// operator, it means about the same on a coarse and a fine mesh of one shape. It is zero
+/// exactly when S H = b, the discrete eq. (12).
 ///
 /// \param V       #V×3 positions, finite where used
 /// \param F       #F×3 triangles, consistently oriented, manifold in the region

@@ -37,9 +37,10 @@ class DirichletMatrix {
   /// b for the current weights and the mean curvatures H (#region, boundary rows used).
   Eigen::VectorXd rhs(const Eigen::VectorXd& H) const;
 
-  /// Normalized residual max_i |(b - S H)_i| / S_ii over the free vertices: the largest
-  /// difference between H_i and the cotangent-weighted mean of its neighbours' H, 1/length.
-  double max_defect(const Eigen::VectorXd& H) const;
+  /// max_i |Δ_B H(q_i)| over the free vertices, with the discrete Laplace–Beltrami operator
+  /// of eq. (5): Δ_B g(q_i) = 3/(2 A_i) Σ_j w_ij (g_j − g_i), A_i the area of the 1-disk.
+  /// Units: 1/length³. NaN if any value is NaN.
+  double max_laplace_beltrami(const Eigen::VectorXd& H) const;
 
   const SparseRowMatrix& S() const { return S_; }
 
@@ -49,6 +50,7 @@ class DirichletMatrix {
   std::vector<double> slot_weight_;  // w_ij per ring slot of the free vertices
   std::vector<int> slot_value_;      // index into S_'s values, or -1 for a boundary neighbour
   std::vector<int> diag_value_;      // index of S_ii
+  std::vector<double> disk_area_;    // A_i, area of the 1-disk of free vertex i
 };
 
 }  // namespace geofair

@@ -60,10 +60,10 @@ struct FairingOptions {
   InnerFairness inner_fairness = InnerFairness::Uniform;
   OuterFairness outer_fairness = OuterFairness::Intrinsic;
   NormalWeighting normal_weighting = NormalWeighting::Area;
-  /// Stop when the normalized residual (see fairing.h) falls below this. Dimensionless.
-  double tolerance = 1e-6;
+  /// Stop when the residual L³·max|Δ_B H| (see fairing.h) falls below this. Dimensionless.
+  double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1}.
-  int max_iterations = 2000;
+  int max_iterations = 20000;
   /// Damping s of the vertex update q <- q~ + s t n (section 7.2); 0 < s <= 1.
   double damping = 0.9;
   /// Conjugate-gradient iterations n of a global step (section 7.1).
