@@ -1,6 +1,7 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/fairing.h"
+#include "geofair/laplace_beltrami.h"
 #include "geofair/mean_curvature.h"
 
 #include <pybind11/eigen.h>
@@ -228,6 +229,25 @@ Raises
 ------
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
+
+  m.def(
+      "cotangent_laplacian",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        py::gil_scoped_release release;
+        return cotangent_laplacian(V, F);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
+2001, eqs. (5)-(7)) as an (n, n) scipy.sparse CSR matrix (needs scipy).
+
+L[i, j] = cot α_ij + cot β_ij for every edge (a single cotangent on a border edge) and
+L[i, i] = -Σ_j L[i, j]: symmetric, L @ ones = 0. (L @ f)[i] = (2 A_i / 3) Δ_B f(q_i) with A_i
+the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of eqs. (6),
+(7) is -L restricted to the free rows and columns.
+
+Raises ValueError for invalid input.)doc");
 
   m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
         py::arg("normals") = py::none(), py::arg("normal_weighting") = "area",

@@ -33,6 +33,29 @@ void cotangent_weights(const OneRings& rings, const Positions& X, int i, double*
   }
 }
 
+SparseRowMatrix cotangent_laplacian(const Positions& V, const Triangles& F) {
+  const int nv = int(V.rows());
+  if (!V.allFinite())
+    throw InvalidInputError("cotangent_laplacian: vertices contain a non-finite coordinate");
+  const OneRings r = build_one_rings(nv, F, "cotangent_laplacian");
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(r.ring.size() + nv);
+  std::vector<double> w;
+  for (int i = 0; i < nv; ++i) {
+    w.resize(r.valence(i));
+    cotangent_weights(r, V, i, w.data());
+    double sum = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+      triplets.emplace_back(i, r.ring[k], w[k - r.offset[i]]);
+      sum += w[k - r.offset[i]];
+    }
+    triplets.emplace_back(i, i, -sum);
+  }
+  SparseRowMatrix L(nv, nv);
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  return L;
+}
+
 DirichletMatrix::DirichletMatrix(const FairingRegion& region) : region_(region) {
   const OneRings& r = region.rings;
   const int nf = region.n_free;
