@@ -2,12 +2,14 @@
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/fairing.h"
 #include "geofair/laplace_beltrami.h"
+#include "geofair/progressive_mesh.h"
 #include "geofair/mean_curvature.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <chrono>
 #include <optional>
@@ -94,7 +96,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                       const py::object& boundary_normals, const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
-                      const py::object& progress) {
+                      int levels, const py::object& progress) {
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces);
   const std::vector<bool> mask = to_mask(free, V.rows());
@@ -117,6 +119,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   options.max_iterations = max_iterations;
   options.damping = damping;
   options.cg_iterations = cg_iterations;
+  options.levels = levels;
 
   // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
   // KeyboardInterrupt) stops the run and is re-raised.
@@ -175,6 +178,10 @@ PYBIND11_MODULE(geofair, m) {
                     "True if the residual reached the tolerance.")
       .def_readonly("iterations", &FairingResult::iterations,
                     "Number of iterations M_k -> M_{k+1} performed.")
+      .def_readonly("iterations_per_level", &FairingResult::iterations_per_level,
+                    "Iterations on each level, coarsest first.")
+      .def_readonly("vertices_per_level", &FairingResult::vertices_per_level,
+                    "Region vertices (free and G1 boundary) on each level, coarsest first.")
       .def_readonly("residual", &FairingResult::residual,
                     "Normalized residual of the returned mesh (dimensionless, see fair).")
       .def("__repr__", [](const FairingResult& r) {
@@ -187,7 +194,8 @@ PYBIND11_MODULE(geofair, m) {
         py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
         py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
-        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("progress") = py::none(),
+        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 1,
+        py::arg("progress") = py::none(),
         R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
 condition (fixed positions and unit normals) at the fixed vertices next to free ones.
@@ -215,15 +223,18 @@ tolerance : stop when the residual is at most this (dimensionless). The residual
     bounding-box diagonal of the region: invariant under scaling, and about the same for a
     coarse and a fine mesh of one shape. 1e-4 leaves an iteration error well below the
     discretization error on meshes of up to some 10^4 vertices.
-max_iterations : upper bound on iterations.
+max_iterations : upper bound on iterations on each level.
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
+levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6): 1 solves the
+    whole region as one level; 0 (default) picks about log4(free vertices / 250) + 1.
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).
 
 Returns
 -------
-FairingResult with .vertices (n, 3) float64, .converged, .iterations, .residual.
+FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
+.residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first).
 
 Raises
 ------
@@ -246,6 +257,37 @@ L[i, j] = cot α_ij + cot β_ij for every edge (a single cotangent on a border e
 L[i, i] = -Σ_j L[i, j]: symmetric, L @ ones = 0. (L @ f)[i] = (2 A_i / 3) Δ_B f(q_i) with A_i
 the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of eqs. (6),
 (7) is -L restricted to the free rows and columns.
+
+Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "progressive_mesh",
+      [](const py::object& vertices, const py::object& faces, const py::object& free, int levels) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        std::vector<Triangles> out;
+        {
+          py::gil_scoped_release release;
+          const Positions normals = Positions::Zero(V.rows(), 3);
+          Positions fake = normals;
+          fake.col(2).setOnes();  // normals are not used by the hierarchy
+          const FairingRegion region = extract_region(V, F, mask, &fake);
+          Positions X(region.n, 3);
+          for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
+          const int n = levels > 0 ? levels : default_levels(region.n_free);
+          for (Triangles T : build_progressive_mesh(region, X, n).triangles) {
+            for (Eigen::Index k = 0; k < T.size(); ++k) T.data()[k] = region.global[T.data()[k]];
+            out.push_back(std::move(T));
+          }
+        }
+        return out;
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("levels") = 1,
+      R"doc(The progressive-mesh hierarchy that fair() uses for its multigrid (Schneider &
+Kobbelt 2001, section 7.4): a list of (m_l, 3) int32 triangle arrays in the input's vertex
+indices, coarsest level first, the last being the region (triangles with a free vertex)
+itself. Levels are nested; G1 boundary vertices are never collapsed.
 
 Raises ValueError for invalid input.)doc");
 

@@ -1,15 +1,18 @@
-// The construction algorithm of Schneider & Kobbelt 2001, section 7 (single level).
+// The fairing driver: progressive-mesh multigrid around the construction of section 7
+// (Schneider & Kobbelt 2001, Fig. 6).
 #include "geofair/fairing.h"
 
 #include "geofair/bilaplacian.h"
-#include "geofair/curvature_solve.h"
+#include "geofair/construction.h"
 #include "geofair/inner_fairness.h"
-#include "geofair/laplace_beltrami.h"
-#include "geofair/mean_curvature.h"
+#include "geofair/multigrid.h"
+#include "geofair/progressive_mesh.h"
 #include "geofair/region.h"
-#include "geofair/vertex_update.h"
 
 #include <cmath>
+#include <numeric>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace geofair {
@@ -22,15 +25,13 @@ void check_options(const FairingOptions& o) {
   if (!(o.damping > 0.0 && o.damping <= 1.0))
     throw InvalidInputError("fair: damping must lie in (0, 1]");
   if (o.cg_iterations < 1) throw InvalidInputError("fair: cg_iterations must be >= 1");
+  if (o.levels < 0) throw InvalidInputError("fair: levels must be >= 0");
 }
 
-// Normals (free rows) and mean curvatures (all rows) of the current mesh.
-void estimate_curvature(const FairingRegion& region, const Positions& X, NormalWeighting weighting,
-                        Positions& N, Eigen::VectorXd& H) {
-  const OneRings& rings = region.rings;
-  for (int i = 0; i < region.n_free; ++i) N.row(i) = vertex_normal(rings, X, i, weighting);
-  for (int i = 0; i < region.n; ++i)
-    H(i) = moreton_sequin(rings, X, N, i, X.row(i), N.row(i), needs_spiral_samples(rings, i)).H;
+Positions gather(const Positions& X, const std::vector<int>& ids) {
+  Positions Y(Eigen::Index(ids.size()), 3);
+  for (std::size_t i = 0; i < ids.size(); ++i) Y.row(Eigen::Index(i)) = X.row(ids[i]);
+  return Y;
 }
 
 }  // namespace
@@ -39,61 +40,72 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
                    const Positions* boundary_normals, const FairingOptions& options) {
   check_options(options);
   const FairingRegion region = extract_region(V, F, free, boundary_normals);
-  const int n = region.n, nf = region.n_free;
 
-  Positions X(n, 3);
-  for (int i = 0; i < n; ++i) X.row(i) = V.row(region.global[i]);
-  const double L = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+  const Positions X0 = gather(V, region.global);  // the original mesh
+  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
   if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");
 
-  const std::vector<double> lambda = inner_fairness_weights(region.rings, X, options.inner_fairness);
-  X = bilaplacian_initial_mesh(region, lambda, X);
+  const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
+  ProgressiveMesh hierarchy;
+  if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic)
+    hierarchy = build_progressive_mesh(region, X0, levels);
+  else
+    hierarchy.triangles.push_back(region.triangles), hierarchy.splits.emplace_back();
 
-  Positions N(n, 3);
-  N.bottomRows(n - nf) = region.g1_normals;
-  Eigen::VectorXd H(n);
-  DirichletMatrix dirichlet(region);
-  CurvatureSolver solver(options.cg_iterations);
+  // The finest level is the region itself, with region-local ids as its "global" ids.
+  FairingRegion finest_level = region;
+  std::iota(finest_level.global.begin(), finest_level.global.end(), 0);
 
   FairingResult result;
-  double first_residual = 0.0;
-  for (int k = 0;; ++k) {
-    estimate_curvature(region, X, options.normal_weighting, N, H);
-    dirichlet.assemble(X);
-    const double residual = L * L * L * dirichlet.max_laplace_beltrami(H);
-    if (!std::isfinite(residual))
-      throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
-                        std::to_string(k) + ")");
-    if (k == 0) first_residual = residual;
-    if (residual > 1e6 * std::max(first_residual, 1.0))
-      throw SolverError("fair: the iteration diverged (residual grew from " +
-                        std::to_string(first_residual) + " to " + std::to_string(residual) +
-                        " by iteration " + std::to_string(k) + ")");
-    result.iterations = k;
-    result.residual = residual;
-    result.converged = residual <= options.tolerance;
-    if (options.outer_fairness == OuterFairness::Bilaplacian) {
-      result.converged = true;  // the linear solution is exact; the residual says how far
-      break;                    // it is from Δ_B H = 0
+  Positions X = X0;  // region positions, filled in level by level
+  for (std::size_t l = 0; l < hierarchy.triangles.size(); ++l) {
+    const bool finest = l + 1 == hierarchy.triangles.size();
+    const FairingRegion level = finest ? finest_level : level_region(region, hierarchy.triangles[l]);
+    // Conformal weights come from the original mesh with this level's connectivity: the
+    // original is replayed in parallel with the faired mesh.
+    std::vector<double> lambda =
+        inner_fairness_weights(level.rings, gather(X0, level.global), options.inner_fairness);
+    Positions Y = gather(X, level.global);
+    if (l == 0) Y = bilaplacian_initial_mesh(level, lambda, Y);
+    Construction construction(level, std::move(lambda), options, L);
+    if (l > 0) {
+      std::vector<int> local(region.n, -1);
+      for (int i = 0; i < level.n; ++i) local[level.global[i]] = i;
+      VertexSplits splits = hierarchy.splits[l];
+      for (int& v : splits.vertex) v = local[v];
+      for (int& v : splits.ring) v = local[v];
+      prolongate(level, splits, options.inner_fairness, gather(X0, level.global), Y, construction);
     }
-    if (result.converged || k >= options.max_iterations) break;
-    if (options.progress && !options.progress(k, residual)) break;
-
-    const Eigen::VectorXd b = dirichlet.rhs(H);
-    Eigen::VectorXd H_target = H.head(nf);
-    if (k % 2 == 0)
-      gauss_seidel_sweep(dirichlet.S(), b, H_target);
-    else
-      solver.global_step(dirichlet.S(), b, H_target);
-    const double step = update_free_vertices(region, lambda, H_target, options.normal_weighting,
-                                             options.damping, X, N);
-    if (!(step <= L))
-      throw SolverError("fair: the iteration diverged (a vertex moved by more than the region's "
-                        "size in iteration " + std::to_string(k) + ")");
+    if (std::getenv("GEOFAIR_DEBUG")) {
+      double e = 0; for (int i = 0; i < level.n_free; ++i) e = std::max(e, std::abs(Y.row(i).norm() - 1.0));
+      std::fprintf(stderr, "level %zu n %d after prolongation: residual %.3e sphere err %.3e\n", l, level.n, construction.evaluate(Y), e);
+    }
+    IterationReport report;
+    if (options.outer_fairness == OuterFairness::Bilaplacian) {
+      // The linear solution is exact; the residual says how far it is from Δ_B H = 0.
+      report.residual = construction.evaluate(Y);
+      report.converged = true;
+    } else {
+      report = construction.run(Y, options.max_iterations, result.iterations);
+    }
+    if (std::getenv("GEOFAIR_DEBUG")) {
+      double e = 0; for (int i = 0; i < level.n_free; ++i) e = std::max(e, std::abs(Y.row(i).norm() - 1.0));
+      std::fprintf(stderr, "level %zu n %d after %d its: residual %.3e sphere err %.3e\n", l, level.n, report.iterations, report.residual, e);
+    }
+    for (int i = 0; i < level.n; ++i) X.row(level.global[i]) = Y.row(i);
+    result.iterations += report.iterations;
+    result.iterations_per_level.push_back(report.iterations);
+    result.vertices_per_level.push_back(level.n);
+    result.residual = report.residual;
+    result.converged = report.converged;
+    if (report.cancelled) {
+      result.converged = false;
+      break;
+    }
   }
 
   result.vertices = V;
-  for (int i = 0; i < nf; ++i) result.vertices.row(region.global[i]) = X.row(i);
+  for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = X.row(i);
   if (!result.vertices.allFinite())
     throw SolverError("fair: the iteration produced non-finite positions");
   return result;

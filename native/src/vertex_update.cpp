@@ -11,10 +11,13 @@ namespace geofair {
 
 double update_free_vertices(const FairingRegion& region, const std::vector<double>& lambda,
                             const Eigen::VectorXd& H_target, NormalWeighting weighting,
-                            double damping, Positions& X, Positions& N) {
+                            double damping, Positions& X, Positions& N,
+                            const std::vector<int>* subset) {
   const OneRings& rings = region.rings;
   double largest = 0.0;
-  for (int i = 0; i < region.n_free; ++i) {
+  const int count = subset ? int(subset->size()) : region.n_free;
+  for (int s = 0; s < count; ++s) {
+    const int i = subset ? (*subset)[s] : s;
     const Vec3 n = vertex_normal(rings, X, i, weighting);
     if (n.squaredNorm() == 0.0) continue;  // degenerate ring: leave the vertex this pass
     N.row(i) = n;

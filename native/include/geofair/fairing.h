@@ -12,7 +12,9 @@ namespace geofair {
 struct FairingResult {
   Positions vertices;      ///< #V×3; rows of fixed vertices are bit-identical to the input
   bool converged = false;  ///< residual <= tolerance was reached
-  int iterations = 0;      ///< iterations M_k -> M_{k+1} performed
+  int iterations = 0;      ///< iterations M_k -> M_{k+1} performed, all levels together
+  std::vector<int> iterations_per_level;  ///< coarsest level first
+  std::vector<int> vertices_per_level;    ///< region vertices (free + G1 boundary) per level
   double residual = 0.0;   ///< normalized residual of the returned mesh (see fair)
 };
 
@@ -20,11 +22,14 @@ struct FairingResult {
 /// with the G1 boundary condition of positions and unit normals at the fixed vertices that
 /// share a triangle with a free vertex.
 ///
-/// Steps: inner fairness weights λ on the input mesh (7.3); the linear Δ²f = 0 initial
-/// mesh with those weights (7.4); then, per iteration, normals and Moreton–Séquin H at all
-/// region vertices (6), the cotangent Dirichlet matrix S (6), (7), target curvatures H~
-/// from S H~ = b by one Gauss–Seidel sweep (even iterations) or n preconditioned CG
+/// Steps (Fig. 6): a progressive mesh of the region (7.4); on the base mesh, inner
+/// fairness weights λ of the original mesh (7.3), the linear Δ²f = 0 initial mesh with
+/// those weights (7.4), then the construction: per iteration, normals and Moreton–Séquin H
+/// at all region vertices (6), the cotangent Dirichlet matrix S (6), (7), target curvatures
+/// H~ from S H~ = b by one Gauss–Seidel sweep (even iterations) or n preconditioned CG
 /// iterations (odd iterations) (7.1), and the vertex update along the normal (7.2), (13).
+/// Each finer level is prolongated (multigrid.h) and iterated again to the tolerance. With
+/// options.levels = 1 the whole region is solved as one level.
 ///
 /// Residual: L³ · max_i |Δ_B H(q_i)| over the free vertices, with Δ_B of eq. (5),
 /// Δ_B H(q_i) = 3/(2 A_i) Σ_j w_ij (H_j − H_i) (A_i the 1-disk area, w_ij cotangent

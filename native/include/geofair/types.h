@@ -62,12 +62,15 @@ struct FairingOptions {
   NormalWeighting normal_weighting = NormalWeighting::Area;
   /// Stop when the residual L³·max|Δ_B H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
-  /// Upper bound on the number of iterations M_k -> M_{k+1}.
+  /// Upper bound on the number of iterations M_k -> M_{k+1} on each level.
   int max_iterations = 20000;
   /// Damping s of the vertex update q <- q~ + s t n (section 7.2); 0 < s <= 1.
   double damping = 0.9;
   /// Conjugate-gradient iterations n of a global step (section 7.1).
   int cg_iterations = 10;
+  /// Levels of the progressive-mesh multigrid (section 7.4): 1 = single level,
+  /// 0 = picked from the region size (default_levels).
+  int levels = 1;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
 };

@@ -24,9 +24,11 @@ namespace geofair {
 /// \param N       #region×3 unit normals; free rows are refreshed as vertices move
 /// \param H_target #V_I target curvatures H~
 /// \param lambda  inner fairness weights per ring slot (inner_fairness_weights)
+/// \param subset  free vertices to update, in this order; nullptr: all free vertices
 /// \return the largest displacement of a vertex in this pass (length units).
 double update_free_vertices(const FairingRegion& region, const std::vector<double>& lambda,
                             const Eigen::VectorXd& H_target, NormalWeighting weighting,
-                            double damping, Positions& X, Positions& N);
+                            double damping, Positions& X, Positions& N,
+                            const std::vector<int>* subset = nullptr);
 
 }  // namespace geofair

@@ -1,0 +1,163 @@
+// Progressive mesh by half-edge collapses with OpenMesh's decimater (section 7.4).
+#include "geofair/progressive_mesh.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace geofair {
+namespace {
+
+struct DoubleTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+
+// 4√3·area / (a² + b² + c²): 1 for an equilateral triangle, 0 for a degenerate one.
+double triangle_quality(const OpenMesh::Vec3d& a, const OpenMesh::Vec3d& b,
+                        const OpenMesh::Vec3d& c, OpenMesh::Vec3d& normal) {
+  normal = (b - a) % (c - a);
+  const double edges = (b - a).sqrnorm() + (c - b).sqrnorm() + (a - c).sqrnorm();
+  return edges > 0.0 ? 2.0 * std::sqrt(3.0) * normal.norm() / edges : 0.0;
+}
+
+// Priority module: shortest half-edge first, distorted or flipped triangles refused.
+template <class MeshT>
+class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+ public:
+  DECIMATING_MODULE(ModFairingHierarchyT, MeshT, FairingHierarchy);
+
+  explicit ModFairingHierarchyT(MeshT& mesh) : Base(mesh, false), mesh_(mesh) {}
+
+  float collapse_priority(const CollapseInfo& ci) override {
+    for (auto f : mesh_.vf_range(ci.v0)) {
+      if (f == ci.fl || f == ci.fr) continue;  // these two triangles disappear
+      OpenMesh::Vec3d p[3], q[3];
+      int k = 0;
+      for (auto v : mesh_.fv_range(f)) {
+        p[k] = mesh_.point(v);
+        q[k] = v == ci.v0 ? ci.p1 : p[k];
+        ++k;
+      }
+      OpenMesh::Vec3d n_old, n_new;
+      triangle_quality(p[0], p[1], p[2], n_old);
+      if (triangle_quality(q[0], q[1], q[2], n_new) < kMinQuality) return float(Base::ILLEGAL_COLLAPSE);
+      if ((n_old | n_new) < 0.5 * n_old.norm() * n_new.norm()) return float(Base::ILLEGAL_COLLAPSE);
+    }
+    return float((ci.p1 - ci.p0).sqrnorm());
+  }
+
+  // Records the collapsed vertex with its one-ring before the collapse.
+  void preprocess_collapse(const CollapseInfo& ci) override {
+    collapses.vertex.push_back(ci.v0.idx());
+    for (auto v : mesh_.vv_range(ci.v0)) collapses.ring.push_back(v.idx());
+    collapses.offset.push_back(int(collapses.ring.size()));
+  }
+
+  VertexSplits collapses;  // in collapse order
+
+ private:
+  static constexpr double kMinQuality = 0.25;
+  MeshT& mesh_;
+};
+
+Triangles snapshot(const Mesh& mesh) {
+  Triangles T(Eigen::Index(mesh.n_faces()), 3);
+  Eigen::Index t = 0;
+  for (auto f : mesh.faces()) {
+    int k = 0;
+    for (auto v : f.vertices()) T(t, k++) = v.idx();
+    ++t;
+  }
+  T.conservativeResize(t, 3);
+  return T;
+}
+
+}  // namespace
+
+int default_levels(int n_free) {
+  int levels = 1;
+  for (double n = n_free; n > 250.0; n /= 4.0) ++levels;
+  return levels;
+}
+
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels) {
+  Mesh mesh;
+  mesh.request_vertex_status();
+  mesh.request_edge_status();
+  mesh.request_face_status();
+  for (int i = 0; i < region.n; ++i) {
+    const auto v = mesh.add_vertex(Mesh::Point(X(i, 0), X(i, 1), X(i, 2)));
+    if (i >= region.n_free) mesh.status(v).set_locked(true);
+  }
+  for (Eigen::Index t = 0; t < region.triangles.rows(); ++t)
+    mesh.add_face(mesh.vertex_handle(region.triangles(t, 0)), mesh.vertex_handle(region.triangles(t, 1)),
+                  mesh.vertex_handle(region.triangles(t, 2)));
+
+  OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
+  typename ModFairingHierarchyT<Mesh>::Handle module;
+  decimater.add(module);
+  decimater.initialize();
+  VertexSplits& collapses = decimater.module(module).collapses;
+
+  // Finest level first; decimate stage by stage towards the base mesh.
+  std::vector<Triangles> fine_to_coarse{region.triangles};
+  std::vector<VertexSplits> splits_fine_to_coarse;
+  const int n_boundary = region.n - region.n_free;
+  for (int level = levels - 2; level >= 0; --level) {
+    const double n_free = region.n_free / std::pow(4.0, levels - 1 - level);
+    const std::size_t target = std::size_t(n_boundary) + std::size_t(std::max(1.0, std::round(n_free)));
+    collapses = VertexSplits{};
+    // decimate_to counts deleted vertices too, so ask for the number of collapses.
+    const std::size_t present = region.n - std::accumulate(splits_fine_to_coarse.begin(), splits_fine_to_coarse.end(), std::size_t(0), [](std::size_t a, const VertexSplits& s) { return a + s.size(); });
+    if (present <= target) break;
+    decimater.decimate(present - target);
+    if (collapses.size() == 0) break;  // nothing more can be collapsed
+    // Replaying the vertex splits undoes the collapses in reverse order.
+    VertexSplits splits;
+    for (std::size_t c = collapses.size(); c-- > 0;) {
+      splits.vertex.push_back(collapses.vertex[c]);
+      splits.ring.insert(splits.ring.end(), collapses.ring.begin() + collapses.offset[c],
+                         collapses.ring.begin() + collapses.offset[c + 1]);
+      splits.offset.push_back(int(splits.ring.size()));
+    }
+    splits_fine_to_coarse.push_back(std::move(splits));
+    fine_to_coarse.push_back(snapshot(mesh));
+  }
+  ProgressiveMesh pm;
+  pm.triangles.assign(fine_to_coarse.rbegin(), fine_to_coarse.rend());
+  pm.splits.emplace_back();
+  pm.splits.insert(pm.splits.end(), splits_fine_to_coarse.rbegin(), splits_fine_to_coarse.rend());
+  return pm;
+}
+
+FairingRegion level_region(const FairingRegion& region, const Triangles& triangles) {
+  std::vector<int> local(region.n, -1);
+  std::vector<std::uint8_t> present(region.n, 0);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) present[triangles(t, c)] = 1;
+  FairingRegion level;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = pass ? region.n_free : 0; i < (pass ? region.n : region.n_free); ++i)
+      if (present[i]) {
+        local[i] = int(level.global.size());
+        level.global.push_back(i);
+        if (!pass) level.n_free = int(level.global.size());
+      }
+  level.n = int(level.global.size());
+  level.triangles.resize(triangles.rows(), 3);
+  for (Eigen::Index t = 0; t < triangles.rows(); ++t)
+    for (int c = 0; c < 3; ++c) level.triangles(t, c) = local[triangles(t, c)];
+  level.rings = build_one_rings(level.n, level.triangles, "fair");
+  level.g1_normals.resize(level.n - level.n_free, 3);
+  for (int b = level.n_free; b < level.n; ++b)
+    level.g1_normals.row(b - level.n_free) = region.g1_normals.row(level.global[b] - region.n_free);
+  return level;
+}
+
+}  // namespace geofair
