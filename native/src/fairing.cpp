@@ -11,8 +11,6 @@
 
 #include <cmath>
 #include <numeric>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
 namespace geofair {
@@ -76,10 +74,6 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       for (int& v : splits.ring) v = local[v];
       prolongate(level, splits, options.inner_fairness, gather(X0, level.global), Y, construction);
     }
-    if (std::getenv("GEOFAIR_DEBUG")) {
-      double e = 0; for (int i = 0; i < level.n_free; ++i) e = std::max(e, std::abs(Y.row(i).norm() - 1.0));
-      std::fprintf(stderr, "level %zu n %d after prolongation: residual %.3e sphere err %.3e\n", l, level.n, construction.evaluate(Y), e);
-    }
     IterationReport report;
     if (options.outer_fairness == OuterFairness::Bilaplacian) {
       // The linear solution is exact; the residual says how far it is from Δ_B H = 0.
@@ -87,10 +81,6 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       report.converged = true;
     } else {
       report = construction.run(Y, options.max_iterations, result.iterations);
-    }
-    if (std::getenv("GEOFAIR_DEBUG")) {
-      double e = 0; for (int i = 0; i < level.n_free; ++i) e = std::max(e, std::abs(Y.row(i).norm() - 1.0));
-      std::fprintf(stderr, "level %zu n %d after %d its: residual %.3e sphere err %.3e\n", l, level.n, report.iterations, report.residual, e);
     }
     for (int i = 0; i < level.n; ++i) X.row(level.global[i]) = Y.row(i);
     result.iterations += report.iterations;
