@@ -1,0 +1,263 @@
+"""Selection to fairing region, without bpy (numpy only).
+
+Turns a face selection on a triangle mesh into what ``geofair.fair`` needs: the
+mask of free vertices, the G1 boundary around them with its prescribed normals,
+and, for reporting and tests, the boundary loops.
+
+Conventions: ``V  #V×3 float64`` vertex positions, ``T  #T×3 int`` triangles,
+consistently oriented (counter-clockwise seen from the outside), so the cross
+product ``(b - a) × (c - a)`` of a triangle points outwards and its length is
+twice the triangle area.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class RegionError(ValueError):
+    """The selection does not define a region that can be faired."""
+
+
+@dataclass(frozen=True)
+class Region:
+    """A fairing region on a triangle mesh with ``n`` vertices.
+
+    Attributes:
+        free: ``(n,)`` bool, vertices that may move: all their faces are
+            selected and they are not on the open mesh border.
+        boundary: ``(n,)`` bool, the G1 boundary: fixed vertices that share a
+            face with a free vertex.
+        boundary_normals: ``(n, 3)`` float64, unit normals at boundary rows,
+            zero elsewhere. Area-weighted normal of the unselected faces at the
+            vertex; of the selected faces where there is no unselected face.
+        border_fixed: ``(n,)`` bool, vertices with all faces selected that were
+            kept fixed because they lie on the open mesh border.
+        loops: boundary loops, each an int array of vertex indices, oriented
+            like the triangles of the region (the outer loop counter-clockwise).
+    """
+
+    free: np.ndarray
+    boundary: np.ndarray
+    boundary_normals: np.ndarray
+    border_fixed: np.ndarray
+    loops: list
+
+
+def triangulate_polygons(loop_start, loop_total, corner_verts):
+    """Fan-triangulate polygons given as loop index arrays.
+
+    Only correct for convex polygons; Blender's ``mesh.loop_triangles`` is the
+    better source where bpy is available.
+
+    Args:
+        loop_start: ``(P,)`` int, first corner of each polygon.
+        loop_total: ``(P,)`` int, number of corners of each polygon (>= 3).
+        corner_verts: ``(L,)`` int, vertex index of each corner.
+
+    Returns:
+        ``(triangles, triangle_polygon)``: ``(T, 3)`` int64 vertex indices and
+        ``(T,)`` int64 index of the polygon each triangle comes from.
+    """
+    loop_start = np.asarray(loop_start, dtype=np.int64)
+    loop_total = np.asarray(loop_total, dtype=np.int64)
+    corner_verts = np.asarray(corner_verts, dtype=np.int64)
+    if np.any(loop_total < 3):
+        raise ValueError("triangulate_polygons: every polygon needs at least 3 corners")
+    per_polygon = loop_total - 2
+    triangle_polygon = np.repeat(np.arange(len(loop_start)), per_polygon)
+    # k-th triangle of a polygon: corners (0, k + 1, k + 2) of the fan.
+    k = np.arange(len(triangle_polygon)) - np.repeat(np.cumsum(per_polygon) - per_polygon, per_polygon)
+    first = loop_start[triangle_polygon]
+    corners = np.stack([first, first + k + 1, first + k + 2], axis=1)
+    return corner_verts[corners], triangle_polygon
+
+
+def face_cross_products(vertices, triangles):
+    """Return ``(T, 3)`` cross products ``(b - a) × (c - a)`` (twice the area times the unit normal)."""
+    a, b, c = (vertices[triangles[:, i]] for i in range(3))
+    return np.cross(b - a, c - a)
+
+
+def border_vertices(n, triangles):
+    """Return ``(n,)`` bool: vertices on an open border edge (one triangle) or a non-manifold edge (more than two)."""
+    triangles = np.asarray(triangles, dtype=np.int64)
+    edges = np.sort(triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    keys, counts = np.unique(edges[:, 0] * n + edges[:, 1], return_counts=True)
+    border = keys[counts != 2]
+    on_border = np.zeros(n, dtype=bool)
+    on_border[border // n] = True
+    on_border[border % n] = True
+    return on_border
+
+
+def find_region(vertices, triangles, selected):
+    """Compute the fairing region of a face selection.
+
+    A vertex is free when all its faces are selected, unless it lies on the
+    open mesh border: there it is kept fixed (counted in ``border_fixed``).
+
+    Args:
+        vertices: ``(n, 3)`` float vertex positions.
+        triangles: ``(T, 3)`` int triangles (the triangulated faces).
+        selected: ``(T,)`` bool, triangles of selected faces.
+
+    Returns:
+        The :class:`Region`.
+
+    Raises:
+        RegionError: nothing selected, no free vertex, a selected part with no
+            fixed boundary (a whole closed piece of the mesh), or a boundary
+            normal that cannot be computed (degenerate faces).
+    """
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    selected = np.asarray(selected, dtype=bool)
+    n = len(vertices)
+    if selected.shape != (len(triangles),):
+        raise ValueError("find_region: selected must have one entry per triangle")
+    if not selected.any():
+        raise RegionError("No face is selected: select the faces to fair")
+
+    faces_at = np.bincount(triangles.ravel(), minlength=n)
+    selected_at = np.bincount(triangles[selected].ravel(), minlength=n)
+    inside = (faces_at > 0) & (selected_at == faces_at)
+    border_fixed = inside & border_vertices(n, triangles)
+    free = inside & ~border_fixed
+    if not free.any():
+        raise RegionError("No vertex lies inside the selection: select faces that surround at least one vertex")
+
+    boundary = np.zeros(n, dtype=bool)
+    boundary[triangles[free[triangles].any(axis=1)].ravel()] = True
+    boundary &= ~free
+    _check_every_part_has_boundary(triangles, free, boundary)
+
+    cross = face_cross_products(vertices, triangles)
+    outside_normal = _vertex_sums(n, triangles[~selected], cross[~selected])
+    inside_normal = _vertex_sums(n, triangles[selected], cross[selected])
+    use_inside = boundary & (selected_at == faces_at)
+    normals = np.where(use_inside[:, None], inside_normal, outside_normal)
+    normals[~boundary] = 0.0
+    length = np.linalg.norm(normals, axis=1)
+    degenerate = boundary & ~(length > 0.0)
+    if degenerate.any():
+        raise RegionError(f"{np.count_nonzero(degenerate)} boundary vertices have no usable normal (degenerate faces)")
+    normals[boundary] /= length[boundary, None]
+
+    return Region(
+        free=free,
+        boundary=boundary,
+        boundary_normals=normals,
+        border_fixed=border_fixed,
+        loops=boundary_loops(triangles, free),
+    )
+
+
+def boundary_loops(triangles, free):
+    """Return the boundary loops around the free vertices.
+
+    The loops run along the outline of the triangles that touch a free vertex,
+    in the direction of those triangles' edges. A vertex where the region
+    touches itself appears in more than one loop (or twice in one).
+
+    Args:
+        triangles: ``(T, 3)`` int triangles.
+        free: ``(n,)`` bool free vertices.
+
+    Returns:
+        List of ``(k,)`` int64 arrays of vertex indices, longest first.
+    """
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    region = triangles[np.asarray(free, dtype=bool)[triangles].any(axis=1)]
+    heads = region.ravel()
+    tails = region[:, [1, 2, 0]].ravel()
+    n = int(max(heads.max(initial=0), tails.max(initial=0))) + 1
+    outline = ~np.isin(tails * n + heads, heads * n + tails)
+
+    successors = {}
+    for head, tail in zip(heads[outline].tolist(), tails[outline].tolist(), strict=True):
+        successors.setdefault(head, []).append(tail)
+    loops = []
+    while successors:
+        start = next(iter(successors))
+        loop = [start]
+        vertex = _pop_successor(successors, start)
+        while vertex != start:
+            loop.append(vertex)
+            if vertex not in successors:  # an open chain: only with misoriented triangles
+                break
+            vertex = _pop_successor(successors, vertex)
+        loops.append(np.array(loop, dtype=np.int64))
+    loops.sort(key=len, reverse=True)
+    return loops
+
+
+def uv_conformal_distortion(vertices, triangles, corner_uvs):
+    """Per-triangle conformal distortion of a UV map: σ1/σ2 of the map from the triangle to UV.
+
+    1 where the triangle's UV image is similar to it (angles kept), larger the
+    more it is stretched in one direction; huge or ``inf`` for a degenerate UV triangle.
+
+    Args:
+        vertices: ``(n, 3)`` float positions.
+        triangles: ``(T, 3)`` int triangles.
+        corner_uvs: ``(T, 3, 2)`` float UV coordinates of each triangle corner.
+
+    Returns:
+        ``(T,)`` float64, each >= 1.
+    """
+    p = np.asarray(vertices, dtype=np.float64)[np.asarray(triangles)]
+    uv = np.asarray(corner_uvs, dtype=np.float64)
+    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    length = np.linalg.norm(e1, axis=1)
+    x_axis = e1 / length[:, None]
+    height = np.linalg.norm(np.cross(x_axis, e2), axis=1)
+    # The triangle in its own plane: edges (length, 0) and (e2·x, height) as columns.
+    local = np.zeros((len(p), 2, 2))
+    local[:, 0, 0] = length
+    local[:, 0, 1] = np.einsum("ij,ij->i", e2, x_axis)
+    local[:, 1, 1] = height
+    uv_edges = np.stack([uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]], axis=2)
+    jacobian = uv_edges @ np.linalg.inv(local)
+    sigma = np.linalg.svd(jacobian, compute_uv=False)
+    with np.errstate(divide="ignore"):
+        return sigma[:, 0] / sigma[:, 1]
+
+
+def _pop_successor(successors, vertex):
+    following = successors[vertex]
+    tail = following.pop()
+    if not following:
+        del successors[vertex]
+    return tail
+
+
+def _vertex_sums(n, triangles, values):
+    """Sum per-triangle ``values`` (T, 3) into the ``n`` vertices of each triangle."""
+    sums = np.zeros((n, 3))
+    for corner in range(3):
+        np.add.at(sums, triangles[:, corner], values)
+    return sums
+
+
+def _check_every_part_has_boundary(triangles, free, boundary):
+    """Raise RegionError if a connected set of free vertices touches no boundary vertex."""
+    edges = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    edges = edges[free[edges].all(axis=1)]
+    label = np.arange(len(free))
+    while True:  # label propagation with pointer jumping: each part gets its smallest index
+        old = label.copy()
+        np.minimum.at(label, edges[:, 0], label[edges[:, 1]])
+        np.minimum.at(label, edges[:, 1], label[edges[:, 0]])
+        label = label[label]
+        if np.array_equal(label, old):
+            break
+    touching = np.zeros(len(free), dtype=bool)
+    region_edges = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    for a, b in ((0, 1), (1, 0)):
+        link = free[region_edges[:, a]] & boundary[region_edges[:, b]]
+        touching[label[region_edges[link, a]]] = True
+    if np.any(free & ~touching[label]):
+        raise RegionError(
+            "The selection covers a whole closed part of the mesh: fairing needs unselected faces around the selection"
+        )

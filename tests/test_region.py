@@ -1,0 +1,234 @@
+"""Tests of the add-on's bpy-free region module on small hand-made meshes."""
+
+import importlib.util
+import pathlib
+
+import numpy as np
+import pytest
+
+_REGION_PY = pathlib.Path(__file__).resolve().parents[1] / "addon" / "geometric_fairing" / "region.py"
+_spec = importlib.util.spec_from_file_location("geofair_region", _REGION_PY)
+region = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(region)
+
+
+def grid(nx, ny):
+    """Quad grid in the z = 0 plane: (nx+1)(ny+1) vertices, vertex (x, y) has index x + y (nx+1).
+
+    Returns vertices, triangles, the polygon of each triangle and a function
+    quad(x, y) giving the polygon index of the quad with lower-left corner (x, y).
+    Quads are counter-clockwise seen from +z and fan-triangulated along the
+    diagonal from (x, y) to (x+1, y+1).
+    """
+    xs, ys = np.meshgrid(np.arange(nx + 1), np.arange(ny + 1))
+    vertices = np.stack([xs.ravel(), ys.ravel(), np.zeros(xs.size)], axis=1).astype(float)
+    v = lambda x, y: x + y * (nx + 1)  # noqa: E731
+    corners = [[v(x, y), v(x + 1, y), v(x + 1, y + 1), v(x, y + 1)] for y in range(ny) for x in range(nx)]
+    starts = np.arange(len(corners)) * 4
+    triangles, triangle_polygon = region.triangulate_polygons(starts, np.full(len(corners), 4), np.ravel(corners))
+    return vertices, triangles, triangle_polygon, lambda x, y: x + y * nx
+
+
+def vertex_mask(n, nx, points):
+    mask = np.zeros(n, dtype=bool)
+    for x, y in points:
+        mask[x + y * (nx + 1)] = True
+    return mask
+
+
+def select_quads(triangle_polygon, quad, quads):
+    return np.isin(triangle_polygon, [quad(x, y) for x, y in quads])
+
+
+def signed_area_xy(vertices, loop):
+    p = vertices[loop]
+    q = np.roll(p, -1, axis=0)
+    return 0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1])
+
+
+def octahedron():
+    """Closed octahedron, outward oriented: equator 0..3, top 4, bottom 5."""
+    vertices = np.array([[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
+    top = [[i, (i + 1) % 4, 4] for i in range(4)]
+    bottom = [[(i + 1) % 4, i, 5] for i in range(4)]
+    return vertices, np.array(top + bottom)
+
+
+def test_fan_triangulation_of_quads_and_ngons():
+    # A triangle, a quad and a convex pentagon (regular, radius 1).
+    angles = 2 * np.pi * np.arange(5) / 5
+    pentagon = np.stack([np.cos(angles), np.sin(angles), np.zeros(5)], axis=1)
+    vertices = np.vstack([[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [2, 0, 0], [2, 3, 0], [0, 3, 0]], pentagon])
+    starts, totals = np.array([0, 3, 7]), np.array([3, 4, 5])
+    triangles, triangle_polygon = region.triangulate_polygons(starts, totals, np.arange(12))
+
+    assert triangles.shape == (1 + 2 + 3, 3)
+    np.testing.assert_array_equal(triangle_polygon, [0, 1, 1, 2, 2, 2])
+    np.testing.assert_array_equal(triangles[1:3], [[3, 4, 5], [3, 5, 6]])
+    area = np.linalg.norm(region.face_cross_products(vertices, triangles), axis=1) / 2
+    polygon_area = np.bincount(triangle_polygon, weights=area)
+    np.testing.assert_allclose(polygon_area, [0.5, 6.0, 2.5 * np.sin(2 * np.pi / 5)], rtol=1e-14)
+    # Orientation is kept: every triangle faces +z like its polygon.
+    assert np.all(region.face_cross_products(vertices, triangles)[:, 2] > 0)
+
+
+def test_triangulation_rejects_degenerate_polygon():
+    with pytest.raises(ValueError, match="at least 3"):
+        region.triangulate_polygons([0], [2], [0, 1])
+
+
+def test_square_selection_in_grid():
+    nx = ny = 6
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    selected = select_quads(triangle_polygon, quad, [(x, y) for x in range(1, 5) for y in range(1, 5)])
+    # Lift the inner vertices: boundary normals come from the unselected (flat) faces only.
+    inner = [(x, y) for x in range(2, 5) for y in range(2, 5)]
+    vertices[vertex_mask(n, nx, inner), 2] = 1.0
+
+    r = region.find_region(vertices, triangles, selected)
+
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, inner))
+    ring = [(x, y) for x in range(1, 6) for y in range(1, 6) if x in (1, 5) or y in (1, 5)]
+    # Corners (5, 1) and (1, 5) share no triangle with a free vertex (the diagonals run from
+    # (x, y) to (x+1, y+1)), so they are not part of the G1 boundary.
+    expected_boundary = vertex_mask(n, nx, [p for p in ring if p not in ((5, 1), (1, 5))])
+    np.testing.assert_array_equal(r.boundary, expected_boundary)
+    np.testing.assert_array_equal(r.boundary_normals[r.boundary], np.tile([0.0, 0.0, 1.0], (14, 1)))
+    np.testing.assert_array_equal(r.boundary_normals[~r.boundary], 0.0)
+    assert not r.border_fixed.any()
+
+    assert len(r.loops) == 1
+    loop = r.loops[0]
+    assert len(loop) == 14 and set(loop.tolist()) == set(np.flatnonzero(expected_boundary).tolist())
+    # Consecutive loop vertices are joined by mesh edges, and the loop turns counter-clockwise.
+    assert np.all(np.abs(vertices[loop] - vertices[np.roll(loop, -1)])[:, :2].max(axis=1) == 1)
+    assert signed_area_xy(vertices, loop) > 0
+
+
+def test_selection_touching_open_border():
+    nx, ny = 4, 4
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    selected = select_quads(triangle_polygon, quad, [(0, 1), (1, 1), (0, 2), (1, 2)])
+    vertices[vertex_mask(n, nx, [(1, 2)]), 2] = 1.0  # lift the free vertex
+
+    r = region.find_region(vertices, triangles, selected)
+
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, [(1, 2)]))
+    # (0, 2) has only selected faces but lies on the open border: kept fixed.
+    np.testing.assert_array_equal(r.border_fixed, vertex_mask(n, nx, [(0, 2)]))
+    assert r.boundary[2 * (nx + 1)]
+    # Its normal falls back to the selected faces at it: cross products, by hand,
+    # (-1, 0, 1) + (-1, 1, 1) + (0, 0, 1) of its three triangles.
+    np.testing.assert_allclose(r.boundary_normals[2 * (nx + 1)], np.array([-2, 1, 3]) / np.sqrt(14), rtol=1e-15)
+    # The other boundary vertices see flat unselected faces.
+    others = r.boundary & ~r.border_fixed
+    np.testing.assert_array_equal(r.boundary_normals[others], np.tile([0.0, 0.0, 1.0], (others.sum(), 1)))
+    assert len(r.loops) == 1 and 2 * (nx + 1) in r.loops[0]
+
+
+def test_whole_open_grid_selected_fixes_the_border():
+    nx, ny = 3, 3
+    vertices, triangles, _, _ = grid(nx, ny)
+    r = region.find_region(vertices, triangles, np.ones(len(triangles), dtype=bool))
+    interior = [(x, y) for x in (1, 2) for y in (1, 2)]
+    np.testing.assert_array_equal(r.free, vertex_mask(len(vertices), nx, interior))
+    assert r.border_fixed.sum() == 12
+    np.testing.assert_array_equal(r.boundary_normals[r.boundary], np.tile([0.0, 0.0, 1.0], (r.boundary.sum(), 1)))
+
+
+def test_two_disjoint_selections():
+    nx, ny = 9, 4
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    blocks = [(x, y) for x in (1, 2) for y in (1, 2)] + [(x, y) for x in (6, 7) for y in (1, 2)]
+    r = region.find_region(vertices, triangles, select_quads(triangle_polygon, quad, blocks))
+
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, [(2, 2), (7, 2)]))
+    assert len(r.loops) == 2
+    left, right = sorted(r.loops, key=lambda loop: vertices[loop, 0].mean())
+    assert vertices[left, 0].max() <= 3 and vertices[right, 0].min() >= 6
+    assert set(left.tolist()) | set(right.tolist()) == set(np.flatnonzero(r.boundary).tolist())
+    assert all(signed_area_xy(vertices, loop) > 0 for loop in r.loops)
+
+
+def test_annulus_has_two_boundary_loops():
+    nx = ny = 7
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    ring = [(x, y) for x in range(1, 6) for y in range(1, 6) if (x, y) != (3, 3)]
+    r = region.find_region(vertices, triangles, select_quads(triangle_polygon, quad, ring))
+
+    hole = [(3, 3), (4, 3), (4, 4), (3, 4)]
+    free = [(x, y) for x in range(2, 6) for y in range(2, 6) if (x, y) not in hole]
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, free))
+    assert len(r.loops) == 2
+    outer, inner = r.loops
+    assert signed_area_xy(vertices, outer) > 0
+    # The inner loop runs around the hole, clockwise.
+    assert set(inner.tolist()) == set(np.flatnonzero(vertex_mask(n, nx, hole)).tolist())
+    assert signed_area_xy(vertices, inner) == -1.0
+
+
+def test_octahedron_normals_come_from_unselected_faces():
+    vertices, triangles = octahedron()
+    selected = np.array([True] * 4 + [False] * 4)  # the four faces around the top
+    r = region.find_region(vertices, triangles, selected)
+
+    np.testing.assert_array_equal(r.free, [False] * 4 + [True, False])
+    np.testing.assert_array_equal(r.boundary, [True] * 4 + [False, False])
+    equator = vertices[:4]
+    expected = (equator + [0, 0, -1]) / np.sqrt(2)  # bisector of the two lower faces
+    np.testing.assert_allclose(r.boundary_normals[:4], expected, rtol=0, atol=1e-15)
+    assert len(r.loops) == 1
+    loop = r.loops[0]
+    assert np.array_equal(np.roll(loop, -int(np.argmin(loop))), [0, 1, 2, 3])
+
+
+@pytest.mark.parametrize(
+    "selected, message",
+    [
+        ([False] * 8, "No face is selected"),
+        ([True] + [False] * 7, "No vertex lies inside"),
+        ([True] * 8, "whole closed part"),
+    ],
+)
+def test_invalid_selections(selected, message):
+    vertices, triangles = octahedron()
+    with pytest.raises(region.RegionError, match=message):
+        region.find_region(vertices, triangles, np.array(selected))
+
+
+def test_closed_part_fully_selected_next_to_valid_selection():
+    vertices, triangles = octahedron()
+    vertices = np.vstack([vertices, vertices + [5, 0, 0]])
+    triangles = np.vstack([triangles, triangles + 6])
+    selected = np.array([True] * 4 + [False] * 4 + [True] * 8)
+    with pytest.raises(region.RegionError, match="whole closed part"):
+        region.find_region(vertices, triangles, selected)
+
+
+def test_region_error_is_a_value_error():
+    assert issubclass(region.RegionError, ValueError)
+
+
+def test_uv_conformal_distortion():
+    rng = np.random.default_rng(7)
+    vertices, triangles, _, _ = grid(3, 2)
+    vertices[:, 2] = rng.uniform(-0.2, 0.2, len(vertices))  # a bumpy but flat-shaded sheet
+    xy = vertices[triangles][..., :2]
+    # Similar maps (rotation, uniform scale) are conformal: a triangle in the z = 0 plane.
+    flat = vertices.copy()
+    flat[:, 2] = 0.0
+    rotation = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
+    np.testing.assert_allclose(region.uv_conformal_distortion(flat, triangles, 2.5 * xy @ rotation.T), 1.0, rtol=1e-12)
+    # A stretch by 3 along u in the plane: distortion 3 everywhere.
+    np.testing.assert_allclose(region.uv_conformal_distortion(flat, triangles, xy * [3.0, 1.0]), 3.0, rtol=1e-12)
+    # Out of the plane the projection to xy is no longer conformal.
+    bumpy = region.uv_conformal_distortion(vertices, triangles, xy)
+    assert np.all(bumpy >= 1.0) and np.any(bumpy > 1.01)
+    # A UV triangle collapsed to a segment.
+    collapsed = xy.copy()
+    collapsed[0] = [[0, 0], [1, 1], [2, 2]]
+    assert region.uv_conformal_distortion(flat, triangles, collapsed)[0] > 1e12
