@@ -33,8 +33,8 @@ Only numpy and scipy.spatial are used.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from scipy.spatial import ConvexHull, Delaunay
@@ -205,7 +205,7 @@ class _Rect:
         U, V = self.U + d, self.V + d
         corners = np.array([[-U, -V], [U, -V], [U, V], [-U, V]])
         pts = []
-        for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+        for a, b in zip(corners, np.roll(corners, -1, axis=0), strict=True):
             n = max(1, round(np.linalg.norm(b - a) / h))
             t = np.arange(n)[:, None] / n
             pts.append(a + t * (b - a))
@@ -305,9 +305,9 @@ def _triangulate(uv, padding, movable, inside, period=None):
         # mean neighbour offset of the unshifted copies (each edge counted per triangle)
         mean = np.zeros((k, 2))
         for c in range(3):
-            i, j, l = s[:, c], s[:, (c + 1) % 3], s[:, (c + 2) % 3]
+            i, j, m = s[:, c], s[:, (c + 1) % 3], s[:, (c + 2) % 3]
             ok = i < k
-            d = ext[j[ok]] + ext[l[ok]] - 2 * ext[i[ok]]
+            d = ext[j[ok]] + ext[m[ok]] - 2 * ext[i[ok]]
             mean += np.stack([np.bincount(i[ok], d[:, a], minlength=k) for a in (0, 1)], 1)
         mean /= np.maximum(2 * np.bincount(s[s < k], minlength=k), 1)[:, None]
         trial = uv[move] + 0.5 * mean[move]
@@ -382,8 +382,8 @@ def _regular_rect(dom, n_free, rings):
     v = np.concatenate([v[0] - dv * np.arange(e, 0, -1), v, v[-1] + dv * np.arange(1, e + 1)])
     U, V = np.meshgrid(u, v, indexing="xy")
     uv = np.column_stack([U.ravel(), V.ravel()])
-    J, I = np.meshgrid(np.arange(len(v)), np.arange(len(u)), indexing="ij")
-    free = ((I > e) & (I < e + nu) & (J > e) & (J < e + nv)).ravel()
+    Jg, Ig = np.meshgrid(np.arange(len(v)), np.arange(len(u)), indexing="ij")
+    free = ((Ig > e) & (Ig < e + nu) & (Jg > e) & (Jg < e + nv)).ravel()
     faces = _grid_faces(len(u) - 1, len(v) - 1)
     return uv, _ccw(uv, faces), free
 
@@ -614,7 +614,7 @@ def _icosphere_directions(n_vertices):
     index, points, faces = {}, [], []
 
     def vid(corners, weights):  # shared edge/corner points get one id: exact integer keys
-        key = tuple(sorted((c, w) for c, w in zip(corners, weights) if w))
+        key = tuple(sorted((c, w) for c, w in zip(corners, weights, strict=True) if w))
         if key not in index:
             index[key] = len(points)
             points.append(sum(w * ico[c] for c, w in key) / f)

@@ -42,8 +42,7 @@ def test_reproduces_analytic_surface(name, irregular):
 def test_error_falls_with_refinement(name):
     # On regular meshes with the paper's settings. (On irregular meshes the area-weighted
     # normals of section 6 are inconsistent and the error falls much more slowly.)
-    errors = [max_error(s, fair(s)) for s in
-              (PATCHES[name](n_free=n, irregular=False, seed=12) for n in (120, 480))]
+    errors = [max_error(s, fair(s)) for s in (PATCHES[name](n_free=n, irregular=False, seed=12) for n in (120, 480))]
     assert errors[1] < 0.75 * errors[0]
 
 
@@ -70,7 +69,7 @@ def test_inner_fairness_moves_vertices_along_the_surface(weighting, bound):
     b = fair(s, v, inner_fairness="conformal", normal_weighting=weighting)
     assert a.converged and b.converged
     moved = np.linalg.norm(a.vertices - b.vertices, axis=1).max() / s.size
-    assert moved > 1e-2                                       # vertices sit elsewhere ...
+    assert moved > 1e-2  # vertices sit elsewhere ...
     assert max_error(s, a) < bound and max_error(s, b) < bound  # ... on the same sphere
     la = max_error(s, fair(s, v, inner_fairness="uniform", outer_fairness="bilaplacian"))
     lb = max_error(s, fair(s, v, inner_fairness="conformal", outer_fairness="bilaplacian"))
@@ -89,8 +88,7 @@ def test_scale_invariant():
     v = s.disturbed(seed=3)
     ref = fair(s, v, tolerance=1e-12, max_iterations=300)
     for scale in (1e-4, 1e4):
-        r = geofair.fair(scale * v, s.faces, s.free, boundary_normals=s.normals,
-                         tolerance=1e-12, max_iterations=300)
+        r = geofair.fair(scale * v, s.faces, s.free, boundary_normals=s.normals, tolerance=1e-12, max_iterations=300)
         assert r.iterations == ref.iterations
         assert np.allclose(r.vertices / scale, ref.vertices, rtol=0, atol=1e-9 * s.size)
         assert r.residual == pytest.approx(ref.residual, rel=1e-6, abs=1e-9)
@@ -114,20 +112,22 @@ def test_disconnected_regions_in_one_call():
     b = scenes.sphere_cap(n_free=150, irregular=False, seed=20)
     v = np.vstack([a.disturbed(seed=1), b.disturbed(seed=2) + [3.0, 0, 0]])
     f = np.vstack([a.faces, b.faces + len(a.vertices)])
-    r = geofair.fair(v, f, np.concatenate([a.free, b.free]),
-                     boundary_normals=np.vstack([a.normals, b.normals]))
+    r = geofair.fair(v, f, np.concatenate([a.free, b.free]), boundary_normals=np.vstack([a.normals, b.normals]))
     assert r.converged
     na = len(a.vertices)
     assert np.abs(a.distance(r.vertices[:na][a.free])).max() < 2e-3
     assert np.abs(b.distance(r.vertices[na:][b.free] - [3.0, 0, 0])).max() < 2e-3
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(inner_fairness="harmonic"), "inner_fairness"),
-    (dict(outer_fairness="linear"), "outer_fairness"),
-    (dict(tolerance=0.0), "tolerance"),
-    (dict(damping=1.5), "damping"),
-])
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(inner_fairness="harmonic"), "inner_fairness"),
+        (dict(outer_fairness="linear"), "outer_fairness"),
+        (dict(tolerance=0.0), "tolerance"),
+        (dict(damping=1.5), "damping"),
+    ],
+)
 def test_bad_options(kwargs, message):
     s = scenes.sphere_cap(n_free=50, seed=1)
     with pytest.raises(ValueError, match=message):

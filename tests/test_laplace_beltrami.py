@@ -15,8 +15,10 @@ MESHES = [
 ]
 
 
-@pytest.fixture(params=[(name, irr) for name, _ in MESHES for irr in (False, True)],
-                ids=lambda p: f"{p[0]}-{'irregular' if p[1] else 'regular'}")
+@pytest.fixture(
+    params=[(name, irr) for name, _ in MESHES for irr in (False, True)],
+    ids=lambda p: f"{p[0]}-{'irregular' if p[1] else 'regular'}",
+)
 def scene(request):
     name, irr = request.param
     return dict(MESHES)[name](irr)
@@ -51,8 +53,9 @@ def test_mean_curvature_normal_on_sphere():
     s = scenes.sphere(radius=2.0, n_vertices=2500, irregular=False)
     L = geofair.cotangent_laplacian(s.vertices, s.faces)
     f = s.faces
-    area = 0.5 * np.linalg.norm(np.cross(s.vertices[f[:, 1]] - s.vertices[f[:, 0]],
-                                         s.vertices[f[:, 2]] - s.vertices[f[:, 0]]), axis=1)
+    area = 0.5 * np.linalg.norm(
+        np.cross(s.vertices[f[:, 1]] - s.vertices[f[:, 0]], s.vertices[f[:, 2]] - s.vertices[f[:, 0]]), axis=1
+    )
     disk = np.zeros(len(s.vertices))
     for k in range(3):
         np.add.at(disk, f[:, k], area)

@@ -74,8 +74,7 @@ def test_valence_three_and_four_use_spiral_samples():
     # two lines of directions only (Lemma 1) and needs the section 6.2 samples. With exact
     # normals the spiral samples lie on the great circles, so H is exactly 1.
     V = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
-    F = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4],
-                  [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    F = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
     H = geofair.mean_curvature(V, F, normals=V.copy())
     assert np.abs(H - 1.0).max() < 1e-9
     # Valence 3: a tetrahedron in the unit sphere.
