@@ -152,7 +152,7 @@ def save_png(pixels, path):
     bpy.data.images.remove(image)
 
 
-def uv_distortion(obj, face_mask, region):
+def uv_distortion(obj, face_mask, metrics):
     """Mean and maximum conformal distortion σ1/σ2 of the UV map over the faces in ``face_mask``."""
     mesh = obj.data  # in Object Mode: in Edit Mode the mesh's UV layers read as empty
     mesh.calc_loop_triangles()
@@ -165,10 +165,10 @@ def uv_distortion(obj, face_mask, region):
     uv = np.empty(2 * len(mesh.loops), dtype=np.float32)
     mesh.uv_layers.active.data.foreach_get("uv", uv)
     keep = face_mask[face]
-    distortion = region.uv_conformal_distortion(
+    distortion = metrics.uv_distortion(
         positions(obj), triangles.reshape(-1, 3)[keep], uv.reshape(-1, 2)[corners.reshape(-1, 3)[keep]]
     )
-    return distortion.mean(), distortion.max()
+    return distortion.mean, distortion.max
 
 
 def positions(obj):
@@ -194,7 +194,7 @@ def main():
     before.name = "Suzanne (before)"
     bpy.context.scene.collection.objects.link(before)
     before.hide_set(True)
-    uv_before = uv_distortion(suzanne, brow, addon.region)
+    uv_before = uv_distortion(suzanne, brow, addon.metrics)
     select_faces(suzanne, brow)
     original = positions(suzanne)
 
@@ -213,7 +213,7 @@ def main():
     moved = np.linalg.norm(faired - original, axis=1)
     print(f"{np.count_nonzero(moved)} vertices moved, at most {moved.max():.4f} (Suzanne is 2.7 wide)")
     bpy.ops.object.mode_set(mode="OBJECT")
-    uv_after = uv_distortion(suzanne, brow, addon.region)
+    uv_after = uv_distortion(suzanne, brow, addon.metrics)
     print(
         "UV conformal distortion σ1/σ2 in the region (mean, max): "
         f"before {uv_before[0]:.3f}, {uv_before[1]:.3f}; after {uv_after[0]:.3f}, {uv_after[1]:.3f}"

@@ -213,22 +213,65 @@ def test_region_error_is_a_value_error():
     assert issubclass(region.RegionError, ValueError)
 
 
-def test_uv_conformal_distortion():
-    rng = np.random.default_rng(7)
-    vertices, triangles, _, _ = grid(3, 2)
-    vertices[:, 2] = rng.uniform(-0.2, 0.2, len(vertices))  # a bumpy but flat-shaded sheet
-    xy = vertices[triangles][..., :2]
-    # Similar maps (rotation, uniform scale) are conformal: a triangle in the z = 0 plane.
-    flat = vertices.copy()
-    flat[:, 2] = 0.0
-    rotation = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
-    np.testing.assert_allclose(region.uv_conformal_distortion(flat, triangles, 2.5 * xy @ rotation.T), 1.0, rtol=1e-12)
-    # A stretch by 3 along u in the plane: distortion 3 everywhere.
-    np.testing.assert_allclose(region.uv_conformal_distortion(flat, triangles, xy * [3.0, 1.0]), 3.0, rtol=1e-12)
-    # Out of the plane the projection to xy is no longer conformal.
-    bumpy = region.uv_conformal_distortion(vertices, triangles, xy)
-    assert np.all(bumpy >= 1.0) and np.any(bumpy > 1.01)
-    # A UV triangle collapsed to a segment.
-    collapsed = xy.copy()
-    collapsed[0] = [[0, 0], [1, 1], [2, 2]]
-    assert region.uv_conformal_distortion(flat, triangles, collapsed)[0] > 1e12
+def test_pinned_vertex_inside_the_region():
+    nx = ny = 6
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    selected = select_quads(triangle_polygon, quad, [(x, y) for x in range(1, 5) for y in range(1, 5)])
+    inner = [(x, y) for x in range(2, 5) for y in range(2, 5)]
+    vertices[vertex_mask(n, nx, [(3, 3)]), 2] = 0.5  # the pinned vertex sits on a bump
+    # Pins: the centre (inside), a rim vertex (already fixed) and one outside the region.
+    pinned = vertex_mask(n, nx, [(3, 3), (1, 3), (0, 0)])
+
+    r = region.find_region(vertices, triangles, selected, pinned=pinned)
+
+    np.testing.assert_array_equal(r.pinned, vertex_mask(n, nx, [(3, 3)]))
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, [p for p in inner if p != (3, 3)]))
+    centre = 3 + 3 * (nx + 1)
+    assert r.boundary[centre] and not r.free[centre]
+    # Its normal is its own current vertex normal: the area-weighted normal of its six triangles, by
+    # hand: the bump of height h = 0.5 over unit quads cut along (x, y)-(x+1, y+1) gives cross products
+    # summing to (0, 0, 6) in z and cancelling in x and y (the ring is point-symmetric about the vertex).
+    np.testing.assert_allclose(r.boundary_normals[centre], [0.0, 0.0, 1.0], atol=1e-15)
+    # Loops outline the triangles that touch a free vertex: a lone pin lies inside that outline.
+    assert len(r.loops) == 1 and centre not in r.loops[0]
+
+
+def test_pinned_normal_on_a_slope():
+    # Pin the centre of a tilted plane z = 0.5 x: its normal is the plane's, (-0.5, 0, 1)/|.|.
+    nx = ny = 4
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    vertices[:, 2] = 0.5 * vertices[:, 0]
+    selected = select_quads(triangle_polygon, quad, [(x, y) for x in range(4) for y in range(4)])
+    r = region.find_region(vertices, triangles, selected, pinned=vertex_mask(len(vertices), nx, [(2, 2)]))
+    np.testing.assert_allclose(r.boundary_normals[2 + 2 * (nx + 1)], np.array([-0.5, 0, 1]) / np.sqrt(1.25))
+
+
+def test_everything_pinned_is_an_error():
+    vertices, triangles = octahedron()
+    selected = np.array([True] * 4 + [False] * 4)
+    with pytest.raises(region.RegionError, match="Every vertex inside the selection is pinned"):
+        region.find_region(vertices, triangles, selected, pinned=np.array([False] * 4 + [True, False]))
+    with pytest.raises(ValueError, match="one entry per vertex"):
+        region.find_region(vertices, triangles, selected, pinned=np.ones(3, dtype=bool))
+
+
+def test_region_triangles_touch_a_free_vertex():
+    vertices, triangles = octahedron()
+    free = np.array([False] * 4 + [True, False])
+    np.testing.assert_array_equal(region.region_triangles(triangles, free), [True] * 4 + [False] * 4)
+
+
+def test_polygons_inside_a_vertex_set():
+    # A triangle, a quad and a pentagon sharing vertices; corners listed in polygon order.
+    loop_start, loop_total = np.array([0, 3, 7]), np.array([3, 4, 5])
+    corner_verts = np.array([0, 1, 2, 1, 3, 4, 2, 4, 5, 6, 7, 3])
+    inside = np.zeros(8, dtype=bool)
+    inside[[0, 1, 2, 3, 4]] = True
+    np.testing.assert_array_equal(region.polygons_inside(inside, loop_start, loop_total, corner_verts), [1, 1, 0])
+    inside[:] = True
+    assert region.polygons_inside(inside, loop_start, loop_total, corner_verts).all()
+    # Polygons need not be stored in corner order.
+    np.testing.assert_array_equal(
+        region.polygons_inside(np.arange(8) >= 3, [7, 0, 3], [5, 3, 4], corner_verts), [True, False, False]
+    )

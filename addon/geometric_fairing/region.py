@@ -33,6 +33,9 @@ class Region:
             vertex; of the selected faces where there is no unselected face.
         border_fixed: ``(n,)`` bool, vertices with all faces selected that were
             kept fixed because they lie on the open mesh border.
+        pinned: ``(n,)`` bool, vertices with all faces selected that were kept
+            fixed because they are pinned (not on the border); those next to a
+            free vertex are G1 boundary vertices with their own current normal.
         loops: boundary loops, each an int array of vertex indices, oriented
             like the triangles of the region (the outer loop counter-clockwise).
     """
@@ -41,6 +44,7 @@ class Region:
     boundary: np.ndarray
     boundary_normals: np.ndarray
     border_fixed: np.ndarray
+    pinned: np.ndarray
     loops: list
 
 
@@ -91,16 +95,24 @@ def border_vertices(n, triangles):
     return on_border
 
 
-def find_region(vertices, triangles, selected):
+def find_region(vertices, triangles, selected, pinned=None):
     """Compute the fairing region of a face selection.
 
     A vertex is free when all its faces are selected, unless it lies on the
-    open mesh border: there it is kept fixed (counted in ``border_fixed``).
+    open mesh border (kept fixed, counted in ``border_fixed``) or is pinned
+    (kept fixed, counted in ``pinned``).
+
+    Boundary normals: the area-weighted normal of the unselected faces at the
+    vertex. A fixed vertex with every face selected (on the open border, or
+    pinned inside the region) has no unselected face: it keeps the
+    area-weighted normal of all its faces, its current vertex normal.
 
     Args:
         vertices: ``(n, 3)`` float vertex positions.
         triangles: ``(T, 3)`` int triangles (the triangulated faces).
         selected: ``(T,)`` bool, triangles of selected faces.
+        pinned: ``(n,)`` bool or None, vertices that must not move (a pin
+            vertex group); pins outside the region change nothing.
 
     Returns:
         The :class:`Region`.
@@ -118,13 +130,19 @@ def find_region(vertices, triangles, selected):
         raise ValueError("find_region: selected must have one entry per triangle")
     if not selected.any():
         raise RegionError("No face is selected: select the faces to fair")
+    pinned = np.zeros(n, dtype=bool) if pinned is None else np.asarray(pinned, dtype=bool)
+    if pinned.shape != (n,):
+        raise ValueError("find_region: pinned must have one entry per vertex")
 
     faces_at = np.bincount(triangles.ravel(), minlength=n)
     selected_at = np.bincount(triangles[selected].ravel(), minlength=n)
     inside = (faces_at > 0) & (selected_at == faces_at)
     border_fixed = inside & border_vertices(n, triangles)
-    free = inside & ~border_fixed
+    pinned = inside & pinned & ~border_fixed
+    free = inside & ~border_fixed & ~pinned
     if not free.any():
+        if pinned.any():
+            raise RegionError("Every vertex inside the selection is pinned: nothing is left to move")
         raise RegionError("No vertex lies inside the selection: select faces that surround at least one vertex")
 
     boundary = np.zeros(n, dtype=bool)
@@ -149,8 +167,38 @@ def find_region(vertices, triangles, selected):
         boundary=boundary,
         boundary_normals=normals,
         border_fixed=border_fixed,
+        pinned=pinned,
         loops=boundary_loops(triangles, free),
     )
+
+
+def region_triangles(triangles, free):
+    """Return ``(T,)`` bool: the triangles with at least one free vertex, the ones fairing changes."""
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    return np.asarray(free, dtype=bool)[triangles].any(axis=1)
+
+
+def polygons_inside(vertex_mask, loop_start, loop_total, corner_verts):
+    """Return ``(P,)`` bool: polygons all of whose corners are in ``vertex_mask``.
+
+    The faces a vertex set encloses, the way Blender selects faces from a
+    vertex selection; used to turn a vertex group into a face region.
+
+    Args:
+        vertex_mask: ``(n,)`` bool.
+        loop_start: ``(P,)`` int, first corner of each polygon.
+        loop_total: ``(P,)`` int, number of corners of each polygon.
+        corner_verts: ``(L,)`` int, vertex index of each corner.
+    """
+    vertex_mask = np.asarray(vertex_mask, dtype=bool)
+    loop_start = np.asarray(loop_start, dtype=np.int64)
+    loop_total = np.asarray(loop_total, dtype=np.int64)
+    corner_verts = np.asarray(corner_verts, dtype=np.int64)
+    polygon = np.repeat(np.arange(len(loop_start)), loop_total)
+    offset = np.arange(len(polygon)) - np.repeat(np.cumsum(loop_total) - loop_total, loop_total)
+    outside = ~vertex_mask[corner_verts[loop_start[polygon] + offset]]
+    missing = np.bincount(polygon, weights=outside, minlength=len(loop_start))
+    return missing == 0
 
 
 def boundary_loops(triangles, free):
@@ -190,38 +238,6 @@ def boundary_loops(triangles, free):
         loops.append(np.array(loop, dtype=np.int64))
     loops.sort(key=len, reverse=True)
     return loops
-
-
-def uv_conformal_distortion(vertices, triangles, corner_uvs):
-    """Per-triangle conformal distortion of a UV map: σ1/σ2 of the map from the triangle to UV.
-
-    1 where the triangle's UV image is similar to it (angles kept), larger the
-    more it is stretched in one direction; huge or ``inf`` for a degenerate UV triangle.
-
-    Args:
-        vertices: ``(n, 3)`` float positions.
-        triangles: ``(T, 3)`` int triangles.
-        corner_uvs: ``(T, 3, 2)`` float UV coordinates of each triangle corner.
-
-    Returns:
-        ``(T,)`` float64, each >= 1.
-    """
-    p = np.asarray(vertices, dtype=np.float64)[np.asarray(triangles)]
-    uv = np.asarray(corner_uvs, dtype=np.float64)
-    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
-    length = np.linalg.norm(e1, axis=1)
-    x_axis = e1 / length[:, None]
-    height = np.linalg.norm(np.cross(x_axis, e2), axis=1)
-    # The triangle in its own plane: edges (length, 0) and (e2·x, height) as columns.
-    local = np.zeros((len(p), 2, 2))
-    local[:, 0, 0] = length
-    local[:, 0, 1] = np.einsum("ij,ij->i", e2, x_axis)
-    local[:, 1, 1] = height
-    uv_edges = np.stack([uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]], axis=2)
-    jacobian = uv_edges @ np.linalg.inv(local)
-    sigma = np.linalg.svd(jacobian, compute_uv=False)
-    with np.errstate(divide="ignore"):
-        return sigma[:, 0] / sigma[:, 1]
 
 
 def _pop_successor(successors, vertex):
