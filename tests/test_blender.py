@@ -1,8 +1,17 @@
-"""Run tests/blender/check_operator.py in Blender and in the bpy module from PyPI.
+"""Run the checks of tests/blender/ in Blender and in the bpy module from PyPI.
 
 The built add-on is taken from ``$GEOFAIR_BUILD/addon`` (default ``<repo>/build``).
-A missing Blender, bpy module or build skips its test locally, but fails when
-the environment variable CI is set.
+A missing Blender, bpy module, display server or build skips its test locally,
+but fails when the environment variable CI is set.
+
+- check_operator.py: the operator, the panel's options and figures, preferences, pins,
+  region groups, errors, undo; also without the compiled module, and with a module
+  built for another Python.
+- check_inspect.py: the zebra and curvature toggles leave nothing behind.
+- check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion.
+- check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
+- examples/fair_object.py: the documented script runs.
+- check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.
 """
 
 import importlib.util
@@ -16,7 +25,7 @@ import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
-SCRIPT = REPO / "tests" / "blender" / "check_operator.py"
+CHECKS = REPO / "tests" / "blender"
 
 
 def _unavailable(reason):
@@ -32,42 +41,97 @@ def _built_addon():
     return addon
 
 
-def _blender_command():
+def _blender_command(script):
     blender = shutil.which("blender")
     if blender is None:
         _unavailable("blender is not installed")
-    return [blender, "--background", "--factory-startup", "--python-exit-code", "1", "--python", str(SCRIPT)]
+    return [blender, "--background", "--factory-startup", "--python-exit-code", "1", "--python", str(script)]
 
 
-def _bpy_module_command():
+def _bpy_module_command(script):
     if importlib.util.find_spec("bpy") is None:
         _unavailable(f"the bpy module is not installed for {sys.executable}")
-    return [sys.executable, str(SCRIPT)]
+    return [sys.executable, str(script)]
 
 
 COMMANDS = {"blender": _blender_command, "bpy-module": _bpy_module_command}
 
 
-def _run(command):
+def _run(command, env=None, timeout=300):
     # A Blender built against the system Python finds its Python home through the first
     # python3.x on PATH; pyenv puts its own first, and Blender would then start with
     # pyenv's standard library and without the system's numpy. Look next to Blender first.
-    env = dict(os.environ, PATH=os.pathsep.join([os.path.dirname(command[0]), os.environ.get("PATH", "")]))
-    completed = subprocess.run(command, cwd=REPO, env=env, capture_output=True, text=True, timeout=900)
+    path = os.pathsep.join([os.path.dirname(shutil.which(command[0]) or command[0]), os.environ.get("PATH", "")])
+    env = dict(os.environ, PATH=path, **(env or {}))
+    completed = subprocess.run(command, cwd=REPO, env=env, capture_output=True, text=True, timeout=timeout)
     output = completed.stdout + completed.stderr
     assert completed.returncode == 0, f"{' '.join(command)} exited {completed.returncode}:\n{output}"
     return output
 
 
 @pytest.mark.parametrize("variant", COMMANDS)
-def test_operator(variant):
-    command = COMMANDS[variant]()
-    output = _run([*command, "--", str(_built_addon())])
-    assert "check_operator: all checks passed" in output, output
+@pytest.mark.parametrize("check", ["check_operator", "check_inspect", "check_scripting"])
+def test_in_blender(check, variant):
+    output = _run([*COMMANDS[variant](CHECKS / f"{check}.py"), "--", str(_built_addon())])
+    assert f"{check}: all checks passed" in output, output
 
 
 @pytest.mark.parametrize("variant", COMMANDS)
 def test_operator_without_compiled_module(variant):
-    command = COMMANDS[variant]()
+    command = COMMANDS[variant](CHECKS / "check_operator.py")
     output = _run([*command, "--", str(_built_addon()), "--no-native"])
     assert "check_operator (no native module): all checks passed" in output, output
+
+
+@pytest.mark.parametrize("variant", COMMANDS)
+def test_operator_with_module_for_another_python(variant, tmp_path):
+    command = COMMANDS[variant](CHECKS / "check_operator.py")
+    copy = tmp_path / "addon" / "geometric_fairing"
+    shutil.copytree(_built_addon() / "geometric_fairing", copy)
+    for module in copy.glob("geofair.cpython-3*"):
+        module.rename(module.with_name(module.name.replace(f"cpython-3{sys.version_info.minor}", "cpython-39")))
+    assert list(copy.glob("geofair.cpython-39*")), "expected a module named for this Python"
+    output = _run([*command, "--", str(copy.parent), "--wrong-python"])
+    assert "'geofair' was built for Python 3.9" in output, output
+    assert "check_operator (no native module): all checks passed" in output, output
+
+
+@pytest.mark.parametrize("variant", COMMANDS)
+def test_packaging(variant, tmp_path):
+    command = COMMANDS[variant](CHECKS / "check_packaging.py")
+    user = {
+        "BLENDER_USER_RESOURCES": str(tmp_path),
+        "BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
+        "BLENDER_USER_CONFIG": str(tmp_path / "config"),
+    }
+    output = _run([*command, "--", str(_built_addon())], env=user)
+    assert "check_packaging: all checks passed" in output, output
+
+
+@pytest.mark.parametrize("variant", COMMANDS)
+def test_fair_object_example(variant, tmp_path):
+    command = COMMANDS[variant](REPO / "examples" / "fair_object.py")
+    output = _run([*command, "--", "--addon", str(_built_addon()), "--out", str(tmp_path / "example.blend")])
+    assert "fair_object example: done" in output and (tmp_path / "example.blend").is_file(), output
+    assert "vertex group 'Brow'" in output and "cancelled" in output, output
+
+
+def test_modal_operator_under_xvfb():
+    blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
+    if blender is None or xvfb is None:
+        _unavailable("the modal check needs blender and xvfb-run")
+    command = [
+        xvfb,
+        "-a",
+        "-s",
+        "-screen 0 1280x800x24",
+        blender,
+        "--factory-startup",
+        "--enable-event-simulate",
+        "--python",
+        str(CHECKS / "check_modal.py"),
+        "--",
+        str(_built_addon()),
+    ]
+    output = _run(command, timeout=180)
+    assert "check_modal: all checks passed" in output, output

@@ -1,27 +1,43 @@
-"""Geometric Fairing: intrinsic mesh fairing (Schneider & Kobbelt 2001) of selected faces."""
+"""Geometric Fairing: intrinsic mesh fairing (Schneider & Kobbelt 2001) of selected faces.
+
+A legacy add-on (``bl_info``, Blender 3.4 to 4.1) and an extension
+(``blender_manifest.toml``, Blender 4.2+) from the same folder: only relative
+imports, and the compiled module ``geofair`` is found inside the package.
+
+For scripts: :func:`fair_object` (see ``examples/fair_object.py``).
+"""
 
 bl_info = {
     "name": "Geometric Fairing",
     "author": "geofair",
-    "version": (0, 1, 0),
+    "version": (0, 2, 0),
     "blender": (3, 4, 0),
-    "location": "View3D > Edit Mode > Mesh > Geometric Fairing",
+    "location": "View3D > Sidebar > Fairing (Edit Mode); Edit Mode > Mesh > Geometric Fairing",
     "description": "Fair the selected faces: intrinsic fairing Δ_B H = 0 with a G1 boundary",
     "category": "Mesh",
 }
 
 import bpy  # noqa: E402
 
-from . import operators, ui  # noqa: E402
+from . import operators, overlays, properties, ui  # noqa: E402
+from .fairing import FairingOptions, FairingReport, fair_object  # noqa: E402
+
+__all__ = ["FairingOptions", "FairingReport", "fair_object", "register", "unregister"]
 
 
 def register():
-    """Register the operator and its menu entry."""
-    bpy.utils.register_class(operators.MESH_OT_geometric_fairing)
+    """Register properties, operators, panels, the menu entry and the file handlers."""
+    properties.register()
+    for cls in operators.CLASSES:
+        bpy.utils.register_class(cls)
     ui.register()
+    overlays.register()
 
 
 def unregister():
-    """Unregister the menu entry and the operator."""
+    """Turn zebra and curvature off everywhere and unregister everything."""
+    overlays.unregister()
     ui.unregister()
-    bpy.utils.unregister_class(operators.MESH_OT_geometric_fairing)
+    for cls in reversed(operators.CLASSES):
+        bpy.utils.unregister_class(cls)
+    properties.unregister()

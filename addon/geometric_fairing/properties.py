@@ -1,6 +1,12 @@
-"""Operator properties of Geometric Fairing, shown in the redo panel."""
+"""Properties of Geometric Fairing: the operator's, the panel's (scene), the last run's (window manager), preferences.
 
-from bpy.props import EnumProperty, FloatProperty, IntProperty
+The panel's tolerance, iterations and levels follow the add-on preferences
+until they are changed in the panel; the operator takes every option it is not
+given from the panel. So the preferences are the defaults of both.
+"""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 INNER_FAIRNESS_ITEMS = (
     (
@@ -30,34 +36,217 @@ OUTER_FAIRNESS_ITEMS = (
     ),
 )
 
+# Defaults when the add-on's preferences are not available (imported by a script without enabling it).
+DEFAULTS = {"tolerance": 1e-4, "max_iterations": 20000, "levels": 1}
+OPTION_NAMES = (
+    "inner_fairness",
+    "outer_fairness",
+    "tolerance",
+    "max_iterations",
+    "levels",
+    "region_group",
+    "pin_group",
+)
 
-class FairingProperties:
-    """Mixin with the fairing parameters; the operator inherits its annotations."""
 
-    inner_fairness: EnumProperty(
+def _inner_fairness(**options):
+    return EnumProperty(
         name="Inner Fairness",
         description="Where the vertices sit on the faired surface",
         items=INNER_FAIRNESS_ITEMS,
         default="UNIFORM",
+        **options,
     )
-    outer_fairness: EnumProperty(
+
+
+def _outer_fairness(**options):
+    return EnumProperty(
         name="Outer Fairness",
         description="Which surface is computed",
         items=OUTER_FAIRNESS_ITEMS,
         default="INTRINSIC",
+        **options,
     )
-    tolerance: FloatProperty(
+
+
+def _tolerance(**options):
+    return FloatProperty(
         name="Tolerance",
         description="Stop when the normalized residual of Δ_B H = 0 falls below this (dimensionless)",
-        default=1e-4,
+        default=DEFAULTS["tolerance"],
         min=1e-12,
         max=1.0,
         precision=6,
+        **options,
     )
-    max_iterations: IntProperty(
+
+
+def _max_iterations(**options):
+    return IntProperty(
         name="Max Iterations",
-        description="Upper bound on the number of fairing iterations",
-        default=20000,
+        description="Upper bound on the number of fairing iterations on each level",
+        default=DEFAULTS["max_iterations"],
         min=1,
         soft_max=100000,
+        **options,
     )
+
+
+def _levels(**options):
+    return IntProperty(
+        name="Levels",
+        description="Levels of the progressive-mesh multigrid: 1 solves the region as one mesh, 0 picks the number",
+        default=DEFAULTS["levels"],
+        min=0,
+        max=12,
+        **options,
+    )
+
+
+def _region_group(**options):
+    return StringProperty(
+        name="Region Group",
+        description="Vertex group that defines the region instead of the selection: the faces all of whose "
+        "vertices have a non-zero weight in it. Empty: the selected faces",
+        **options,
+    )
+
+
+def _pin_group(**options):
+    return StringProperty(
+        name="Pin Group",
+        description="Vertex group of vertices inside the region that must not move (non-zero weight): they join "
+        "the G1 boundary with their current normal. Empty: no pins",
+        **options,
+    )
+
+
+def addon_preferences(context=None):
+    """The add-on's :class:`FairingPreferences`, or None when it was not enabled through the preferences."""
+    context = context or bpy.context
+    addon = context.preferences.addons.get(__package__)
+    return addon.preferences if addon is not None else None
+
+
+def preference(name, context=None):
+    """The preferred default of option ``name`` (tolerance, max_iterations, levels)."""
+    preferences = addon_preferences(context)
+    return getattr(preferences, name) if preferences is not None else DEFAULTS[name]
+
+
+def _follows_preference(name):
+    """Getter and setter of a panel option that reads the preference until it is set in the panel."""
+    key = "_" + name
+
+    def get(self):
+        return self.get(key, preference(name))
+
+    def set(self, value):
+        self[key] = value
+
+    return {"get": get, "set": set}
+
+
+class FairingPreferences(bpy.types.AddonPreferences):
+    """Defaults of the fairing options, for the panel and the operator."""
+
+    bl_idname = __package__
+
+    tolerance: _tolerance()
+    max_iterations: _max_iterations()
+    levels: _levels()
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.label(text="Defaults of the Fairing panel and of the operator:")
+        for name in ("tolerance", "max_iterations", "levels"):
+            layout.prop(self, name)
+
+
+class FairingProperties:
+    """Mixin with the operator's options, shown in the redo panel.
+
+    SKIP_SAVE: an option that is not given comes from the panel's settings
+    (which follow the preferences), never from the previous call.
+    """
+
+    inner_fairness: _inner_fairness(options={"SKIP_SAVE"})
+    outer_fairness: _outer_fairness(options={"SKIP_SAVE"})
+    tolerance: _tolerance(options={"SKIP_SAVE"})
+    max_iterations: _max_iterations(options={"SKIP_SAVE"})
+    levels: _levels(options={"SKIP_SAVE"})
+    region_group: _region_group(options={"SKIP_SAVE"})
+    pin_group: _pin_group(options={"SKIP_SAVE"})
+
+
+class FairingSettings(bpy.types.PropertyGroup):
+    """The Fairing panel's options, ``scene.geometric_fairing``."""
+
+    inner_fairness: _inner_fairness()
+    outer_fairness: _outer_fairness()
+    tolerance: _tolerance(**_follows_preference("tolerance"))
+    max_iterations: _max_iterations(**_follows_preference("max_iterations"))
+    levels: _levels(**_follows_preference("levels"))
+    region_group: _region_group()
+    pin_group: _pin_group()
+
+
+class FairingLastRun(bpy.types.PropertyGroup):
+    """Figures of the last run, shown in the panel (on the window manager: not undone, not per scene)."""
+
+    status: EnumProperty(
+        items=(
+            ("NONE", "None", "No run yet"),
+            ("CONVERGED", "Converged", "The residual fell below the tolerance"),
+            ("NOT_CONVERGED", "Not converged", "Stopped at the iteration limit; the mesh was changed"),
+            ("CANCELLED", "Cancelled", "Cancelled; the mesh was left as it was"),
+            ("ERROR", "Error", "Failed; the mesh was left as it was"),
+        ),
+        default="NONE",
+    )
+    message: StringProperty()
+    object_name: StringProperty()
+    inner_fairness: StringProperty()
+    outer_fairness: StringProperty()
+    free_vertices: IntProperty()
+    pinned_vertices: IntProperty()
+    iterations: IntProperty()
+    residual: FloatProperty()
+    tolerance: FloatProperty()
+    seconds: FloatProperty(subtype="TIME_ABSOLUTE", unit="TIME_ABSOLUTE")
+    has_uv: BoolProperty()
+    uv_triangles: IntProperty()
+    uv_before_mean: FloatProperty()
+    uv_before_max: FloatProperty()
+    uv_after_mean: FloatProperty()
+    uv_after_max: FloatProperty()
+
+
+class FairingSession(bpy.types.PropertyGroup):
+    """``window_manager.geometric_fairing``: the last run and the mean-curvature colour range."""
+
+    last_run: PointerProperty(type=FairingLastRun)
+    curvature_limit: FloatProperty(
+        name="Curvature Range",
+        description="Mean curvature mapped to full red (+) and blue (-), in 1/length",
+    )
+
+
+CLASSES = (FairingPreferences, FairingSettings, FairingLastRun, FairingSession)
+
+
+def register():
+    """Register the property groups and attach them to the scene and the window manager."""
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.geometric_fairing = PointerProperty(type=FairingSettings)
+    bpy.types.WindowManager.geometric_fairing = PointerProperty(type=FairingSession)
+
+
+def unregister():
+    """Detach and unregister the property groups."""
+    del bpy.types.WindowManager.geometric_fairing
+    del bpy.types.Scene.geometric_fairing
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

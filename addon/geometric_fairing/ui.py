@@ -1,8 +1,13 @@
-"""Menu entry of Geometric Fairing in the Edit Mode Mesh menu."""
+"""The Fairing tab of the 3D View sidebar (Edit Mode) and the Mesh menu entry."""
 
 import bpy
 
-from .operators import MESH_OT_geometric_fairing
+from . import native, overlays
+from .operators import (
+    MESH_OT_geometric_fairing,
+    MESH_OT_geometric_fairing_curvature,
+    VIEW3D_OT_geometric_fairing_zebra,
+)
 
 
 def draw_menu_entry(self, context):
@@ -11,11 +16,156 @@ def draw_menu_entry(self, context):
     self.layout.operator(MESH_OT_geometric_fairing.bl_idname)
 
 
+class FairingPanel:
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Fairing"
+    bl_context = "mesh_edit"
+
+
+class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
+    """Options and the Fair button"""
+
+    bl_label = "Geometric Fairing"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.geometric_fairing
+        obj = context.active_object
+
+        column = layout.column()
+        column.prop(settings, "inner_fairness", text="Inner")
+        column.prop(settings, "outer_fairness", text="Outer")
+        column.prop(settings, "tolerance")
+        column.prop(settings, "max_iterations", text="Iterations")
+        column.prop(settings, "levels")
+        column = layout.column()
+        column.prop_search(settings, "region_group", obj, "vertex_groups", text="Region", icon="GROUP_VERTEX")
+        if not settings.region_group:
+            column.label(text="Region: the selected faces", icon="INFO")
+        column.prop_search(settings, "pin_group", obj, "vertex_groups", text="Pin", icon="PINNED")
+
+        if native.geofair is None:
+            box = layout.box()
+            box.alert = True
+            box.label(text="The compiled module cannot be loaded", icon="ERROR")
+            for line in _wrap(native.IMPORT_ERROR, 48):
+                box.label(text=line)
+        row = layout.row()
+        row.scale_y = 1.4
+        row.operator(MESH_OT_geometric_fairing.bl_idname, text="Fair", icon="MOD_SMOOTH")
+        layout.label(text="Esc cancels a run; the mesh stays as it was")
+
+
+class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
+    """Figures of the last run"""
+
+    bl_label = "Last Run"
+    bl_parent_id = "VIEW3D_PT_geometric_fairing"
+
+    def draw(self, context):
+        layout = self.layout
+        last = context.window_manager.geometric_fairing.last_run
+        if last.status == "NONE":
+            layout.label(text="No run yet")
+            return
+        icon = {"CONVERGED": "CHECKMARK", "NOT_CONVERGED": "ERROR", "CANCELLED": "CANCEL", "ERROR": "ERROR"}
+        status = layout.row()
+        status.alert = last.status in ("ERROR", "NOT_CONVERGED")
+        status.label(text=f"{last.object_name}: {_status_text(last)}", icon=icon[last.status])
+        if last.status == "ERROR":
+            for line in _wrap(last.message, 48):
+                layout.label(text=line)
+            return
+        grid = layout.grid_flow(row_major=True, columns=2, even_columns=False, align=True)
+        figures = [
+            (
+                "Free vertices",
+                f"{last.free_vertices}" + (f" ({last.pinned_vertices} pinned)" if last.pinned_vertices else ""),
+            ),
+            ("Iterations", f"{last.iterations}"),
+            ("Residual", f"{last.residual:.3g} (tol. {last.tolerance:g})"),
+            ("Time", f"{last.seconds:.2f} s"),
+            ("Fairness", f"{last.inner_fairness.title()}, {last.outer_fairness.title()}"),
+        ]
+        if last.has_uv:
+            after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.4f} / {last.uv_after_max:.3f}"
+            figures += [
+                ("UV σ1/σ2 before", f"{last.uv_before_mean:.4f} / {last.uv_before_max:.3f}"),
+                ("UV σ1/σ2 after", after),
+            ]
+        for name, value in figures:
+            grid.label(text=name)
+            grid.label(text=value)
+        if last.has_uv:
+            layout.label(text=f"UV: mean / max over {last.uv_triangles} triangles")
+
+
+class VIEW3D_PT_geometric_fairing_inspect(FairingPanel, bpy.types.Panel):
+    """Zebra stripes and mean-curvature colours"""
+
+    bl_label = "Inspect"
+    bl_parent_id = "VIEW3D_PT_geometric_fairing"
+
+    def draw(self, context):
+        layout = self.layout
+        space = context.space_data
+        obj = context.active_object
+        column = layout.column(align=True)
+        zebra = overlays.zebra_enabled(space)
+        column.operator(
+            VIEW3D_OT_geometric_fairing_zebra.bl_idname,
+            text="Zebra Stripes",
+            icon="HIDE_OFF" if zebra else "HIDE_ON",
+            depress=zebra,
+        )
+        curvature = obj is not None and overlays.curvature_enabled(obj.data)
+        column.operator(
+            MESH_OT_geometric_fairing_curvature.bl_idname,
+            text="Mean Curvature",
+            icon="HIDE_OFF" if curvature else "HIDE_ON",
+            depress=curvature,
+        )
+        if curvature:
+            limit = context.window_manager.geometric_fairing.curvature_limit
+            layout.label(text=f"Blue −{limit:.3g}  White 0  Red +{limit:.3g} (1/length)")
+
+
+def _status_text(last):
+    return {
+        "CONVERGED": "converged",
+        "NOT_CONVERGED": "NOT converged",
+        "CANCELLED": "cancelled, mesh unchanged",
+        "ERROR": "failed, mesh unchanged",
+    }[last.status]
+
+
+def _wrap(text, width):
+    """Split ``text`` into lines of at most about ``width`` characters, for labels."""
+    lines, line = [], ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    return [*lines, line] if line else lines
+
+
+CLASSES = (VIEW3D_PT_geometric_fairing, VIEW3D_PT_geometric_fairing_last_run, VIEW3D_PT_geometric_fairing_inspect)
+
+
 def register():
-    """Add the menu entry."""
+    """Register the panels and add the menu entry."""
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
     bpy.types.VIEW3D_MT_edit_mesh.append(draw_menu_entry)
 
 
 def unregister():
-    """Remove the menu entry."""
+    """Remove the menu entry and unregister the panels."""
     bpy.types.VIEW3D_MT_edit_mesh.remove(draw_menu_entry)
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

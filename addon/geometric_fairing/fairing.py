@@ -1,0 +1,357 @@
+"""One fairing run on a Blender mesh, and :func:`fair_object` for scripts.
+
+A :class:`FairingRun` reads the mesh and finds the region when it is made,
+solves (in the calling thread or a worker thread) and writes the new positions
+only in :meth:`FairingRun.finish`: a run that is cancelled or fails never
+touches the mesh. The operator (modal, Esc to cancel) and :func:`fair_object`
+(``blender --background`` pipelines) share it.
+"""
+
+import threading
+import time
+from dataclasses import dataclass, field
+
+import bpy
+import numpy as np
+
+from . import mesh_io, metrics, native, overlays, properties, region
+
+
+@dataclass
+class FairingOptions:
+    """Options of a run, named and valued like the operator's properties."""
+
+    inner_fairness: str = "UNIFORM"
+    outer_fairness: str = "INTRINSIC"
+    tolerance: float = properties.DEFAULTS["tolerance"]
+    max_iterations: int = properties.DEFAULTS["max_iterations"]
+    levels: int = properties.DEFAULTS["levels"]
+    region_group: str = ""
+    pin_group: str = ""
+
+    def __post_init__(self):
+        self.inner_fairness = self.inner_fairness.upper()
+        self.outer_fairness = self.outer_fairness.upper()
+        for name, items in (
+            ("inner_fairness", properties.INNER_FAIRNESS_ITEMS),
+            ("outer_fairness", properties.OUTER_FAIRNESS_ITEMS),
+        ):
+            allowed = [item[0] for item in items]
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} must be one of {', '.join(allowed)}, not {getattr(self, name)!r}")
+
+
+@dataclass(frozen=True)
+class FairingReport:
+    """Figures of a run.
+
+    Attributes:
+        object_name: the mesh object.
+        free_vertices: vertices that could move.
+        pinned_vertices: vertices inside the region kept fixed by the pin group.
+        border_fixed_vertices: vertices inside the region kept fixed on the open mesh border.
+        converged: the residual fell below the tolerance.
+        cancelled: stopped by Esc or by a progress callback; the mesh is unchanged.
+        iterations: fairing iterations (all levels).
+        residual: the last normalized residual of Δ_B H = 0 (dimensionless).
+        seconds: wall time of the solve.
+        uv_before, uv_after: :class:`metrics.Distortion` of the active UV map over the
+            triangles with a free vertex, before and after (None without a UV map;
+            ``uv_after`` is None when the mesh was not changed).
+        iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
+    """
+
+    object_name: str
+    free_vertices: int
+    pinned_vertices: int
+    border_fixed_vertices: int
+    converged: bool
+    cancelled: bool
+    iterations: int
+    residual: float
+    seconds: float
+    uv_before: metrics.Distortion | None = None
+    uv_after: metrics.Distortion | None = None
+    iterations_per_level: list = field(default_factory=list)
+    vertices_per_level: list = field(default_factory=list)
+
+    @property
+    def changed(self):
+        """Whether the mesh was changed (not cancelled)."""
+        return not self.cancelled
+
+    def summary(self):
+        """One line for reports and logs."""
+        text = f"{self.free_vertices} vertices"
+        if self.pinned_vertices:
+            text += f" ({self.pinned_vertices} pinned)"
+        text += f", {self.iterations} iterations, residual {self.residual:.3g}, {self.seconds:.2f} s"
+        if self.border_fixed_vertices:
+            text += f"; {self.border_fixed_vertices} vertices on the open mesh border kept fixed"
+        if self.uv_before is not None:
+            text += f"; UV distortion mean {self.uv_before.mean:.4f}"
+            if self.uv_after is not None:
+                text += f" → {self.uv_after.mean:.4f}"
+        if self.cancelled:
+            return text + ", cancelled: mesh unchanged"
+        return text + (", converged" if self.converged else ", NOT converged")
+
+
+class FairingRun:
+    """A fairing run on the mesh of ``obj`` (Edit Mode or Object Mode).
+
+    Args:
+        obj: a mesh object.
+        options: :class:`FairingOptions`.
+        faces: ``(P,)`` bool mask of the faces to fair, or None: the faces of
+            ``options.region_group`` if set, else the selected faces.
+        progress: optional ``callable(iteration, residual)``, called about every
+            0.1 s from the thread that solves; returning False cancels.
+
+    Raises:
+        ValueError: no usable region (:class:`region.RegionError`), a missing
+            vertex group, a wrong mask.
+        RuntimeError: the compiled module cannot be loaded.
+    """
+
+    def __init__(self, obj, options, faces=None, progress=None):
+        if native.geofair is None:
+            raise RuntimeError(native.IMPORT_ERROR)
+        if obj is None or obj.type != "MESH":
+            raise ValueError("fairing needs a mesh object")
+        self.obj = obj
+        self.object_name = obj.name
+        self.mode = obj.mode
+        self.options = options
+        self.user_progress = progress
+        self.mesh = mesh_io.read(obj)
+        mesh = self.mesh
+        if faces is None and options.region_group:
+            inside = mesh_io.vertex_group_weights(obj, options.region_group) > 0.0
+            faces = region.polygons_inside(inside, mesh.loop_start, mesh.loop_total, mesh.corner_verts)
+            if not faces.any():
+                raise region.RegionError(f"Vertex group '{options.region_group}' encloses no face")
+        elif faces is None:
+            faces = mesh.face_selected
+        faces = np.asarray(faces, dtype=bool)
+        if faces.shape != (len(mesh.loop_start),):
+            raise ValueError(f"the face mask must have one entry per face ({len(mesh.loop_start)}), not {faces.shape}")
+        pinned = None
+        if options.pin_group:
+            pinned = mesh_io.vertex_group_weights(obj, options.pin_group) > 0.0
+        self.region = region.find_region(mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned)
+        self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
+        self.uv_before = self._uv_distortion(mesh.vertices)
+
+        self.iteration = 0
+        self.residual = float("nan")
+        self.seconds = 0.0
+        self.result = None
+        self.error = None
+        self._cancel = threading.Event()
+        self._thread = None
+
+    # -- solving -----------------------------------------------------------------------------
+
+    def solve(self):
+        """Solve in this thread; the result or the error is kept for :meth:`finish`."""
+        mesh, fairing_region, options = self.mesh, self.region, self.options
+        start = time.perf_counter()
+        try:
+            self.result = native.geofair.fair(
+                mesh.vertices,
+                mesh.triangles,
+                fairing_region.free,
+                boundary_normals=fairing_region.boundary_normals,
+                inner_fairness=options.inner_fairness.lower(),
+                outer_fairness=options.outer_fairness.lower(),
+                tolerance=options.tolerance,
+                max_iterations=options.max_iterations,
+                levels=options.levels,
+                progress=self._progress,
+            )
+        except Exception as error:  # kept for finish(), which runs in Blender's thread
+            self.error = error
+        self.seconds = time.perf_counter() - start
+
+    def start(self):
+        """Solve in a worker thread (the solver releases the GIL); poll :attr:`done`."""
+        self._thread = threading.Thread(target=self.solve, name="geometric-fairing", daemon=True)
+        self._thread.start()
+
+    @property
+    def done(self):
+        """Whether the worker thread (if any) has finished."""
+        return self._thread is None or not self._thread.is_alive()
+
+    def wait(self, timeout=None):
+        """Wait for the worker thread; return :attr:`done`."""
+        if self._thread is not None:
+            self._thread.join(timeout)
+        return self.done
+
+    def request_cancel(self):
+        """Ask the solver to stop at its next progress call (within about 0.1 s and one iteration)."""
+        self._cancel.set()
+
+    @property
+    def cancel_requested(self):
+        return self._cancel.is_set()
+
+    def _progress(self, iteration, residual):
+        self.iteration, self.residual = int(iteration), float(residual)
+        if self.user_progress is not None and self.user_progress(iteration, residual) is False:
+            self._cancel.set()
+        return not self._cancel.is_set()
+
+    # -- result ------------------------------------------------------------------------------
+
+    def finish(self):
+        """Write the result into the mesh unless cancelled; return the :class:`FairingReport`.
+
+        Call in Blender's main thread after :meth:`solve` (or when :attr:`done`).
+
+        Raises:
+            ValueError, RuntimeError: the solver failed (the mesh is unchanged),
+                or the mesh changed under the run.
+        """
+        if not self.done:
+            raise RuntimeError("finish: the run is still going")
+        if self.error is not None:
+            raise self.error
+        result = self.result
+        cancelled = self._cancel.is_set()  # even if it converged meanwhile: the user asked for the mesh as it was
+        uv_after = None
+        if not cancelled:
+            positions = np.asarray(result.vertices, dtype=np.float64)
+            free = np.flatnonzero(self.region.free)
+            if positions.shape != self.mesh.vertices.shape or not np.isfinite(positions[free]).all():
+                raise RuntimeError("the solver returned invalid positions; mesh unchanged")
+            try:
+                unchanged = self.obj.mode == self.mode and mesh_io.vertex_count(self.obj) == len(positions)
+            except ReferenceError:  # the object was deleted
+                unchanged = False
+            if not unchanged:
+                raise RuntimeError("the mesh changed during the run; result discarded")
+            mesh_io.write_positions(self.obj, positions, free)
+            uv_after = self._uv_distortion(positions)
+        return FairingReport(
+            object_name=self.object_name,
+            free_vertices=int(np.count_nonzero(self.region.free)),
+            pinned_vertices=int(np.count_nonzero(self.region.pinned)),
+            border_fixed_vertices=int(np.count_nonzero(self.region.border_fixed)),
+            converged=bool(result.converged),
+            cancelled=cancelled,
+            iterations=int(result.iterations),
+            residual=float(result.residual),
+            seconds=self.seconds,
+            uv_before=self.uv_before,
+            uv_after=uv_after,
+            iterations_per_level=list(result.iterations_per_level),
+            vertices_per_level=list(result.vertices_per_level),
+        )
+
+    def _uv_distortion(self, positions):
+        uv = self.mesh.corner_uvs
+        if uv is None:
+            return None
+        keep = self.changed_triangles
+        return metrics.uv_distortion(positions, self.mesh.triangles[keep], uv[self.mesh.triangle_corners[keep]])
+
+
+def options_from_settings(settings, **given):
+    """:class:`FairingOptions` from the panel's ``settings`` (scene.geometric_fairing), overridden by ``given``."""
+    values = {name: getattr(settings, name) for name in properties.OPTION_NAMES}
+    values.update(given)
+    return FairingOptions(**values)
+
+
+def default_options(context, **given):
+    """Options a script gets: the scene's panel settings when registered, else the preferences' defaults."""
+    settings = getattr(context.scene, "geometric_fairing", None)
+    if settings is not None:
+        return options_from_settings(settings, **given)
+    return FairingOptions(**given)
+
+
+def fair_object(obj, region=None, *, progress=None, context=None, **options):
+    """Fair a region of a mesh object, from a script, in Object Mode or Edit Mode.
+
+    For ``blender --background`` pipelines: no operator, no context override,
+    no undo step. The mesh is changed only if the run is neither cancelled nor
+    failing. See ``examples/fair_object.py``.
+
+    Args:
+        obj: a mesh object.
+        region: what to fair: the name of a vertex group (the faces all of
+            whose vertices have a non-zero weight in it), a ``(P,)`` bool array
+            over the mesh's faces, or None for the selected faces.
+        progress: optional ``callable(iteration, residual)``, called about every
+            0.1 s; returning False cancels the run and leaves the mesh unchanged.
+        context: ``bpy.context`` by default; only its scene is read, for the
+            defaults of options not given.
+        **options: ``inner_fairness`` ("UNIFORM" or "CONFORMAL"),
+            ``outer_fairness`` ("INTRINSIC" or "BILAPLACIAN"), ``tolerance``,
+            ``max_iterations``, ``levels``, ``pin_group`` (vertex group name).
+            Not given: the Fairing panel's settings, which follow the add-on
+            preferences.
+
+    Returns:
+        :class:`FairingReport` (also shown in the panel as the last run).
+
+    Raises:
+        ValueError: no usable region, unknown option or vertex group.
+        RuntimeError: the solver failed, or the compiled module is missing.
+    """
+    context = context or bpy.context
+    unknown = set(options) - set(properties.OPTION_NAMES)
+    if unknown:
+        raise TypeError(f"fair_object: unknown options {', '.join(sorted(unknown))}")
+    faces = None
+    if isinstance(region, str):
+        options["region_group"] = region
+    elif region is not None:
+        faces = np.asarray(region, dtype=bool)
+        options["region_group"] = ""
+    else:
+        options.setdefault("region_group", "")  # not the panel's: region=None means the selected faces
+    run_options = default_options(context, **options)
+    try:
+        run = FairingRun(obj, run_options, faces=faces, progress=progress)
+        run.solve()
+        report = run.finish()
+    except (ValueError, RuntimeError) as error:
+        store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
+        raise
+    store_last_run(context.window_manager, run_options, report)
+    if report.changed:
+        overlays.refresh_curvature(obj, context)
+    return report
+
+
+def store_last_run(window_manager, options, report=None, error=None, object_name=""):
+    """Keep the figures of a run (or its error) in ``window_manager.geometric_fairing.last_run`` for the panel."""
+    session = getattr(window_manager, "geometric_fairing", None)
+    if session is None:  # the add-on's classes are not registered
+        return
+    last = session.last_run
+    last.inner_fairness = options.inner_fairness
+    last.outer_fairness = options.outer_fairness
+    last.tolerance = options.tolerance
+    if error is not None:
+        last.status, last.message, last.object_name = "ERROR", str(error), object_name
+        return
+    last.object_name = report.object_name
+    last.status = "CANCELLED" if report.cancelled else ("CONVERGED" if report.converged else "NOT_CONVERGED")
+    last.message = report.summary()
+    last.free_vertices = report.free_vertices
+    last.pinned_vertices = report.pinned_vertices
+    last.iterations = report.iterations
+    last.residual = report.residual
+    last.seconds = report.seconds
+    last.has_uv = report.uv_before is not None
+    if last.has_uv:
+        last.uv_triangles = report.uv_before.triangles
+        last.uv_before_mean, last.uv_before_max = report.uv_before.mean, report.uv_before.max
+        after = report.uv_after or report.uv_before
+        last.uv_after_mean, last.uv_after_max = after.mean, after.max

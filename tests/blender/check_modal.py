@@ -1,0 +1,149 @@
+"""Check the modal Geometric Fairing operator in a real Blender window: progress, Esc cancels, a run finishes.
+
+Needs a display (Xvfb) and Blender's event simulation, which replaces real input by
+``Window.event_simulate``:
+
+    xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --enable-event-simulate \\
+        --python tests/blender/check_modal.py -- build/addon
+
+Steps run from timers while Blender's event loop runs; the script ends Blender with
+exit status 0 when every check passed and 1 otherwise (a timer cannot use
+--python-exit-code).
+"""
+
+import os
+import pathlib
+import sys
+import time
+import traceback
+
+import bpy
+
+# isort: split
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from helpers import add_subdivided_suzanne, enable_addon, parse_args, positions, select_faces
+
+BROW = np.array([0.4, -0.7, 0.72])
+TIMEOUT = 60.0
+
+
+def view3d():
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return window, area, region
+
+
+def invoke_fairing(**properties):
+    """Invoke the operator as the Fair button does (INVOKE_DEFAULT in the 3D View)."""
+    window, area, region = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        return bpy.ops.mesh.geometric_fairing("INVOKE_DEFAULT", **properties)
+
+
+def press(event_type):
+    """Simulate a key press and release over the 3D View."""
+    window, area, region = view3d()
+    x, y = region.x + region.width // 2, region.y + region.height // 2
+    window.event_simulate(type=event_type, value="PRESS", x=x, y=y)
+    window.event_simulate(type=event_type, value="RELEASE", x=x, y=y)
+
+
+def finish(code):
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+class Steps:
+    """A sequence of generator steps driven by a timer: ``yield seconds`` waits, an exception fails."""
+
+    def __init__(self, generator):
+        self.generator = generator
+
+    def __call__(self):
+        try:
+            return next(self.generator)
+        except StopIteration:
+            finish(0)
+        except Exception:
+            traceback.print_exc()
+            print("check_modal: FAILED")
+            finish(1)
+
+
+def wait_until(condition, what):
+    start = time.perf_counter()
+    while not condition():
+        if time.perf_counter() - start > TIMEOUT:
+            raise AssertionError(f"timed out waiting for {what}")
+        yield 0.05
+
+
+def checks(addon, obj):
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    operators = addon.operators
+    yield 0.5  # let the window draw once
+
+    # A run that would take minutes: Esc cancels it, the mesh stays as it was.
+    before = positions(obj)
+    result = invoke_fairing(inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**7)
+    assert result == {"RUNNING_MODAL"}, result
+    run = operators.running()
+    assert run is not None, "no run is going"
+    yield from wait_until(lambda: run.iteration > 0, "the first iterations")
+    yield 0.3
+    assert not run.done and np.array_equal(positions(obj), before), "the mesh changed while solving"
+    iterations = run.iteration
+    print(f"ok: modal run going, iteration {iterations}, residual {run.residual:.3g}; pressing Esc")
+    press("ESC")
+    yield from wait_until(lambda: operators.running() is None, "the run to stop after Esc")
+    assert run.cancel_requested and last.status == "CANCELLED", last.status
+    assert np.array_equal(positions(obj), before), "Esc left the mesh changed"
+    print(f"ok: Esc cancelled the run after {last.iterations} iterations; mesh unchanged ({last.message})")
+
+    # The same through the plain function (what a script driving the UI can call).
+    assert invoke_fairing(inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**7) == {"RUNNING_MODAL"}
+    yield from wait_until(lambda: operators.running().iteration > 0, "the first iterations")
+    assert operators.cancel_running()
+    yield from wait_until(lambda: operators.running() is None, "the run to stop after cancel_running()")
+    assert last.status == "CANCELLED" and np.array_equal(positions(obj), before)
+    assert not operators.cancel_running()
+    print("ok: cancel_running() cancelled the run; mesh unchanged")
+
+    # A run to the end writes the mesh, with one undo step.
+    assert invoke_fairing(inner_fairness="CONFORMAL") == {"RUNNING_MODAL"}
+    yield from wait_until(lambda: operators.running() is None, "the run to finish")
+    assert last.status == "CONVERGED", (last.status, last.message)
+    after = positions(obj)
+    assert np.any(after != before), "a finished run did not change the mesh"
+    print(f"ok: modal run finished: {last.message}")
+    window, area, region = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.ed.undo()
+    assert np.array_equal(positions(obj), before), "undo did not restore the mesh"
+    print("ok: undo restored the mesh")
+    print("check_modal: all checks passed")
+
+
+def main():
+    folder, _ = parse_args()
+    print(f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {folder}")
+    assert not bpy.app.background, "check_modal needs a window (run it under xvfb-run without --background)"
+    addon = enable_addon(folder)
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj)
+    obj = add_subdivided_suzanne()
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bpy.ops.ed.undo_push(message="selected the brow")
+    bpy.app.timers.register(Steps(checks(addon, obj)), first_interval=0.5)
+
+
+try:
+    main()
+except Exception:
+    traceback.print_exc()
+    finish(1)

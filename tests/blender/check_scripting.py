@@ -1,0 +1,232 @@
+"""Check ``geometric_fairing.fair_object`` for scripts, cancelling, and UV distortion read from Blender meshes.
+
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+
+- fair_object with a vertex group, a face mask and the selection; Object Mode
+  and Edit Mode; a shape key; errors.
+- Cancel: a progress callback that returns False (the scripted hook), and a
+  run solving in a worker thread cancelled from Blender's thread with
+  request_cancel() (what Esc does in the modal operator): the mesh stays
+  exactly as it was.
+- UV distortion of a grid whose UV map is the grid stretched by 2 along u:
+  σ1/σ2 = 2 on every triangle, read through the add-on's mesh reading in both
+  modes.
+"""
+
+import pathlib
+import sys
+import time
+
+import bpy  # first: the bpy module from PyPI makes bmesh importable
+
+# isort: split
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from helpers import (
+    add_subdivided_suzanne,
+    disable_addon,
+    enable_addon,
+    face_centres,
+    parse_args,
+    positions,
+    select_faces,
+)
+
+BROW = np.array([0.4, -0.7, 0.72])
+
+
+def near(points, centre, radius):
+    return np.linalg.norm(points - np.asarray(centre), axis=1) < radius
+
+
+def expect_error(error_type, message, call):
+    try:
+        call()
+    except error_type as error:
+        assert message in str(error), f"{error!r} lacks {message!r}"
+        print(f"ok: {error_type.__name__}: {error}")
+        return
+    raise AssertionError(f"expected {error_type.__name__} with {message!r}")
+
+
+def check_regions(addon, obj):
+    """The three kinds of region, in Object Mode; only the region's vertices move."""
+    original = positions(obj)
+    group_vertices = np.flatnonzero(near(original, BROW, 0.27))
+    obj.vertex_groups.new(name="Brow").add(group_vertices.tolist(), 1.0, "REPLACE")
+
+    report = addon.fair_object(obj, region="Brow", inner_fairness="CONFORMAL")
+    moved = np.flatnonzero(np.any(positions(obj) != original, axis=1))
+    assert report.converged and not report.cancelled and report.free_vertices == len(moved) > 50, report
+    assert np.isin(moved, group_vertices).all(), "a vertex outside the group moved"
+    assert report.uv_before is not None and report.uv_after is not None and report.uv_after.triangles > 100
+    assert bpy.context.window_manager.geometric_fairing.last_run.status == "CONVERGED"
+    print(f"ok: vertex group region: {report.summary()}")
+
+    faired = positions(obj)
+    mask = near(face_centres(obj), (0.55, -0.6, 0.0), 0.2)
+    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3)
+    assert report.converged and report.free_vertices > 50, report
+    assert report.residual <= 1e-3
+    moved = np.any(positions(obj) != faired, axis=1)
+    assert moved.sum() == report.free_vertices, (moved.sum(), report.free_vertices)
+    print(f"ok: face mask region: {report.summary()}")
+
+    obj.data.polygons.foreach_set("select", near(face_centres(obj), BROW, 0.25))
+    before = positions(obj)
+    report = addon.fair_object(obj, outer_fairness="BILAPLACIAN")
+    assert report.free_vertices > 50 and np.any(positions(obj) != before)
+    print(f"ok: selected faces: {report.summary()}")
+
+    expect_error(ValueError, "has no vertex group 'Missing'", lambda: addon.fair_object(obj, region="Missing"))
+    expect_error(ValueError, "one entry per face", lambda: addon.fair_object(obj, region=np.ones(3, dtype=bool)))
+    expect_error(ValueError, "No face is selected", lambda: addon.fair_object(obj, region=np.zeros(len(mask), bool)))
+    expect_error(ValueError, "inner_fairness must be one of", lambda: addon.fair_object(obj, inner_fairness="x"))
+    expect_error(TypeError, "unknown options", lambda: addon.fair_object(obj, tolerence=1e-3))
+    assert bpy.context.window_manager.geometric_fairing.last_run.status == "ERROR"
+
+
+def check_cancel_by_callback(addon, obj):
+    """The scripted hook: a progress callback returning False cancels; the mesh is untouched."""
+    for mode in ("OBJECT", "EDIT"):
+        bpy.ops.object.mode_set(mode=mode)
+        before = positions(obj)
+        calls = []
+
+        def stop_at_once(iteration, residual, calls=calls):
+            calls.append((iteration, residual))
+            return False
+
+        mask = near(face_centres(obj), BROW, 0.25) if mode == "OBJECT" else None
+        if mode == "EDIT":
+            select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+        report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", progress=stop_at_once)
+        assert report.cancelled and not report.changed and len(calls) == 1, (report, calls)
+        assert report.uv_after is None
+        assert np.array_equal(positions(obj), before), f"{mode}: a cancelled run changed the mesh"
+        assert bpy.context.window_manager.geometric_fairing.last_run.status == "CANCELLED"
+        print(f"ok: {mode.title()} Mode: cancelled by the progress callback at iteration {calls[0][0]}, mesh unchanged")
+
+        # A callback that lets a few calls through and then stops.
+        def three_calls(iteration, residual, budget=[3]):  # noqa: B006 (the counter lives in the default)
+            budget[0] -= 1
+            return budget[0] > 0
+
+        report = addon.fair_object(
+            obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**6, progress=three_calls
+        )
+        assert report.cancelled and report.iterations > 0 and np.array_equal(positions(obj), before), report
+        print(f"ok: {mode.title()} Mode: cancelled after {report.iterations} iterations, mesh unchanged")
+    bpy.ops.object.mode_set(mode="OBJECT")
+
+
+def check_cancel_from_main_thread(addon, obj):
+    """The modal operator's path: solve in a worker thread, request_cancel() from Blender's thread."""
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    before = positions(obj)
+    options = addon.FairingOptions(inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**7)
+    run = addon.fairing.FairingRun(obj, options)
+    start = time.perf_counter()
+    run.start()
+    while run.iteration == 0 and time.perf_counter() - start < 5:  # until the solver has got going
+        time.sleep(0.02)
+    assert not run.done, "the run ended before it could be cancelled"
+    run.request_cancel()
+    assert run.wait(timeout=5), "the run did not stop within 5 s of request_cancel()"
+    stopped = time.perf_counter() - start
+    report = run.finish()
+    assert report.cancelled and np.array_equal(positions(obj), before), report
+    print(f"ok: worker-thread run cancelled after {report.iterations} iterations ({stopped:.2f} s), mesh unchanged")
+
+    run = addon.fairing.FairingRun(obj, addon.FairingOptions(inner_fairness="CONFORMAL"))
+    run.start()
+    assert run.wait(timeout=60)
+    report = run.finish()
+    assert report.converged and not report.cancelled and np.any(positions(obj) != before)
+    print(f"ok: worker-thread run to the end: {report.summary()}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+
+
+def check_shape_key(addon):
+    """In Object Mode the active shape key is faired (like Edit Mode would), the basis when it is active."""
+    obj = add_subdivided_suzanne()
+    basis = obj.shape_key_add(name="Basis")
+    key = obj.shape_key_add(name="Raised", from_mix=False)
+    co = np.empty(3 * len(key.data))
+    key.data.foreach_get("co", co)
+    key.data.foreach_set("co", co + np.tile([0.0, 0.0, 0.5], len(key.data)))
+    obj.active_shape_key_index = 1
+    basis_before = positions(obj)
+    mask = near(face_centres(obj), BROW, 0.25)
+    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL")
+    assert report.converged
+    key_after = np.empty(3 * len(key.data))
+    key.data.foreach_get("co", key_after)
+    assert np.any(key_after != co + np.tile([0.0, 0.0, 0.5], len(key.data))), "the active shape key did not change"
+    assert np.array_equal(positions(obj), basis_before), "fairing a shape key moved the basis"
+    print("ok: the active shape key is faired, the basis is not")
+    obj.active_shape_key_index = 0
+    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL")
+    basis_co = np.empty(3 * len(basis.data), dtype=np.float32)
+    basis.data.foreach_get("co", basis_co)
+    assert np.array_equal(basis_co.reshape(-1, 3), positions(obj)) and np.any(positions(obj) != basis_before)
+    print("ok: with the basis active, the basis and the mesh positions are faired together")
+    bpy.data.objects.remove(obj)
+
+
+def check_uv_distortion(addon):
+    """A grid whose UVs are its xy stretched by 2 along u: distortion 2 on every triangle, both modes."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, size=2.0, location=(0, 0, 0))
+    grid = bpy.context.active_object
+    mesh = grid.data
+    corners = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", corners)
+    xy = positions(grid)[corners, :2]
+    if not mesh.uv_layers:
+        mesh.uv_layers.new(name="UVMap")
+    mesh.uv_layers.active.data.foreach_set("uv", (xy * [2.0, 1.0]).astype(np.float32).ravel())
+    inner = near(face_centres(grid), (0, 0, 0), 0.6)
+    for mode in ("OBJECT", "EDIT"):
+        bpy.ops.object.mode_set(mode=mode)
+        data = addon.mesh_io.read(grid)
+        assert data.corner_uvs is not None
+        distortion = addon.metrics.uv_distortion(data.vertices, data.triangles, data.corner_uvs[data.triangle_corners])
+        assert distortion.triangles == 2 * len(mesh.polygons), distortion
+        assert abs(distortion.mean - 2.0) < 1e-5 and abs(distortion.max - 2.0) < 1e-5, distortion
+        run = addon.fairing.FairingRun(grid, addon.FairingOptions(), faces=inner)
+        assert abs(run.uv_before.mean - 2.0) < 1e-5 and run.uv_before.triangles > 0, run.uv_before
+        print(f"ok: {mode.title()} Mode: UV distortion of a 2:1 stretched grid = {distortion.mean:.6f}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(grid)
+
+
+def check_without_registering(folder):
+    """fair_object needs no registered add-on (a script may just import the package)."""
+    addon = sys.modules["geometric_fairing"]
+    obj = add_subdivided_suzanne()
+    report = addon.fair_object(obj, region=near(face_centres(obj), BROW, 0.25), inner_fairness="CONFORMAL")
+    assert report.converged
+    print(f"ok: fair_object with the add-on disabled: {report.summary()}")
+
+
+def main():
+    folder, _ = parse_args()
+    print(f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {folder}")
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    addon = enable_addon(folder)
+    assert callable(addon.fair_object)
+    obj = add_subdivided_suzanne()
+    check_regions(addon, obj)
+    check_cancel_by_callback(addon, obj)
+    check_cancel_from_main_thread(addon, obj)
+    bpy.data.objects.remove(obj)
+    check_shape_key(addon)
+    check_uv_distortion(addon)
+    disable_addon()
+    check_without_registering(folder)
+    print("check_scripting: all checks passed")
+
+
+main()

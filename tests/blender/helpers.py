@@ -1,0 +1,111 @@
+"""Shared by the check scripts that run inside Blender 3.4+ and the ``bpy`` module from PyPI.
+
+Each check script is run as
+
+    blender --background --factory-startup --python-exit-code 1 --python tests/blender/<script>.py -- build/addon
+    python3 tests/blender/<script>.py -- build/addon
+
+and raises (non-zero exit) on failure.
+"""
+
+import importlib
+import pathlib
+import sys
+
+import bpy  # first: the bpy module from PyPI makes bmesh importable
+
+# isort: split
+import addon_utils
+import bmesh
+import numpy as np
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+
+
+def parse_args():
+    """``(addon folder, flags)`` from the arguments after ``--`` (default folder: <repo>/build/addon)."""
+    args = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
+    flags = {a for a in args if a.startswith("--")}
+    folders = [a for a in args if not a.startswith("--")]
+    return pathlib.Path(folders[0] if folders else REPO / "build" / "addon").resolve(), flags
+
+
+def enable_addon(folder, no_native=False):
+    """Enable ``geometric_fairing`` from ``folder`` the way Preferences does (so its preferences exist)."""
+    if not (folder / "geometric_fairing" / "__init__.py").is_file():
+        raise FileNotFoundError(f"no geometric_fairing add-on in {folder}")
+    if no_native:  # a None entry in sys.modules makes the import raise ImportError
+        sys.modules["geometric_fairing.geofair"] = None
+    sys.path.insert(0, str(folder))
+    addon = addon_utils.enable("geometric_fairing", default_set=True, handle_error=_raise)
+    assert addon is not None, "addon_utils.enable failed"
+    assert pathlib.Path(addon.__file__).parent == folder / "geometric_fairing", addon.__file__
+    assert bpy.context.preferences.addons.get("geometric_fairing") is not None
+    return importlib.import_module("geometric_fairing")
+
+
+def disable_addon():
+    """Leave Edit Mode and disable the add-on: the bpy module may hang at exit otherwise."""
+    if bpy.context.object is not None and bpy.context.object.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    addon_utils.disable("geometric_fairing", default_set=True, handle_error=_raise)
+
+
+def _raise(error):
+    raise error
+
+
+def add_subdivided_suzanne():
+    """Suzanne with a Subdivision Surface modifier (level 2) applied, active, in Object Mode."""
+    bpy.ops.mesh.primitive_monkey_add()
+    obj = bpy.context.active_object
+    modifier = obj.modifiers.new("Subdivision", "SUBSURF")
+    modifier.levels = 2
+    bpy.ops.object.modifier_apply(modifier=modifier.name)
+    assert len(obj.data.uv_layers) == 1, "Suzanne comes with a UV map"
+    return obj
+
+
+def select_faces(obj, inside):
+    """In Edit Mode, select exactly the faces whose centre satisfies ``inside(centre)``."""
+    bpy.context.tool_settings.mesh_select_mode = (False, False, True)
+    bm = bmesh.from_edit_mesh(obj.data)
+    for element in (*bm.verts, *bm.edges, *bm.faces):
+        element.select = False
+    for face in bm.faces:
+        if inside(np.array(face.calc_center_median())):
+            face.select_set(True)
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+
+
+def face_centres(obj):
+    """``(P, 3)`` face centres of ``obj``'s mesh (Object Mode)."""
+    centres = np.empty(3 * len(obj.data.polygons))
+    obj.data.polygons.foreach_get("center", centres)
+    return centres.reshape(-1, 3)
+
+
+def positions(obj):
+    """``(n, 3)`` float32 positions as stored (the edit mesh's in Edit Mode)."""
+    if obj.mode == "EDIT":
+        bm = bmesh.from_edit_mesh(obj.data)
+        return np.array([v.co[:] for v in bm.verts], dtype=np.float32).reshape(-1, 3)
+    co = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    obj.data.vertices.foreach_get("co", co)
+    return co.reshape(-1, 3)
+
+
+def view3d_space():
+    """The 3D View of the current screen (there is one in background mode too)."""
+    for area in bpy.context.screen.areas:
+        if area.type == "VIEW_3D":
+            return area, area.spaces.active
+    raise RuntimeError("no 3D View in the current screen")
+
+
+def in_view3d():
+    """A context override that makes the operators see the 3D View as ``context.space_data``."""
+    area, space = view3d_space()
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return bpy.context.temp_override(area=area, region=region, space_data=space)
