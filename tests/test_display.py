@@ -58,8 +58,8 @@ def test_curvature_colors_are_symmetric_around_zero():
 
 def test_symmetric_limit_ignores_outliers_and_signs():
     h = np.concatenate([np.linspace(-1, 1, 1001), [1e6, np.inf, np.nan]])
-    limit = display.symmetric_limit(h)
-    assert 0.95 < limit < 1.01
+    limit = display.symmetric_limit(h)  # the 90th percentile of |H|: 0.9 here, the spike ignored
+    assert 0.89 < limit < 0.91
     assert display.symmetric_limit(-h) == pytest.approx(limit)
     assert display.symmetric_limit(np.zeros(5)) == 1.0
 

@@ -28,7 +28,7 @@ import bpy
 from . import display, mesh_io, native
 
 ZEBRA_LIGHT = "geofair_zebra.png"
-ZEBRA_STRIPES = 10
+ZEBRA_STRIPES = 16
 CURVATURE_ATTRIBUTE = "Mean Curvature (geofair)"
 
 # View-space settings shared by both toggles: space pointer -> {setting: [original value, set of owners]}.

@@ -56,7 +56,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         row = layout.row()
         row.scale_y = 1.4
         row.operator(MESH_OT_geometric_fairing.bl_idname, text="Fair", icon="MOD_SMOOTH")
-        layout.label(text="Esc cancels a run; the mesh stays as it was")
+        layout.label(text="Esc cancels: mesh unchanged")
 
 
 class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
@@ -79,28 +79,29 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
             for line in _wrap(last.message, 48):
                 layout.label(text=line)
             return
-        grid = layout.grid_flow(row_major=True, columns=2, even_columns=False, align=True)
+        free = f"{last.free_vertices}" + (f" ({last.pinned_vertices} pinned)" if last.pinned_vertices else "")
         figures = [
-            (
-                "Free vertices",
-                f"{last.free_vertices}" + (f" ({last.pinned_vertices} pinned)" if last.pinned_vertices else ""),
-            ),
+            ("Free vertices", free),
             ("Iterations", f"{last.iterations}"),
-            ("Residual", f"{last.residual:.3g} (tol. {last.tolerance:g})"),
+            ("Residual", f"{last.residual:.2g}"),
+            ("Tolerance", f"{last.tolerance:.2g}"),
             ("Time", f"{last.seconds:.2f} s"),
-            ("Fairness", f"{last.inner_fairness.title()}, {last.outer_fairness.title()}"),
+            ("Inner", last.inner_fairness.title()),
+            ("Outer", last.outer_fairness.title()),
         ]
         if last.has_uv:
-            after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.4f} / {last.uv_after_max:.3f}"
+            after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.3f} / {last.uv_after_max:.2f}"
             figures += [
-                ("UV σ1/σ2 before", f"{last.uv_before_mean:.4f} / {last.uv_before_max:.3f}"),
+                ("UV σ1/σ2 before", f"{last.uv_before_mean:.3f} / {last.uv_before_max:.2f}"),
                 ("UV σ1/σ2 after", after),
             ]
+        column = layout.column(align=True)
         for name, value in figures:
-            grid.label(text=name)
-            grid.label(text=value)
+            row = column.split(factor=0.55, align=True)
+            row.label(text=name)
+            row.label(text=value)
         if last.has_uv:
-            layout.label(text=f"UV: mean / max over {last.uv_triangles} triangles")
+            layout.label(text=f"UV: mean / max, {last.uv_triangles} triangles")
 
 
 class VIEW3D_PT_geometric_fairing_inspect(FairingPanel, bpy.types.Panel):
