@@ -203,9 +203,10 @@ def check_preferences(obj, addon):
     result, error = fair(max_iterations=4)  # given to the operator: wins
     check_last_run("NOT_CONVERGED", iterations=4)
     bpy.ops.ed.undo()
-    settings.property_unset("max_iterations")
-    settings["_max_iterations"] = 20000
+    del settings["_max_iterations"]  # where the panel keeps a value set in it: without, it follows again
+    assert settings.max_iterations == 3
     preferences.tolerance, preferences.max_iterations = 1e-4, 20000
+    assert settings.max_iterations == 20000
     print("ok: preferences -> panel -> operator defaults; the operator's own values win")
 
 
