@@ -5,6 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
-python3 -m ruff check addon tests bench scripts
-python3 -m ruff format --check addon tests bench scripts
+python3 -m ruff check addon tests bench scripts examples
+python3 -m ruff format --check addon tests bench scripts examples
 exec python3 -m pytest -q "$@" tests
