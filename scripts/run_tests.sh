@@ -7,4 +7,6 @@ export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
 python3 -m ruff check addon tests bench scripts examples
 python3 -m ruff format --check addon tests bench scripts examples
+# A short libFuzzer run of the C++ entry points (scripts/run_fuzz.sh SECONDS for a long one).
+bash scripts/run_fuzz.sh 30
 exec python3 -m pytest -q "$@" tests

@@ -1,0 +1,64 @@
+// libFuzzer target for the library's entry points: geofair::fair and mean_curvature must
+// either return finite geometry with the fixed vertices untouched, or throw one of the two
+// documented exceptions. Anything else (a crash, a sanitizer report, another exception,
+// NaN in the result) is a bug.
+//
+// Input layout (little-endian bytes, all wrapped into range): n_vertices (1 byte, 3..66),
+// n_triangles (1 byte, 1..128), options (1 byte), then per vertex 3 coordinates (int8 each,
+// scaled by 1/16) and a free flag (1 bit per vertex), then per triangle 3 vertex indices.
+#include "geofair/fairing.h"
+#include "geofair/mean_curvature.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+struct Reader {
+  const std::uint8_t* data;
+  std::size_t size, pos = 0;
+  std::uint8_t next() { return pos < size ? data[pos++] : 0; }
+};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Reader in{data, size};
+  const int nv = 3 + in.next() % 64;
+  const int nf = 1 + in.next() % 128;
+  const std::uint8_t flags = in.next();
+  geofair::Positions V(nv, 3);
+  std::vector<bool> free(nv);
+  for (int v = 0; v < nv; ++v) {
+    for (int c = 0; c < 3; ++c) V(v, c) = static_cast<std::int8_t>(in.next()) / 16.0;
+    free[v] = in.next() & 1;
+  }
+  geofair::Triangles F(nf, 3);
+  for (int f = 0; f < nf; ++f)
+    for (int c = 0; c < 3; ++c) F(f, c) = in.next() % nv;
+
+  try {
+    const Eigen::VectorXd H = geofair::mean_curvature(V, F, nullptr);
+    if (!H.allFinite()) std::abort();
+  } catch (const geofair::InvalidInputError&) {
+  } catch (const geofair::SolverError&) {
+  }
+
+  geofair::FairingOptions options;
+  options.inner_fairness = flags & 1 ? geofair::InnerFairness::Conformal : geofair::InnerFairness::Uniform;
+  options.outer_fairness = flags & 2 ? geofair::OuterFairness::Bilaplacian : geofair::OuterFairness::Intrinsic;
+  options.max_iterations = 30;
+  options.levels = 1 + (flags >> 2) % 3;
+  try {
+    const geofair::FairingResult r = geofair::fair(V, F, free, nullptr, options);
+    if (!r.vertices.allFinite() || !std::isfinite(r.residual)) std::abort();
+    for (int v = 0; v < nv; ++v)
+      if (!free[v] && (r.vertices.row(v).array() != V.row(v).array()).any()) std::abort();
+  } catch (const geofair::InvalidInputError&) {
+  } catch (const geofair::SolverError&) {
+  }
+  return 0;
+}
