@@ -79,8 +79,11 @@ IterationReport Construction::run(Positions& X, int max_iterations, int iteratio
       gauss_seidel_sweep(dirichlet_.S(), b, H_target);
     else
       solver_.global_step(dirichlet_.S(), b, H_target);
+    if (k % kCouplingRefresh == 0)
+      coupling_factors(region_, dirichlet_.weights(), options_.normal_weighting, H_, X, N_,
+                       coupling_);
     const double step = update_free_vertices(region_, lambda_, H_target, options_.normal_weighting,
-                                             options_.damping, X, N_);
+                                             options_.damping, X, N_, nullptr, &coupling_);
     if (!(step <= length_))
       throw SolverError("fair: the iteration diverged (a vertex moved by more than the region's "
                         "size in iteration " + std::to_string(iteration_offset + k) + ")");
@@ -95,6 +98,11 @@ void Construction::local_steps(Positions& X, const std::vector<int>& subset, int
   for (int step = 0; step < steps; ++step) {
     // The first pass needs every normal (spiral samples look one ring further).
     curvatures(X, step == 0 ? nullptr : &subset);
+    if (step == 0) {
+      dirichlet_.assemble(X);
+      coupling_factors(region_, dirichlet_.weights(), options_.normal_weighting, H_, X, N_,
+                       coupling_);
+    }
     // One Gauss–Seidel sweep of Σ_j w_ij (H~_i − H_j) = 0 over the subset (section 7.1).
     for (int i : subset) H_target(i) = H_(i);
     for (int i : subset) {
@@ -108,7 +116,7 @@ void Construction::local_steps(Positions& X, const std::vector<int>& subset, int
       if (sum_w > 0.0) H_(i) = H_target(i) = sum / sum_w;
     }
     update_free_vertices(region_, lambda_, H_target, options_.normal_weighting, options_.damping, X,
-                         N_, &subset);
+                         N_, &subset, &coupling_);
   }
 }
 

@@ -12,7 +12,8 @@ namespace geofair {
 double update_free_vertices(const FairingRegion& region, const std::vector<double>& lambda,
                             const Eigen::VectorXd& H_target, NormalWeighting weighting,
                             double damping, Positions& X, Positions& N,
-                            const std::vector<int>* subset) {
+                            const std::vector<int>* subset,
+                            const std::vector<double>* coupling, bool tangential) {
   const OneRings& rings = region.rings;
   double largest = 0.0;
   const int count = subset ? int(subset->size()) : region.n_free;
@@ -23,7 +24,7 @@ double update_free_vertices(const FairingRegion& region, const std::vector<doubl
     N.row(i) = n;
     const Vec3 q = X.row(i);
     const Vec3 c = weighted_centroid(rings, lambda, X, i);
-    const Vec3 q_tilde = c - (c - q).dot(n) * n;
+    const Vec3 q_tilde = tangential ? Vec3(c - (c - q).dot(n) * n) : q;
     const CurvatureEstimate est =
         moreton_sequin(rings, X, N, i, q_tilde, n, needs_spiral_samples(rings, i));
     double t = 0.0;
@@ -34,12 +35,53 @@ double update_free_vertices(const FairingRegion& region, const std::vector<doubl
     mean_distance /= rings.valence(i);
     const double limit = 0.5 * mean_distance;
     t = std::clamp(t, -limit, limit);
+    if (coupling) t /= std::max(1.0, (*coupling)[i]);
     const Vec3 q_new = q_tilde + damping * t * n;
     if (!q_new.allFinite()) continue;
     largest = std::max(largest, (q_new - q).norm());
     X.row(i) = q_new;
   }
   return largest;
+}
+
+void coupling_factors(const FairingRegion& region, const std::vector<double>& weights,
+                      NormalWeighting weighting, const Eigen::VectorXd& H, Positions& X,
+                      Positions& N, std::vector<double>& rho) {
+  const OneRings& rings = region.rings;
+  const int nf = region.n_free;
+  rho.assign(nf, 1.0);
+  std::vector<Vec3> saved;
+  auto estimate = [&](int j) {
+    return moreton_sequin(rings, X, N, j, X.row(j), N.row(j), needs_spiral_samples(rings, j)).H;
+  };
+  for (int i = 0; i < nf; ++i) {
+    const int begin = rings.offset[i], end = rings.offset[i + 1];
+    const Vec3 q = X.row(i), n = N.row(i);
+    const double dH_dt =
+        moreton_sequin(rings, X, N, i, q, n, needs_spiral_samples(rings, i)).dH_dt;
+    double mean_distance = 0.0, sum_w = 0.0;
+    for (int k = begin; k < end; ++k) {
+      mean_distance += (X.row(rings.ring[k]).transpose() - q).norm();
+      sum_w += weights[k];
+    }
+    if (!(dH_dt > 0.0) || !(sum_w > 0.0)) continue;
+    // A step small against the ring (H is smooth in t there) and large against round-off.
+    const double h = 1e-4 * mean_distance / (end - begin);
+    saved.assign({N.row(i).transpose()});
+    for (int k = begin; k < end; ++k) saved.push_back(N.row(rings.ring[k]));
+    X.row(i) = q + h * n;
+    N.row(i) = vertex_normal(rings, X, i, weighting);
+    for (int k = begin; k < end; ++k)
+      if (rings.ring[k] < nf) N.row(rings.ring[k]) = vertex_normal(rings, X, rings.ring[k], weighting);
+    double defect = estimate(i) - H(i);
+    for (int k = begin; k < end; ++k)
+      defect -= weights[k] / sum_w * (estimate(rings.ring[k]) - H(rings.ring[k]));
+    X.row(i) = q;
+    N.row(i) = saved[0];
+    for (int k = begin; k < end; ++k) N.row(rings.ring[k]) = saved[1 + k - begin];
+    const double r = defect / (h * dH_dt);
+    if (std::isfinite(r)) rho[i] = r;
+  }
 }
 
 }  // namespace geofair

@@ -34,7 +34,9 @@ class Construction {
 
   /// Iterates until the residual reaches the tolerance or `max_iterations` iterations;
   /// local (Gauss–Seidel) and global (CG) steps alternate. `progress` receives
-  /// (iteration_offset + k, residual).
+  /// (iteration_offset + k, residual). Every vertex update divides its normal step by the
+  /// coupling factor max(1, ρ_i) (coupling_factors in vertex_update.h), refreshed every
+  /// kCouplingRefresh iterations.
   /// \throw SolverError if the iteration diverges.
   IterationReport run(Positions& X, int max_iterations, int iteration_offset = 0);
 
@@ -56,6 +58,11 @@ class Construction {
   Eigen::VectorXd H_;
   DirichletMatrix dirichlet_;
   CurvatureSolver solver_;
+  std::vector<double> coupling_;  // ρ_i of the free vertices
 };
+
+/// Iterations between refreshes of the coupling factors: they follow the mesh shape, which
+/// changes slowly; one refresh costs about three iterations.
+constexpr int kCouplingRefresh = 8;
 
 }  // namespace geofair

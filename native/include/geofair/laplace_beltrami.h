@@ -51,6 +51,8 @@ class DirichletMatrix {
   double max_laplace_beltrami(const Eigen::VectorXd& H) const;
 
   const SparseRowMatrix& S() const { return S_; }
+  /// w_ij per ring slot of the free vertices (indexed like OneRings::ring), from assemble().
+  const std::vector<double>& weights() const { return slot_weight_; }
 
  private:
   const FairingRegion& region_;
