@@ -45,9 +45,12 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
 
   const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
   ProgressiveMesh hierarchy;
-  if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic)
-    hierarchy = build_progressive_mesh(region, X0, levels);
-  else
+  if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic) {
+    const std::vector<double> lambda =
+        inner_fairness_weights(region.rings, X0, options.inner_fairness);
+    hierarchy = build_progressive_mesh(region, X0, levels, &lambda);
+  }
+  if (hierarchy.triangles.empty())
     hierarchy.triangles.push_back(region.triangles), hierarchy.splits.emplace_back();
 
   // The finest level is the region itself, with region-local ids as its "global" ids.

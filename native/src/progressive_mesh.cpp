@@ -86,7 +86,22 @@ int default_levels(int n_free) {
   return levels;
 }
 
-ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels) {
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X_input,
+                                       int levels, const std::vector<double>* lambda) {
+  // Jacobi sweeps of the inner-fairness Laplacian on the free vertices.
+  Positions X = X_input;
+  const OneRings& r = region.rings;
+  for (int sweep = 0; sweep < kHierarchySmoothing; ++sweep) {
+    Positions Y = X;
+    for (int i = 0; i < region.n_free; ++i) {
+      Vec3 c = Vec3::Zero();
+      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+        c += (lambda ? (*lambda)[k] : 1.0 / r.valence(i)) * X.row(r.ring[k]).transpose();
+      Y.row(i) = 0.5 * (X.row(i) + c.transpose());
+    }
+    X.swap(Y);
+  }
+
   Mesh mesh;
   mesh.request_vertex_status();
   mesh.request_edge_status();
@@ -111,6 +126,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   const int n_boundary = region.n - region.n_free;
   for (int level = levels - 2; level >= 0; --level) {
     const double n_free = region.n_free / std::pow(4.0, levels - 1 - level);
+    if (n_free < 0.5 * n_boundary) break;  // a level of thin boundary fans
     const std::size_t target = std::size_t(n_boundary) + std::size_t(std::max(1.0, std::round(n_free)));
     collapses = VertexSplits{};
     // decimate_to counts deleted vertices too, so ask for the number of collapses.
