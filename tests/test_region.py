@@ -189,15 +189,114 @@ def test_octahedron_normals_come_from_unselected_faces():
 @pytest.mark.parametrize(
     "selected, message",
     [
-        ([False] * 8, "No face is selected"),
+        ([False] * 8, region.NO_FACE_SELECTED),
         ([True] + [False] * 7, "No vertex lies inside"),
-        ([True] * 8, "whole closed part"),
+        ([True] * 8, region.WHOLE_MESH_SELECTED),
     ],
 )
 def test_invalid_selections(selected, message):
     vertices, triangles = octahedron()
-    with pytest.raises(region.RegionError, match=message):
+    with pytest.raises(region.RegionError) as error:
         region.find_region(vertices, triangles, np.array(selected))
+    assert message in str(error.value)
+    assert isinstance(error.value, region.NothingSelectedError) == (message == region.NO_FACE_SELECTED)
+
+
+def test_no_face_selected_says_whether_vertices_or_edges_are():
+    with pytest.raises(region.NothingSelectedError) as error:
+        region.require_selected_faces(np.zeros(4, dtype=bool), np.zeros(6, dtype=bool))
+    assert str(error.value) == region.NO_FACE_SELECTED == "No face is selected: select the faces to fair"
+    with pytest.raises(region.NothingSelectedError) as error:
+        region.require_selected_faces(np.zeros(4, dtype=bool), np.array([0, 1, 0, 0, 0, 1], dtype=bool))
+    assert str(error.value) == region.ONLY_VERTICES_OR_EDGES
+    assert str(error.value).startswith("No face is selected, only vertices or edges")
+    region.require_selected_faces(np.array([0, 0, 1, 0], dtype=bool), None)  # a face: no error
+
+
+def test_hidden_faces_are_absent():
+    # An 8x8 grid with the inner 6x6 quads selected, and the quad at (3, 3) hidden (absent).
+    nx = ny = 8
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    n = len(vertices)
+    rng = np.random.default_rng(3)
+    vertices[:, 2] = rng.uniform(-0.2, 0.2, n)
+    block = [(x, y) for x in range(1, 7) for y in range(1, 7)]
+    hidden = select_quads(triangle_polygon, quad, [(3, 3)])
+    selected = select_quads(triangle_polygon, quad, block) & ~hidden  # Blender never selects a hidden face
+
+    r = region.find_region(vertices, triangles, selected, present=~hidden)
+
+    hidden_corners = [(3, 3), (4, 3), (4, 4), (3, 4)]
+    np.testing.assert_array_equal(r.hidden_fixed, vertex_mask(n, nx, hidden_corners))
+    inner = [(x, y) for x in range(2, 7) for y in range(2, 7)]
+    np.testing.assert_array_equal(r.free, vertex_mask(n, nx, [p for p in inner if p not in hidden_corners]))
+    assert not r.border_fixed.any()
+    # The hidden quad's corners are boundary vertices with the normal of the visible faces at
+    # them: all selected, so the area-weighted normal of their selected present triangles.
+    present_triangles = triangles[~hidden]
+    cross = region.face_cross_products(vertices, present_triangles)
+    for x, y in hidden_corners:
+        i = x + y * (nx + 1)
+        assert r.boundary[i]
+        expected = cross[(present_triangles == i).any(axis=1)].sum(axis=0)
+        np.testing.assert_allclose(r.boundary_normals[i], expected / np.linalg.norm(expected), rtol=1e-13)
+    # Two loops: the outer one and one around the hidden quad.
+    assert len(r.loops) == 2 and set(r.loops[1].tolist()) == set(np.flatnonzero(r.hidden_fixed).tolist())
+
+    # With the hidden quad present (and unselected) the same vertices are boundary with normals
+    # of the unselected quad: they differ, so hidden faces really take no part above.
+    shown = region.find_region(vertices, triangles, selected)
+    np.testing.assert_array_equal(shown.free, r.free)
+    assert not shown.hidden_fixed.any()
+    i = 3 + 3 * (nx + 1)
+    assert not np.allclose(shown.boundary_normals[i], r.boundary_normals[i])
+
+
+def test_closed_mesh_with_hidden_faces_selected_elsewhere():
+    # The whole visible octahedron selected, its bottom face hidden: the mesh now ends at the
+    # hidden face, whose vertices hold the rest in place.
+    vertices, triangles = octahedron()
+    hidden = np.array([False] * 7 + [True])
+    r = region.find_region(vertices, triangles, ~hidden, present=~hidden)
+    np.testing.assert_array_equal(r.hidden_fixed, np.isin(np.arange(6), triangles[7]))
+    np.testing.assert_array_equal(r.free, ~np.isin(np.arange(6), triangles[7]))
+    with pytest.raises(region.NothingSelectedError, match="No face is selected"):
+        region.find_region(vertices, triangles, hidden, present=~hidden)  # only a hidden face "selected"
+    with pytest.raises(ValueError, match="present must have one entry per triangle"):
+        region.find_region(vertices, triangles, ~hidden, present=np.ones(3, dtype=bool))
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_connected_parts_match_a_flood_fill(seed):
+    rng = np.random.default_rng(seed)
+    n = 200
+    edges = rng.integers(0, n, size=(150, 2))
+    label = region.connected_parts(n, edges)
+    # Reference: a flood fill over an adjacency list.
+    neighbours = [[] for _ in range(n)]
+    for a, b in edges.tolist():
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    expected = np.full(n, -1)
+    for start in range(n):
+        if expected[start] >= 0:
+            continue
+        stack = [start]
+        expected[start] = start
+        while stack:
+            for w in neighbours[stack.pop()]:
+                if expected[w] < 0:
+                    expected[w] = start
+                    stack.append(w)
+    np.testing.assert_array_equal(label, expected)
+
+
+def test_connected_parts_of_a_long_path():
+    # A path numbered so that every hook goes the wrong way: still one part, in a few passes.
+    n = 100000
+    order = np.random.default_rng(0).permutation(n)
+    label = region.connected_parts(n, np.stack([order[:-1], order[1:]], axis=1))
+    assert (label == 0).all()
 
 
 def test_closed_part_fully_selected_next_to_valid_selection():
@@ -205,8 +304,16 @@ def test_closed_part_fully_selected_next_to_valid_selection():
     vertices = np.vstack([vertices, vertices + [5, 0, 0]])
     triangles = np.vstack([triangles, triangles + 6])
     selected = np.array([True] * 4 + [False] * 4 + [True] * 8)
-    with pytest.raises(region.RegionError, match="whole closed part"):
+    with pytest.raises(region.RegionError) as error:
         region.find_region(vertices, triangles, selected)
+    assert str(error.value) == region.WHOLE_CLOSED_PART
+    # Everything selected, but an open grid beside the octahedron: not "the whole mesh has no border".
+    grid_vertices, grid_triangles, _, _ = grid(3, 3)
+    vertices = np.vstack([vertices, grid_vertices + [0, 0, 5]])
+    triangles = np.vstack([triangles, grid_triangles + 12])
+    with pytest.raises(region.RegionError) as error:
+        region.find_region(vertices, triangles, np.ones(len(triangles), dtype=bool))
+    assert str(error.value) == region.WHOLE_CLOSED_PART
 
 
 def test_region_error_is_a_value_error():

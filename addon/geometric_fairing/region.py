@@ -19,6 +19,28 @@ class RegionError(ValueError):
     """The selection does not define a region that can be faired."""
 
 
+class NothingSelectedError(RegionError):
+    """There is nothing to fair: no face is selected (or a region group encloses none).
+
+    With several objects in Edit Mode, an object with nothing to fair is skipped
+    quietly while another one has something; any other RegionError is reported.
+    """
+
+
+NO_FACE_SELECTED = "No face is selected: select the faces to fair"
+ONLY_VERTICES_OR_EDGES = (
+    "No face is selected, only vertices or edges: select the faces to fair "
+    "(in Face Select mode, or all vertices of each face)"
+)
+WHOLE_MESH_SELECTED = (
+    "The whole mesh is selected and it has no open border: fairing needs unselected faces around "
+    "the selection to hold it in place"
+)
+WHOLE_CLOSED_PART = (
+    "The selection covers a whole closed part of the mesh: fairing needs unselected faces around the selection"
+)
+
+
 @dataclass(frozen=True)
 class Region:
     """A fairing region on a triangle mesh with ``n`` vertices.
@@ -33,6 +55,9 @@ class Region:
             vertex; of the selected faces where there is no unselected face.
         border_fixed: ``(n,)`` bool, vertices with all faces selected that were
             kept fixed because they lie on the open mesh border.
+        hidden_fixed: ``(n,)`` bool, vertices with all their present faces
+            selected that were kept fixed because they also belong to an absent
+            (hidden) face.
         pinned: ``(n,)`` bool, vertices with all faces selected that were kept
             fixed because they are pinned (not on the border); those next to a
             free vertex are G1 boundary vertices with their own current normal.
@@ -44,6 +69,7 @@ class Region:
     boundary: np.ndarray
     boundary_normals: np.ndarray
     border_fixed: np.ndarray
+    hidden_fixed: np.ndarray
     pinned: np.ndarray
     loops: list
 
@@ -95,17 +121,39 @@ def border_vertices(n, triangles):
     return on_border
 
 
-def find_region(vertices, triangles, selected, pinned=None):
+def require_selected_faces(face_selected, vertex_selected=None):
+    """Raise :class:`NothingSelectedError` when no face is selected, saying whether vertices or edges are.
+
+    Args:
+        face_selected: ``(P,)`` bool, selected faces.
+        vertex_selected: ``(n,)`` bool or None, selected vertices (a selected
+            edge selects its two vertices).
+    """
+    if np.any(face_selected):
+        return
+    if vertex_selected is not None and np.any(vertex_selected):
+        raise NothingSelectedError(ONLY_VERTICES_OR_EDGES)
+    raise NothingSelectedError(NO_FACE_SELECTED)
+
+
+def find_region(vertices, triangles, selected, pinned=None, present=None):
     """Compute the fairing region of a face selection.
 
     A vertex is free when all its faces are selected, unless it lies on the
-    open mesh border (kept fixed, counted in ``border_fixed``) or is pinned
-    (kept fixed, counted in ``pinned``).
+    open mesh border (kept fixed, counted in ``border_fixed``), belongs to an
+    absent face (kept fixed, counted in ``hidden_fixed``) or is pinned (kept
+    fixed, counted in ``pinned``).
 
-    Boundary normals: the area-weighted normal of the unselected faces at the
-    vertex. A fixed vertex with every face selected (on the open border, or
-    pinned inside the region) has no unselected face: it keeps the
-    area-weighted normal of all its faces, its current vertex normal.
+    Absent triangles (``present`` False: Blender's hidden faces) take no part:
+    the mesh ends at them as at an open border. Their vertices never move; those
+    next to a free vertex are G1 boundary vertices whose normal comes from the
+    present faces at them.
+
+    Boundary normals: the area-weighted normal of the present unselected faces
+    at the vertex. A fixed vertex with every present face selected (on the open
+    border, next to an absent face, or pinned inside the region) has no
+    unselected face: it keeps the area-weighted normal of its selected faces,
+    its current vertex normal.
 
     Args:
         vertices: ``(n, 3)`` float vertex positions.
@@ -113,13 +161,15 @@ def find_region(vertices, triangles, selected, pinned=None):
         selected: ``(T,)`` bool, triangles of selected faces.
         pinned: ``(n,)`` bool or None, vertices that must not move (a pin
             vertex group); pins outside the region change nothing.
+        present: ``(T,)`` bool or None (all present), triangles that take part.
 
     Returns:
         The :class:`Region`.
 
     Raises:
-        RegionError: nothing selected, no free vertex, a selected part with no
-            fixed boundary (a whole closed piece of the mesh), or a boundary
+        NothingSelectedError: no present triangle is selected.
+        RegionError: no free vertex, a selected part with no fixed boundary (the
+            whole closed mesh, or a whole closed piece of it), or a boundary
             normal that cannot be computed (degenerate faces).
     """
     vertices = np.asarray(vertices, dtype=np.float64)
@@ -128,27 +178,37 @@ def find_region(vertices, triangles, selected, pinned=None):
     n = len(vertices)
     if selected.shape != (len(triangles),):
         raise ValueError("find_region: selected must have one entry per triangle")
-    if not selected.any():
-        raise RegionError("No face is selected: select the faces to fair")
+    present = np.ones(len(triangles), dtype=bool) if present is None else np.asarray(present, dtype=bool)
+    if present.shape != (len(triangles),):
+        raise ValueError("find_region: present must have one entry per triangle")
     pinned = np.zeros(n, dtype=bool) if pinned is None else np.asarray(pinned, dtype=bool)
     if pinned.shape != (n,):
         raise ValueError("find_region: pinned must have one entry per vertex")
+    touches_absent = np.zeros(n, dtype=bool)
+    touches_absent[triangles[~present].ravel()] = True
+    triangles, selected = triangles[present], selected[present]
+    if not selected.any():
+        raise NothingSelectedError(NO_FACE_SELECTED)
 
     faces_at = np.bincount(triangles.ravel(), minlength=n)
     selected_at = np.bincount(triangles[selected].ravel(), minlength=n)
     inside = (faces_at > 0) & (selected_at == faces_at)
-    border_fixed = inside & border_vertices(n, triangles)
-    pinned = inside & pinned & ~border_fixed
-    free = inside & ~border_fixed & ~pinned
+    hidden_fixed = inside & touches_absent
+    on_border = border_vertices(n, triangles)
+    border_fixed = inside & on_border & ~hidden_fixed
+    pinned = inside & pinned & ~border_fixed & ~hidden_fixed
+    free = inside & ~border_fixed & ~hidden_fixed & ~pinned
     if not free.any():
         if pinned.any():
             raise RegionError("Every vertex inside the selection is pinned: nothing is left to move")
         raise RegionError("No vertex lies inside the selection: select faces that surround at least one vertex")
 
+    in_region = free[triangles].any(axis=1)
     boundary = np.zeros(n, dtype=bool)
-    boundary[triangles[free[triangles].any(axis=1)].ravel()] = True
+    boundary[triangles[in_region].ravel()] = True
     boundary &= ~free
-    _check_every_part_has_boundary(triangles, free, boundary)
+    closed = WHOLE_MESH_SELECTED if selected.all() and not on_border.any() else WHOLE_CLOSED_PART
+    _check_every_part_has_boundary(triangles, free, boundary, closed)
 
     cross = face_cross_products(vertices, triangles)
     outside_normal = _vertex_sums(n, triangles[~selected], cross[~selected])
@@ -167,8 +227,9 @@ def find_region(vertices, triangles, selected, pinned=None):
         boundary=boundary,
         boundary_normals=normals,
         border_fixed=border_fixed,
+        hidden_fixed=hidden_fixed,
         pinned=pinned,
-        loops=boundary_loops(triangles, free),
+        loops=boundary_loops(triangles[in_region], free),
     )
 
 
@@ -250,30 +311,45 @@ def _pop_successor(successors, vertex):
 
 def _vertex_sums(n, triangles, values):
     """Sum per-triangle ``values`` (T, 3) into the ``n`` vertices of each triangle."""
-    sums = np.zeros((n, 3))
-    for corner in range(3):
-        np.add.at(sums, triangles[:, corner], values)
-    return sums
+    corners = triangles.ravel()
+    per_corner = np.repeat(values, 3, axis=0)
+    return np.stack([np.bincount(corners, weights=per_corner[:, k], minlength=n) for k in range(3)], axis=1)
 
 
-def _check_every_part_has_boundary(triangles, free, boundary):
-    """Raise RegionError if a connected set of free vertices touches no boundary vertex."""
+def connected_parts(n, edges):
+    """Return ``(n,)`` int64: for each vertex the smallest vertex index of its connected part.
+
+    Hooking of roots and pointer jumping (Shiloach–Vishkin) in numpy: a few
+    passes over the edges, whatever the diameter of the parts.
+
+    Args:
+        n: number of vertices.
+        edges: ``(E, 2)`` int vertex pairs.
+    """
+    parent = np.arange(n)
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    u, v = edges[:, 0], edges[:, 1]
+    while True:
+        pu, pv = parent[u], parent[v]  # roots: parent is fully jumped
+        differ = pu != pv
+        if not differ.any():
+            return parent
+        u, v, pu, pv = u[differ], v[differ], pu[differ], pv[differ]
+        np.minimum.at(parent, np.maximum(pu, pv), np.minimum(pu, pv))  # hook the larger root to the smaller
+        while True:
+            grand = parent[parent]
+            if np.array_equal(grand, parent):
+                break
+            parent = grand
+
+
+def _check_every_part_has_boundary(triangles, free, boundary, message):
+    """Raise RegionError(message) if a connected set of free vertices touches no boundary vertex."""
     edges = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    edges = edges[free[edges].all(axis=1)]
-    label = np.arange(len(free))
-    while True:  # label propagation with pointer jumping: each part gets its smallest index
-        old = label.copy()
-        np.minimum.at(label, edges[:, 0], label[edges[:, 1]])
-        np.minimum.at(label, edges[:, 1], label[edges[:, 0]])
-        label = label[label]
-        if np.array_equal(label, old):
-            break
+    label = connected_parts(len(free), edges[free[edges].all(axis=1)])
     touching = np.zeros(len(free), dtype=bool)
-    region_edges = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     for a, b in ((0, 1), (1, 0)):
-        link = free[region_edges[:, a]] & boundary[region_edges[:, b]]
-        touching[label[region_edges[link, a]]] = True
+        link = free[edges[:, a]] & boundary[edges[:, b]]
+        touching[label[edges[link, a]]] = True
     if np.any(free & ~touching[label]):
-        raise RegionError(
-            "The selection covers a whole closed part of the mesh: fairing needs unselected faces around the selection"
-        )
+        raise RegionError(message)
