@@ -8,6 +8,7 @@ but fails when the environment variable CI is set.
   region groups, errors, undo; also without the compiled module, and with a module
   built for another Python.
 - check_inspect.py: the zebra and curvature toggles leave nothing behind.
+- check_errors.py: bad selections (exact reports), solver failures, Edit Mode and undo after them.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
 - examples/fair_object.py: the documented script runs.
@@ -70,7 +71,7 @@ def _run(command, env=None, timeout=300):
 
 
 @pytest.mark.parametrize("variant", COMMANDS)
-@pytest.mark.parametrize("check", ["check_operator", "check_inspect", "check_scripting"])
+@pytest.mark.parametrize("check", ["check_operator", "check_inspect", "check_scripting", "check_errors"])
 def test_in_blender(check, variant):
     output = _run([*COMMANDS[variant](CHECKS / f"{check}.py"), "--", str(_built_addon())])
     assert f"{check}: all checks passed" in output, output

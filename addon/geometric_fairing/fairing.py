@@ -1,14 +1,23 @@
-"""One fairing run on a Blender mesh, and :func:`fair_object` for scripts.
+"""One fairing run on a Blender mesh, runs on several objects, and :func:`fair_object` for scripts.
 
 A :class:`FairingRun` reads the mesh and finds the region when it is made,
 solves (in the calling thread or a worker thread) and writes the new positions
-only in :meth:`FairingRun.finish`: a run that is cancelled or fails never
-touches the mesh. The operator (modal, Esc to cancel) and :func:`fair_object`
-(``blender --background`` pipelines) share it.
+only in :meth:`FairingRun.finish`: a run that is cancelled or fails (also inside
+the compiled solver) never touches the mesh. A :class:`FairingBatch` solves the
+runs of several objects (multi-object Edit Mode) one after another. The
+operator (modal, Esc to cancel) and :func:`fair_object` (``blender
+--background`` pipelines) share them.
+
+Hidden faces take no part unless ``use_hidden`` is set: the mesh ends at them
+as at an open border (see :func:`region.find_region`), so a hidden face's
+vertices never move, and those next to the region are fixed G1 boundary
+vertices with normals from the visible faces.
 """
 
+import math
 import threading
 import time
+import types
 from dataclasses import dataclass, field
 
 import bpy
@@ -28,6 +37,7 @@ class FairingOptions:
     levels: int = properties.DEFAULTS["levels"]
     region_group: str = ""
     pin_group: str = ""
+    use_hidden: bool = False
 
     def __post_init__(self):
         self.inner_fairness = self.inner_fairness.upper()
@@ -50,6 +60,8 @@ class FairingReport:
         free_vertices: vertices that could move.
         pinned_vertices: vertices inside the region kept fixed by the pin group.
         border_fixed_vertices: vertices inside the region kept fixed on the open mesh border.
+        hidden_fixed_vertices: vertices inside the region kept fixed because they belong to a
+            hidden face too (without ``use_hidden``).
         converged: the residual fell below the tolerance.
         cancelled: stopped by Esc or by a progress callback; the mesh is unchanged.
         iterations: fairing iterations (all levels).
@@ -59,6 +71,8 @@ class FairingReport:
             triangles with a free vertex, before and after (None without a UV map;
             ``uv_after`` is None when the mesh was not changed).
         iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
+        timings: wall time in seconds of the steps of the run: ``read`` (mesh to numpy),
+            ``region``, ``uv`` (UV distortion before and after), ``solve``, ``write``.
     """
 
     object_name: str
@@ -74,6 +88,8 @@ class FairingReport:
     uv_after: metrics.Distortion | None = None
     iterations_per_level: list = field(default_factory=list)
     vertices_per_level: list = field(default_factory=list)
+    hidden_fixed_vertices: int = 0
+    timings: dict = field(default_factory=dict)
 
     @property
     def changed(self):
@@ -88,6 +104,8 @@ class FairingReport:
         text += f", {self.iterations} iterations, residual {self.residual:.3g}, {self.seconds:.2f} s"
         if self.border_fixed_vertices:
             text += f"; {self.border_fixed_vertices} vertices on the open mesh border kept fixed"
+        if self.hidden_fixed_vertices:
+            text += f"; {self.hidden_fixed_vertices} vertices of hidden faces kept fixed"
         if self.uv_before is not None:
             text += f"; UV distortion mean {self.uv_before.mean:.4f}"
             if self.uv_after is not None:
@@ -95,6 +113,12 @@ class FairingReport:
         if self.cancelled:
             return text + ", cancelled: mesh unchanged"
         return text + (", converged" if self.converged else ", NOT converged")
+
+
+# The result of a run that never got to solve (cancelled first): nothing to write.
+_NOT_SOLVED = types.SimpleNamespace(
+    converged=False, iterations=0, residual=float("nan"), iterations_per_level=[], vertices_per_level=[]
+)
 
 
 class FairingRun:
@@ -124,27 +148,43 @@ class FairingRun:
         self.mode = obj.mode
         self.options = options
         self.user_progress = progress
-        self.mesh = mesh_io.read(obj)
-        mesh = self.mesh
+        self.timings = {}
+        clock = time.perf_counter()
+        self.mesh = mesh = mesh_io.read(obj, uvs=False)
+        self.timings["read"] = time.perf_counter() - clock
+        clock = time.perf_counter()
+        present = np.ones(len(mesh.loop_start), dtype=bool) if options.use_hidden else ~mesh.face_hidden
         if faces is None and options.region_group:
+            if obj.vertex_groups.get(options.region_group) is None:
+                raise region.NothingSelectedError(f"'{obj.name}' has no vertex group '{options.region_group}'")
             inside = mesh_io.vertex_group_weights(obj, options.region_group) > 0.0
-            faces = region.polygons_inside(inside, mesh.loop_start, mesh.loop_total, mesh.corner_verts)
+            faces = region.polygons_inside(inside, mesh.loop_start, mesh.loop_total, mesh.corner_verts) & present
             if not faces.any():
-                raise region.RegionError(f"Vertex group '{options.region_group}' encloses no face")
+                raise region.NothingSelectedError(f"Vertex group '{options.region_group}' encloses no face")
         elif faces is None:
-            faces = mesh.face_selected
+            faces = mesh.face_selected & present
+            region.require_selected_faces(faces, mesh.vertex_selected)
         faces = np.asarray(faces, dtype=bool)
         if faces.shape != (len(mesh.loop_start),):
             raise ValueError(f"the face mask must have one entry per face ({len(mesh.loop_start)}), not {faces.shape}")
         pinned = None
         if options.pin_group:
             pinned = mesh_io.vertex_group_weights(obj, options.pin_group) > 0.0
-        self.region = region.find_region(mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned)
+        self.present_triangles = present[mesh.triangle_face]
+        self.region = region.find_region(
+            mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles
+        )
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
+        self.timings["region"] = time.perf_counter() - clock
+        clock = time.perf_counter()
+        changed_faces = np.unique(mesh.triangle_face[self.changed_triangles])
+        mesh.corner_uvs = mesh_io.read_uvs(obj, mesh, faces=changed_faces)
         self.uv_before = self._uv_distortion(mesh.vertices)
+        self.timings["uv"] = time.perf_counter() - clock
 
         self.iteration = 0
         self.residual = float("nan")
+        self.first_residual = float("nan")
         self.seconds = 0.0
         self.result = None
         self.error = None
@@ -160,7 +200,7 @@ class FairingRun:
         try:
             self.result = native.geofair.fair(
                 mesh.vertices,
-                mesh.triangles,
+                mesh.triangles[self.present_triangles],
                 fairing_region.free,
                 boundary_normals=fairing_region.boundary_normals,
                 inner_fairness=options.inner_fairness.lower(),
@@ -173,6 +213,7 @@ class FairingRun:
         except Exception as error:  # kept for finish(), which runs in Blender's thread
             self.error = error
         self.seconds = time.perf_counter() - start
+        self.timings["solve"] = self.seconds
 
     def start(self):
         """Solve in a worker thread (the solver releases the GIL); poll :attr:`done`."""
@@ -200,6 +241,8 @@ class FairingRun:
 
     def _progress(self, iteration, residual):
         self.iteration, self.residual = int(iteration), float(residual)
+        if self.first_residual != self.first_residual and residual == residual:  # the first that is not NaN
+            self.first_residual = float(residual)
         if self.user_progress is not None and self.user_progress(iteration, residual) is False:
             self._cancel.set()
         return not self._cancel.is_set()
@@ -217,11 +260,14 @@ class FairingRun:
         """
         if not self.done:
             raise RuntimeError("finish: the run is still going")
-        if self.error is not None:
+        cancelled = self._cancel.is_set()  # even if it converged meanwhile: the user asked for the mesh as it was
+        if self.error is not None and not cancelled:
             raise self.error
         result = self.result
-        cancelled = self._cancel.is_set()  # even if it converged meanwhile: the user asked for the mesh as it was
         uv_after = None
+        if result is None:  # cancelled before it was solved (a later object of a batch), or failed meanwhile
+            cancelled = True
+            result = _NOT_SOLVED
         if not cancelled:
             positions = np.asarray(result.vertices, dtype=np.float64)
             free = np.flatnonzero(self.region.free)
@@ -233,13 +279,18 @@ class FairingRun:
                 unchanged = False
             if not unchanged:
                 raise RuntimeError("the mesh changed during the run; result discarded")
+            clock = time.perf_counter()
             mesh_io.write_positions(self.obj, positions, free)
+            self.timings["write"] = time.perf_counter() - clock
+            clock = time.perf_counter()
             uv_after = self._uv_distortion(positions)
+            self.timings["uv"] += time.perf_counter() - clock
         return FairingReport(
             object_name=self.object_name,
             free_vertices=int(np.count_nonzero(self.region.free)),
             pinned_vertices=int(np.count_nonzero(self.region.pinned)),
             border_fixed_vertices=int(np.count_nonzero(self.region.border_fixed)),
+            hidden_fixed_vertices=int(np.count_nonzero(self.region.hidden_fixed)),
             converged=bool(result.converged),
             cancelled=cancelled,
             iterations=int(result.iterations),
@@ -249,6 +300,7 @@ class FairingRun:
             uv_after=uv_after,
             iterations_per_level=list(result.iterations_per_level),
             vertices_per_level=list(result.vertices_per_level),
+            timings=dict(self.timings),
         )
 
     def _uv_distortion(self, positions):
@@ -257,6 +309,116 @@ class FairingRun:
             return None
         keep = self.changed_triangles
         return metrics.uv_distortion(positions, self.mesh.triangles[keep], uv[self.mesh.triangle_corners[keep]])
+
+
+class FairingBatch:
+    """The runs of several objects (multi-object Edit Mode), solved one after another.
+
+    Solving, cancelling and waiting work as for one :class:`FairingRun`; a
+    failure of one run (also inside the compiled solver) is kept by that run
+    and does not stop the others. :meth:`finish` writes each run that
+    succeeded and returns the reports and the errors per object.
+
+    Args:
+        runs: list of :class:`FairingRun`, each on another mesh.
+    """
+
+    def __init__(self, runs):
+        self.runs = list(runs)
+        self.index = 0
+        self.written = []  # the runs whose result finish() wrote
+        self._cancel = threading.Event()
+        self._thread = None
+
+    @property
+    def current(self):
+        """The run being solved (the last one once all are done)."""
+        return self.runs[min(self.index, len(self.runs) - 1)]
+
+    @property
+    def iteration(self):
+        return self.current.iteration
+
+    @property
+    def residual(self):
+        return self.current.residual
+
+    @property
+    def free_vertices(self):
+        return int(sum(np.count_nonzero(run.region.free) for run in self.runs))
+
+    def solve(self):
+        """Solve every run in this thread, in order, until all are done or cancelled."""
+        for index, run in enumerate(self.runs):
+            if self._cancel.is_set():
+                break
+            self.index = index
+            run.solve()
+
+    def start(self):
+        """Solve in a worker thread; poll :attr:`done`."""
+        self._thread = threading.Thread(target=self.solve, name="geometric-fairing", daemon=True)
+        self._thread.start()
+
+    @property
+    def done(self):
+        return self._thread is None or not self._thread.is_alive()
+
+    def wait(self, timeout=None):
+        if self._thread is not None:
+            self._thread.join(timeout)
+        return self.done
+
+    def request_cancel(self):
+        """Cancel every run: the one solving stops at its next progress call, the others never start."""
+        self._cancel.set()
+        for run in self.runs:
+            run.request_cancel()
+
+    @property
+    def cancel_requested(self):
+        return self._cancel.is_set()
+
+    def progress(self, tolerance):
+        """Progress in [0, 1] over all runs: each run's share on a log scale of its residual."""
+        run = self.current
+        fraction = progress_fraction(run.first_residual, run.residual, tolerance)
+        return (min(self.index, len(self.runs) - 1) + fraction) / len(self.runs)
+
+    def finish(self):
+        """Write each run's result unless cancelled; return ``(reports, errors)``.
+
+        ``reports`` is a list of :class:`FairingReport`, ``errors`` a list of
+        ``(object name, exception)`` of the runs that failed (their meshes are
+        unchanged).
+        """
+        reports, errors = [], []
+        self.written = []
+        for run in self.runs:
+            try:
+                report = run.finish()
+            except Exception as error:  # noqa: BLE001 (anything from the solver: that object is left as it was)
+                errors.append((run.object_name, error))
+                continue
+            reports.append(report)
+            if report.changed:
+                self.written.append(run)
+        return reports, errors
+
+
+def progress_fraction(first_residual, residual, tolerance):
+    """Progress in [0, 1] of a run from its first residual towards the tolerance, on a log scale."""
+    if not (first_residual > tolerance > 0.0 and residual > 0.0) or math.isnan(residual):
+        return 0.0
+    fraction = math.log(first_residual / residual) / math.log(first_residual / tolerance)
+    return min(max(fraction, 0.0), 1.0)
+
+
+def error_text(error):
+    """The text of an error for a report: the message, with the type for unexpected ones."""
+    if isinstance(error, (ValueError, RuntimeError)):
+        return str(error)
+    return f"{type(error).__name__}: {error}"
 
 
 def options_from_settings(settings, **given):
@@ -338,8 +500,9 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last.inner_fairness = options.inner_fairness
     last.outer_fairness = options.outer_fairness
     last.tolerance = options.tolerance
+    last.not_faired = ""
     if error is not None:
-        last.status, last.message, last.object_name = "ERROR", str(error), object_name
+        last.status, last.message, last.object_name = "ERROR", error_text(error), object_name
         return
     last.object_name = report.object_name
     last.status = "CANCELLED" if report.cancelled else ("CONVERGED" if report.converged else "NOT_CONVERGED")
@@ -355,3 +518,36 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
         last.uv_before_mean, last.uv_before_max = report.uv_before.mean, report.uv_before.max
         after = report.uv_after or report.uv_before
         last.uv_after_mean, last.uv_after_max = after.mean, after.max
+
+
+def store_last_runs(window_manager, options, reports, errors, message):
+    """Keep the figures of the runs of several objects for the panel, added up; ``message`` is the report's line.
+
+    One report and no error is stored as by :func:`store_last_run`. Objects
+    that failed are listed in ``last_run.not_faired``.
+    """
+    session = getattr(window_manager, "geometric_fairing", None)
+    if session is None:
+        return
+    if not reports:
+        names = ", ".join(name for name, _ in errors)
+        store_last_run(window_manager, options, error=RuntimeError(message), object_name=names)
+        return
+    if len(reports) == 1 and not errors:
+        store_last_run(window_manager, options, reports[0])
+        return
+    store_last_run(window_manager, options, reports[0])
+    last = session.last_run
+    last.object_name = ", ".join(report.object_name for report in reports)
+    if any(report.cancelled for report in reports):
+        last.status = "CANCELLED"
+    else:
+        last.status = "CONVERGED" if all(report.converged for report in reports) else "NOT_CONVERGED"
+    last.message = message
+    last.free_vertices = sum(report.free_vertices for report in reports)
+    last.pinned_vertices = sum(report.pinned_vertices for report in reports)
+    last.iterations = sum(report.iterations for report in reports)
+    last.residual = max(report.residual for report in reports)
+    last.seconds = sum(report.seconds for report in reports)
+    last.has_uv = False  # one object's UV figures; they do not add up
+    last.not_faired = "; ".join(f"{name}: {error_text(error)}" for name, error in errors)

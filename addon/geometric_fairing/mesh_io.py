@@ -1,7 +1,21 @@
 """Mesh data in and out of Blender, in Edit Mode (BMesh) and in Object Mode (foreach_get/foreach_set).
 
-Positions are those of what the user edits: the BMesh in Edit Mode, the active
-shape key (if any) in Object Mode; they are written back to the same place.
+Positions are those of what the user edits: the active shape key's if the mesh
+has shape keys, else the mesh's own. In Edit Mode that is what the BMesh holds;
+they are written back there (Blender stores them on leaving Edit Mode). In
+Object Mode they are written the way leaving Edit Mode would store the same
+edit, so both modes give the same bytes: the active key changes, and so do the
+keys relative to it, by the same offset (Blender's shape-key offsets); the
+mesh's own positions change with the reference key only.
+
+Everything else (other shape keys, UV maps, colour attributes, custom normals,
+vertex groups, selection, hiding) is only read, never written.
+
+Bulk data moves through numpy with ``foreach_get``/``foreach_set``; in Edit
+Mode, ``update_from_editmode`` first copies the BMesh into the mesh so that it
+can be read the same way. Only UVs in Edit Mode (see :func:`read_uvs`) and
+writing positions in Edit Mode go through the BMesh element by element, since
+a BMesh has no ``foreach_get``/``foreach_set``.
 """
 
 from dataclasses import dataclass
@@ -21,6 +35,8 @@ class MeshData:
         triangle_face: ``(T,)`` int32 face of each triangle.
         triangle_corners: ``(T, 3)`` int32 face corner (loop) of each triangle corner.
         face_selected: ``(P,)`` bool.
+        face_hidden: ``(P,)`` bool, hidden faces.
+        vertex_selected: ``(n,)`` bool (an edge selection selects its vertices too).
         loop_start, loop_total: ``(P,)`` int32 corner range of each face.
         corner_verts: ``(L,)`` int32 vertex of each corner.
         corner_uvs: ``(L, 2)`` float64 active UV map, or None without one.
@@ -31,6 +47,8 @@ class MeshData:
     triangle_face: np.ndarray
     triangle_corners: np.ndarray
     face_selected: np.ndarray
+    face_hidden: np.ndarray
+    vertex_selected: np.ndarray
     loop_start: np.ndarray
     loop_total: np.ndarray
     corner_verts: np.ndarray
@@ -47,42 +65,64 @@ def read(obj, uvs=True):
     """Read ``obj``'s mesh (Edit Mode or Object Mode) into :class:`MeshData` (``corner_uvs`` None unless ``uvs``)."""
     edit = obj.mode == "EDIT"
     if edit:
-        obj.update_from_editmode()  # topology and selection of the edit mesh into obj.data
+        obj.update_from_editmode()  # the edit mesh (positions, topology, selection, UVs) into obj.data
     mesh = obj.data
     mesh.calc_loop_triangles()
-    triangles = _get(mesh.loop_triangles, "vertices", np.int32, 3)
-    triangle_corners = _get(mesh.loop_triangles, "loops", np.int32, 3)
-    triangle_face = _get(mesh.loop_triangles, "polygon_index", np.int32)
-    face_selected = _get(mesh.polygons, "select", bool)
-    loop_start = _get(mesh.polygons, "loop_start", np.int32)
-    loop_total = _get(mesh.polygons, "loop_total", np.int32)
     corner_verts = _get(mesh.loops, "vertex_index", np.int32)
-    if edit:
-        # In Edit Mode the BMesh holds the edited positions (of the active shape
-        # key) and the UVs; the mesh's UV layers read as empty.
-        bm = bmesh.from_edit_mesh(mesh)
-        vertices = np.array([v.co[:] for v in bm.verts], dtype=np.float64).reshape(-1, 3)
-        layer = bm.loops.layers.uv.active if uvs else None
-        corner_uvs = None
-        if layer is not None:  # corners in face order, the order of mesh.loops after update_from_editmode
-            corner_uvs = np.array([loop[layer].uv[:] for face in bm.faces for loop in face.loops], dtype=np.float64)
-            corner_uvs = corner_uvs.reshape(-1, 2)
-    else:
-        key = obj.active_shape_key
-        vertices = _get(key.data if key is not None else mesh.vertices, "co", np.float64, 3)
-        uv_layer = mesh.uv_layers.active if uvs else None
-        corner_uvs = _get(uv_layer.data, "uv", np.float64, 2) if uv_layer is not None else None
-    return MeshData(
+    triangle_corners = _get(mesh.loop_triangles, "loops", np.int32, 3)
+    key = obj.active_shape_key
+    vertices = _get(key.data if key is not None else mesh.vertices, "co", np.float32, 3).astype(np.float64)
+    data = MeshData(
         vertices=vertices,
-        triangles=triangles,
-        triangle_face=triangle_face,
+        triangles=corner_verts[triangle_corners],
+        triangle_face=_get(mesh.loop_triangles, "polygon_index", np.int32),
         triangle_corners=triangle_corners,
-        face_selected=face_selected,
-        loop_start=loop_start,
-        loop_total=loop_total,
+        face_selected=_get(mesh.polygons, "select", bool),
+        face_hidden=_get(mesh.polygons, "hide", bool),
+        vertex_selected=_get(mesh.vertices, "select", bool),
+        loop_start=_get(mesh.polygons, "loop_start", np.int32),
+        loop_total=_get(mesh.polygons, "loop_total", np.int32),
         corner_verts=corner_verts,
-        corner_uvs=corner_uvs,
+        corner_uvs=None,
     )
+    if uvs:
+        data.corner_uvs = read_uvs(obj, data)
+    return data
+
+
+def read_uvs(obj, data, faces=None):
+    """``(L, 2)`` float64 active UV map of ``obj``'s mesh read as :class:`MeshData` ``data``, or None without one.
+
+    In Object Mode every corner is read with ``foreach_get``. In Edit Mode the
+    mesh's UV maps read as empty (the data lives in the BMesh, which has no
+    ``foreach_get``), so the corners are read one by one from the BMesh: only
+    those of ``faces`` (int array of face indices; None: all), the others are
+    NaN. (A temporary copy of the mesh would read faster, but adding and
+    removing a data-block in Edit Mode turns the operator's undo step into a
+    global one.)
+    """
+    mesh = obj.data
+    if mesh.uv_layers.active is None:
+        return None
+    if obj.mode != "EDIT":
+        return _get(mesh.uv_layers.active.data, "uv", np.float32, 2).astype(np.float64)
+    bm = bmesh.from_edit_mesh(mesh)
+    layer = bm.loops.layers.uv.active
+    if layer is None:
+        return None
+    uvs = np.full((len(data.corner_verts), 2), np.nan)
+    if faces is None:  # corners in face order: the order of mesh.loops after update_from_editmode
+        values = [loop[layer].uv[:] for face in bm.faces for loop in face.loops]
+        uvs[:] = np.asarray(values, dtype=np.float32).reshape(-1, 2)
+        return uvs
+    faces = np.asarray(faces, dtype=np.int64)
+    bm.faces.ensure_lookup_table()
+    bm_faces = bm.faces
+    values = [loop[layer].uv[:] for face in map(bm_faces.__getitem__, faces.tolist()) for loop in face.loops]
+    start, total = data.loop_start[faces].astype(np.int64), data.loop_total[faces].astype(np.int64)
+    corners = np.repeat(start, total) + np.arange(total.sum()) - np.repeat(np.cumsum(total) - total, total)
+    uvs[corners] = np.asarray(values, dtype=np.float32).reshape(-1, 2)
+    return uvs
 
 
 def vertex_group_weights(obj, name):
@@ -117,24 +157,44 @@ def vertex_count(obj):
 
 
 def write_positions(obj, positions, indices):
-    """Move the vertices ``indices`` of ``obj``'s mesh to ``positions[indices]`` (Edit or Object Mode)."""
+    """Move the vertices ``indices`` of ``obj``'s mesh to ``positions[indices]`` (Edit or Object Mode).
+
+    Only positions change (see the module's docstring for shape keys), stored
+    as float32 like Blender's.
+    """
     indices = np.asarray(indices, dtype=np.int64)
+    new = positions[indices].astype(np.float32)
     mesh = obj.data
     if obj.mode == "EDIT":
         bm = bmesh.from_edit_mesh(mesh)
         bm.verts.ensure_lookup_table()
         verts = bm.verts
-        for i, co in zip(indices.tolist(), positions[indices].tolist(), strict=True):
-            verts[i].co = co
+        for vertex, co in zip(map(verts.__getitem__, indices.tolist()), new.tolist(), strict=True):
+            vertex.co = co
         bm.normal_update()
         bmesh.update_edit_mesh(mesh, loop_triangles=True, destructive=False)
         return
     key = obj.active_shape_key
-    targets = [mesh.vertices] if key is None else [key.data]
-    if key is not None and key == mesh.shape_keys.reference_key:
-        targets.append(mesh.vertices)  # the basis is also the mesh's own positions
-    for target in targets:
-        co = _get(target, "co", np.float32, 3)
-        co[indices] = positions[indices]
-        target.foreach_set("co", co.ravel())
+    if key is None:
+        _set_rows(mesh.vertices, indices, new)
+    else:
+        # What leaving Edit Mode does with an edited shape key: the keys relative to it move
+        # by the same offset (new - old, in float32 like Blender); the mesh's own positions
+        # are the reference key's.
+        old = _get(key.data, "co", np.float32, 3)[indices]
+        offset = new - old
+        for other in mesh.shape_keys.key_blocks:
+            if other != key and other.relative_key == key:
+                co = _get(other.data, "co", np.float32, 3)
+                co[indices] += offset
+                other.data.foreach_set("co", co.ravel())
+        _set_rows(key.data, indices, new)
+        if key == mesh.shape_keys.reference_key:
+            _set_rows(mesh.vertices, indices, new)
     mesh.update()
+
+
+def _set_rows(collection, indices, values):
+    co = _get(collection, "co", np.float32, 3)
+    co[indices] = values
+    collection.foreach_set("co", co.ravel())

@@ -1,20 +1,30 @@
 """Operators: Geometric Fairing (modal with progress and Esc, or blocking), zebra and curvature toggles.
 
-The fairing operator is thin: :class:`fairing.FairingRun` reads the mesh,
-solves and writes; here options are resolved, the run is driven and errors
+The fairing operator is thin: :class:`fairing.FairingRun` reads a mesh,
+solves and writes; here options are resolved, the runs are driven and errors
 become reports. Invoked from the UI it solves in a worker thread (the solver
-releases the GIL) while a timer shows progress; Esc cancels and the mesh stays
-as it was, since a run writes nothing before it finishes. Run from a script,
+releases the GIL) while a timer shows progress; Esc cancels and the meshes stay
+as they were, since a run writes nothing before it finishes. Run from a script,
 the redo panel or in background mode it solves in place.
-"""
 
-import math
+Several objects in Edit Mode (multi-object editing): every one with selected
+faces is faired, each on its own, with one undo step for all. An object with
+nothing selected is skipped. An object that cannot be faired (its selection
+has no boundary, or the solver fails on it) is left as it was while the
+others are still faired; the report names it and says why, as a warning.
+Only when no object could be faired does the operator cancel with an error.
+
+Errors never leave a half-written mesh: a run writes only after its solve
+succeeded, and a cancelled operator adds no undo step, so undo after an error
+goes back to the step before it.
+"""
 
 import bpy
 from bpy.props import EnumProperty
 
 from . import fairing, overlays
 from .properties import OPTION_NAMES, FairingProperties
+from .region import NothingSelectedError
 
 PROGRESS_STEPS = 1000
 # Events a running fairing lets through: looking around changes nothing.
@@ -35,11 +45,15 @@ TOGGLE_ITEMS = (
 )
 
 
-_running = None  # the FairingRun of the modal operator while it solves
+_running = None  # the FairingBatch of the modal operator while it solves
 
 
 def running():
-    """The run the modal operator is solving, or None (for scripts and tests driving the UI)."""
+    """The :class:`fairing.FairingBatch` the modal operator is solving, or None (for scripts and tests driving the UI).
+
+    It has ``iteration``, ``residual`` (of the run being solved), ``done``,
+    ``cancel_requested``, ``request_cancel()`` and ``runs``.
+    """
     return _running
 
 
@@ -54,12 +68,17 @@ def cancel_running():
     return True
 
 
-def progress_fraction(first_residual, residual, tolerance):
-    """Progress in [0, 1] of a run from its first residual towards the tolerance, on a log scale."""
-    if not (first_residual > tolerance > 0.0 and residual > 0.0) or math.isnan(residual):
-        return 0.0
-    fraction = math.log(first_residual / residual) / math.log(first_residual / tolerance)
-    return min(max(fraction, 0.0), 1.0)
+progress_fraction = fairing.progress_fraction
+
+
+def edit_mode_meshes(context):
+    """The mesh objects in Edit Mode, one per mesh data (multi-object editing), the active one first."""
+    active = context.active_object
+    objects = [obj for obj in getattr(context, "objects_in_mode_unique_data", None) or [] if obj.type == "MESH"]
+    if not objects and active is not None:
+        objects = [active]
+    objects.sort(key=lambda obj: obj != active)
+    return objects
 
 
 class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
@@ -69,9 +88,10 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
     bl_label = "Geometric Fairing"
     bl_options = {"REGISTER", "UNDO"}
 
-    _run = None
+    _batch = None
     _timer = None
-    _first_residual = None
+    _failed = ()  # (object name, error) of the objects that could not be prepared
+    _several = False  # several objects in Edit Mode: reports name the objects
 
     @classmethod
     def poll(cls, context):
@@ -90,38 +110,53 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         return fairing.FairingOptions(**{name: getattr(self, name) for name in OPTION_NAMES})
 
     def prepare(self, context):
-        """Read the mesh and find the region; None (after a report) if that fails."""
+        """Read each mesh in Edit Mode and find its region; the batch, or None (after a report) if none can run."""
         options = self.resolve_options(context)
-        obj = context.active_object
-        try:
-            return fairing.FairingRun(obj, options)  # RuntimeError without the compiled module
-        except (ValueError, RuntimeError) as error:  # RegionError is a ValueError
-            fairing.store_last_run(context.window_manager, options, error=error, object_name=obj.name)
-            self.report({"ERROR"}, f"Geometric Fairing: {error}")
+        objects = edit_mode_meshes(context)
+        self._several = len(objects) > 1
+        runs, failed = [], []
+        for obj in objects:
+            try:
+                runs.append(fairing.FairingRun(obj, options))  # RuntimeError without the compiled module
+            except Exception as error:  # noqa: BLE001 (reported by object name; the mesh was not touched)
+                failed.append((obj.name, error))
+        if not runs:
+            message = self.failure_text(failed)
+            fairing.store_last_runs(context.window_manager, options, [], failed, message)
+            self.report({"ERROR"}, f"Geometric Fairing: {message}")
             return None
+        # Beside an object that has something to fair, one with nothing selected is simply skipped.
+        self._failed = [(name, error) for name, error in failed if not isinstance(error, NothingSelectedError)]
+        return fairing.FairingBatch(runs)
+
+    def failure_text(self, failed):
+        if not self._several:
+            return fairing.error_text(failed[0][1])
+        return "; ".join(f"{name}: {fairing.error_text(error)}" for name, error in failed)
 
     def execute(self, context):
-        run = self.prepare(context)
-        if run is None:
+        batch = self._batch = self.prepare(context)
+        if batch is None:
             return {"CANCELLED"}
         wm = context.window_manager
         wm.progress_begin(0, PROGRESS_STEPS)
-        run.user_progress = lambda iteration, residual: wm.progress_update(self.progress_value(residual))
+        for run in batch.runs:
+            run.user_progress = lambda iteration, residual: wm.progress_update(self.progress_value())
         try:
-            run.solve()
+            batch.solve()
         finally:
             wm.progress_end()
-        return self.finish(context, run)
+        return self.finish(context, batch)
 
     def invoke(self, context, event):
         if bpy.app.background or context.window is None:
             return self.execute(context)
-        run = self.prepare(context)
-        if run is None:
+        batch = self.prepare(context)
+        if batch is None:
             return {"CANCELLED"}
         global _running
-        self._run = _running = run
-        run.start()
+        self._batch = _running = batch
+        batch.start()
         wm = context.window_manager
         self._timer = wm.event_timer_add(0.1, window=context.window)
         wm.modal_handler_add(self)
@@ -130,24 +165,24 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
-        run = self._run
+        batch = self._batch
         if event.type == "ESC" and event.value == "PRESS":
-            run.request_cancel()
-        if run.done:
+            batch.request_cancel()
+        if batch.done:
             self.end_modal(context)
-            return self.finish(context, run)
+            return self.finish(context, batch)
         if event.type == "TIMER":
-            context.window_manager.progress_update(self.progress_value(run.residual))
+            context.window_manager.progress_update(self.progress_value())
             self.show_status(context)
         if event.type in NAVIGATION_EVENTS:
             return {"PASS_THROUGH"}
         return {"RUNNING_MODAL"}
 
     def cancel(self, context):
-        """Blender ends the modal operator (file loaded, window closed): stop the solve, leave the mesh."""
-        if self._run is not None:
-            self._run.request_cancel()
-            self._run.wait()
+        """Blender ends the modal operator (file loaded, window closed): stop the solve, leave the meshes."""
+        if self._batch is not None:
+            self._batch.request_cancel()
+            self._batch.wait()
         self.end_modal(context)
 
     def end_modal(self, context):
@@ -160,44 +195,54 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         wm.progress_end()
         context.workspace.status_text_set(None)
 
-    def progress_value(self, residual):
-        if self._first_residual is None and residual == residual:  # not NaN
-            self._first_residual = residual
-        fraction = progress_fraction(self._first_residual or 0.0, residual, self.tolerance)
-        return round(fraction * PROGRESS_STEPS)
+    def progress_value(self):
+        return round(self._batch.progress(self.tolerance) * PROGRESS_STEPS)
 
     def show_status(self, context):
-        run = self._run
-        if run.cancel_requested:
+        batch = self._batch
+        if batch.cancel_requested:
             text = "Geometric Fairing: cancelling…"
         else:
+            run = batch.current
+            which = f"{run.object_name} ({batch.index + 1}/{len(batch.runs)}): " if len(batch.runs) > 1 else ""
             text = (
-                f"Geometric Fairing: {int(run.region.free.sum())} vertices, iteration {run.iteration}, "
+                f"Geometric Fairing: {which}{int(run.region.free.sum())} vertices, iteration {run.iteration}, "
                 f"residual {run.residual:.3g} (tolerance {self.tolerance:g}) — Esc to cancel"
             )
         context.workspace.status_text_set(text)
 
-    def finish(self, context, run):
-        """Write the result (unless cancelled), keep the figures for the panel, report."""
-        obj = run.obj
-        try:
-            report = run.finish()
-        except (ValueError, RuntimeError) as error:
-            fairing.store_last_run(context.window_manager, run.options, error=error, object_name=obj.name)
-            self.report({"ERROR"}, f"Geometric Fairing: {error}")
+    def finish(self, context, batch):
+        """Write the results (unless cancelled), keep the figures for the panel, report."""
+        reports, errors = batch.finish()
+        errors = [*self._failed, *errors]
+        options = batch.runs[0].options
+        wm = context.window_manager
+        if not reports:
+            message = self.failure_text(errors)
+            fairing.store_last_runs(wm, options, [], errors, message)
+            self.report({"ERROR"}, f"Geometric Fairing: {message}")
             return {"CANCELLED"}
-        fairing.store_last_run(context.window_manager, run.options, report)
-        if report.cancelled:
-            self.report({"INFO"}, f"Geometric Fairing: {report.summary()}")
-            return {"CANCELLED"}
-        try:
-            overlays.refresh_curvature(obj, context)
-        except RuntimeError as error:
-            self.report({"WARNING"}, f"Geometric Fairing: curvature colours not updated: {error}")
-        if report.converged:
-            self.report({"INFO"}, f"Geometric Fairing: {report.summary()}")
+        if self._several:
+            parts = [f"{report.object_name}: {report.summary()}" for report in reports]
+            parts += [f"{name} not faired: {fairing.error_text(error)}" for name, error in errors]
+            message = "; ".join(parts)
         else:
-            self.report({"WARNING"}, f"Geometric Fairing: {report.summary()} (tolerance {run.options.tolerance:g})")
+            message = reports[0].summary()
+        fairing.store_last_runs(wm, options, reports, errors, message)
+        if any(report.cancelled for report in reports):
+            self.report({"INFO"}, f"Geometric Fairing: {message}")
+            return {"CANCELLED"}
+        for run in batch.written:
+            try:
+                overlays.refresh_curvature(run.obj, context)
+            except RuntimeError as error:
+                self.report({"WARNING"}, f"Geometric Fairing: curvature of {run.object_name} not updated: {error}")
+        if errors:
+            self.report({"WARNING"}, f"Geometric Fairing: {message}")
+        elif all(report.converged for report in reports):
+            self.report({"INFO"}, f"Geometric Fairing: {message}")
+        else:
+            self.report({"WARNING"}, f"Geometric Fairing: {message} (tolerance {options.tolerance:g})")
         return {"FINISHED"}
 
 

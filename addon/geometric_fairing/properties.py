@@ -46,6 +46,7 @@ OPTION_NAMES = (
     "levels",
     "region_group",
     "pin_group",
+    "use_hidden",
 )
 
 
@@ -121,6 +122,17 @@ def _pin_group(**options):
     )
 
 
+def _use_hidden(**options):
+    return BoolProperty(
+        name="Use Hidden Faces",
+        description="Let hidden faces take part like visible ones. Off: a hidden face is left out, as if the mesh "
+        "ended there; its vertices never move, and those next to the region are fixed, with normals from the "
+        "visible faces",
+        default=False,
+        **options,
+    )
+
+
 def addon_preferences(context=None):
     """The add-on's :class:`FairingPreferences`, or None when it was not enabled through the preferences."""
     context = context or bpy.context
@@ -178,6 +190,7 @@ class FairingProperties:
     levels: _levels(options={"SKIP_SAVE"})
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})
+    use_hidden: _use_hidden(options={"SKIP_SAVE"})
 
 
 class FairingSettings(bpy.types.PropertyGroup):
@@ -190,6 +203,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     levels: _levels(**_follows_preference("levels"))
     region_group: _region_group()
     pin_group: _pin_group()
+    use_hidden: _use_hidden()
 
 
 class FairingLastRun(bpy.types.PropertyGroup):
@@ -206,7 +220,8 @@ class FairingLastRun(bpy.types.PropertyGroup):
         default="NONE",
     )
     message: StringProperty()
-    object_name: StringProperty()
+    object_name: StringProperty(description="The object faired, or the objects (comma-separated)")
+    not_faired: StringProperty(description="Objects in Edit Mode that could not be faired, with the reason")
     inner_fairness: StringProperty()
     outer_fairness: StringProperty()
     free_vertices: IntProperty()

@@ -46,6 +46,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         if not settings.region_group:
             column.label(text="Region: the selected faces", icon="INFO")
         column.prop_search(settings, "pin_group", obj, "vertex_groups", text="Pin", icon="PINNED")
+        column.prop(settings, "use_hidden")
 
         if native.geofair is None:
             box = layout.box()
@@ -79,6 +80,11 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
             for line in _wrap(last.message, 48):
                 layout.label(text=line)
             return
+        if last.not_faired:
+            box = layout.box()
+            box.alert = True
+            for line in _wrap(f"Not faired: {last.not_faired}", 48):
+                box.label(text=line)
         free = f"{last.free_vertices}" + (f" ({last.pinned_vertices} pinned)" if last.pinned_vertices else "")
         figures = [
             ("Free vertices", free),

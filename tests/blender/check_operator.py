@@ -328,7 +328,7 @@ def main():
     sphere = bpy.context.active_object
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(sphere, lambda c: True)
-    expect_cancelled(sphere, "whole closed mesh selected", "whole closed part")
+    expect_cancelled(sphere, "whole closed mesh selected", "The whole mesh is selected and it has no open border")
 
     disable_addon()
     print("check_operator: all checks passed")

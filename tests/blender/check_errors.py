@@ -1,0 +1,300 @@
+"""Check bad input and solver failures of the Geometric Fairing operator; raises (non-zero exit) on failure.
+
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+
+- Bad input, each with its exact report, ``{'CANCELLED'}`` and the mesh (positions,
+  UVs, selection) byte-identical: nothing selected; only vertices; only edges; the
+  whole closed mesh selected; a whole closed part (a sphere beside a grid) selected.
+- A failure inside the compiled solver, simulated by replacing the loaded module's
+  ``fair`` with one that raises (RuntimeError, ValueError, and an unexpected
+  MemoryError), and a real one (a NaN vertex that the native code rejects): the
+  operator reports it and cancels, the mesh is unchanged, Edit Mode still works,
+  the next run succeeds, and undo/redo return exactly to the states before and after
+  it (the failed run added no undo step).
+"""
+
+import pathlib
+import sys
+import types
+
+import bpy  # first: the bpy module from PyPI makes bmesh importable
+
+# isort: split
+import bmesh
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from helpers import add_subdivided_suzanne, disable_addon, enable_addon, parse_args, select_faces
+
+BROW = np.array([0.4, -0.7, 0.72])
+NOTHING = "Error: Geometric Fairing: No face is selected: select the faces to fair"
+ONLY_VERTICES_OR_EDGES = (
+    "Error: Geometric Fairing: No face is selected, only vertices or edges: select the faces to fair "
+    "(in Face Select mode, or all vertices of each face)"
+)
+WHOLE_MESH = (
+    "Error: Geometric Fairing: The whole mesh is selected and it has no open border: fairing needs "
+    "unselected faces around the selection to hold it in place"
+)
+WHOLE_PART = (
+    "Error: Geometric Fairing: The selection covers a whole closed part of the mesh: fairing needs "
+    "unselected faces around the selection"
+)
+
+
+def fair(**properties):
+    """Run the operator as a script would, with an undo push; return (result, error text)."""
+    try:
+        return bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", True, **properties), ""
+    except RuntimeError as error:  # an operator that reports an ERROR raises in scripts
+        return {"CANCELLED"}, str(error).strip()
+
+
+def state(obj):
+    """Everything the checks compare, as bytes: positions, every UV layer, selection and hiding of the edit mesh."""
+    obj.update_from_editmode()
+    mesh = obj.data
+    data = {}
+    for name, collection, attribute, dtype, width in (
+        ("co", mesh.vertices, "co", np.float32, 3),
+        ("vertex select", mesh.vertices, "select", bool, 1),
+        ("edge select", mesh.edges, "select", bool, 1),
+        ("face select", mesh.polygons, "select", bool, 1),
+        ("face hide", mesh.polygons, "hide", bool, 1),
+    ):
+        values = np.empty(len(collection) * width, dtype=dtype)
+        collection.foreach_get(attribute, values)
+        data[name] = values.tobytes()
+    bm = bmesh.from_edit_mesh(mesh)
+    for name, layer in bm.loops.layers.uv.items():  # in Edit Mode the mesh's UV layers read as empty
+        data[f"uv {name}"] = np.array([loop[layer].uv[:] for f in bm.faces for loop in f.loops], np.float32).tobytes()
+    return data
+
+
+def expect(obj, what, expected, **properties):
+    """The operator cancels with exactly ``expected`` and leaves ``obj`` byte-identical."""
+    before = state(obj)
+    result, error = fair(**properties)
+    assert result == {"CANCELLED"}, f"{what}: expected CANCELLED, got {result}"
+    assert error == expected, f"{what}: report\n  {error!r}\nexpected\n  {expected!r}"
+    assert state(obj) == before, f"{what}: the mesh changed"
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert last.status == "ERROR" and f"Error: Geometric Fairing: {last.message}" == expected, last.message
+    print(f"ok: {what} -> CANCELLED, mesh unchanged: {error}")
+
+
+def select_elements(obj, mode, indices):
+    """Select exactly the vertices or edges ``indices`` in select mode ``mode`` ('VERT' or 'EDGE')."""
+    bpy.context.tool_settings.mesh_select_mode = (mode == "VERT", mode == "EDGE", False)
+    bm = bmesh.from_edit_mesh(obj.data)
+    for element in (*bm.verts, *bm.edges, *bm.faces):
+        element.select = False
+    elements = bm.verts if mode == "VERT" else bm.edges
+    elements.ensure_lookup_table()
+    for i in indices:
+        elements[i].select_set(True)
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    assert not any(f.select for f in bm.faces), "the chosen elements select a face"
+    assert sum(e.select for e in elements) == len(indices)
+
+
+def check_bad_selections(obj):
+    select_faces(obj, lambda c: False)
+    expect(obj, "nothing selected", NOTHING)
+
+    bm = bmesh.from_edit_mesh(obj.data)
+    far_apart = [0, len(bm.verts) // 2, len(bm.verts) - 1]
+    select_elements(obj, "VERT", far_apart)
+    expect(obj, "only vertices selected", ONLY_VERTICES_OR_EDGES)
+    # Edges in a row along one face loop: a chain of edges selects no face.
+    bm.edges.ensure_lookup_table()
+    start = bm.edges[100]
+    chain = [start.index, start.link_loops[0].link_loop_next.edge.index]
+    select_elements(obj, "EDGE", chain)
+    expect(obj, "only edges selected", ONLY_VERTICES_OR_EDGES)
+    # Vertices of faces selected in Vertex Select mode do select the faces: that is a face selection.
+    bpy.context.tool_settings.mesh_select_mode = (False, False, True)
+
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, location=(4, 0, 0))
+    sphere = bpy.context.active_object
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(sphere, lambda c: True)
+    expect(sphere, "the whole closed mesh selected", WHOLE_MESH)
+
+    # A grid and the sphere in one mesh, all selected: the sphere is a closed part with no boundary.
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=10, y_subdivisions=10, size=2, location=(4, 0, -2))
+    bpy.context.view_layer.objects.active = sphere
+    sphere.select_set(True)
+    bpy.ops.object.join()
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(sphere, lambda c: True)
+    expect(sphere, "a whole closed part selected", WHOLE_PART)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(sphere)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    bpy.ops.object.mode_set(mode="EDIT")
+
+
+class FailingModule:
+    """Stands in for the loaded ``geofair`` module: ``fair`` raises ``error``; everything else is the real one's."""
+
+    def __init__(self, real, error):
+        self.real, self.error, self.calls = real, error, 0
+
+    def fair(self, *args, **kwargs):
+        self.calls += 1
+        raise self.error
+
+    def __getattr__(self, name):
+        return getattr(self.real, name)
+
+
+def edit_mode_works(obj):
+    """Edit Mode is usable after an error: selecting, the BMesh, and leaving and entering it again."""
+    assert obj.mode == "EDIT" and bpy.context.active_object == obj
+    co = state(obj)["co"]
+    assert bpy.ops.mesh.select_all(action="SELECT") == {"FINISHED"}
+    assert all(f.select for f in bmesh.from_edit_mesh(obj.data).faces)
+    assert bpy.ops.mesh.select_all(action="DESELECT") == {"FINISHED"}
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    assert len(bm.verts) == len(obj.data.vertices) and not any(f.select for f in bm.faces)
+    assert bpy.ops.object.mode_set(mode="OBJECT") == {"FINISHED"}
+    assert bpy.ops.object.mode_set(mode="EDIT") == {"FINISHED"} and obj.mode == "EDIT"
+    assert state(obj)["co"] == co
+
+
+def check_solver_failure(addon, obj, error, expected):
+    """A solver that raises ``error``: a clean report, mesh and undo history untouched, the next run works."""
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bpy.ops.ed.undo_push(message="selected the brow")
+    before = state(obj)
+
+    real = addon.native.geofair
+    failing = addon.native.geofair = FailingModule(real, error)
+    try:
+        result, report = fair(inner_fairness="CONFORMAL")
+    finally:
+        addon.native.geofair = real
+    assert failing.calls == 1, "the solver was not called"
+    assert result == {"CANCELLED"} and report == expected, (result, report)
+    assert state(obj) == before, "a failed solve changed the mesh"
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert last.status == "ERROR" and last.object_name == obj.name, (last.status, last.object_name)
+    assert addon.operators.running() is None
+    print(f"ok: solver raising {type(error).__name__} -> CANCELLED, mesh unchanged: {report}")
+
+    edit_mode_works(obj)
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bpy.ops.ed.undo_push(message="selected the brow again")
+    assert state(obj) == before
+    print("ok: Edit Mode works after the error (select all/none, BMesh, leaving and entering)")
+
+    # The failed run added no undo step: one undo after a successful run goes back to the state before it.
+    result, report = fair(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"}, report
+    after = state(obj)
+    assert after["co"] != before["co"], "the run after the error changed nothing"
+    bpy.ops.ed.undo()
+    assert state(obj) == before, "undo did not return exactly to the state before the run"
+    bpy.ops.ed.redo()
+    assert state(obj) == after, "redo did not return exactly to the faired mesh"
+    bpy.ops.ed.undo()
+    assert state(obj) == before
+    print("ok: the next run succeeds; undo and redo return exactly to the states before and after it")
+
+    # An error right after a successful run: the mesh stays as faired, and undo then goes back past the run.
+    result, report = fair(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"} and state(obj)["co"] == after["co"], report
+    failing = addon.native.geofair = FailingModule(real, error)
+    try:
+        result, report = fair(inner_fairness="CONFORMAL")
+    finally:
+        addon.native.geofair = real
+    assert result == {"CANCELLED"} and report == expected and state(obj)["co"] == after["co"]
+    bpy.ops.ed.undo()
+    assert state(obj) == before, "undo after the error did not return exactly to the state before the last run"
+    print("ok: an error after a run leaves the faired mesh; undo returns exactly to the state before that run")
+
+
+def check_native_rejects(obj):
+    """A real rejection by the compiled module: a free vertex whose position is NaN."""
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    inner = [v for v in bm.verts if v.link_faces and all(f.select for f in v.link_faces)]
+    inner.sort(key=lambda v: np.linalg.norm(np.array(v.co) - BROW))  # the middle of the region
+    vertex = inner[0].index
+    original = inner[0].co.copy()
+    inner[0].co = (float("nan"), 0.0, 0.0)
+    bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
+    bpy.ops.ed.undo_push(message="a NaN vertex")
+    before = state(obj)
+    result, report = fair(inner_fairness="CONFORMAL")
+    assert result == {"CANCELLED"}, result
+    assert report == f"Error: Geometric Fairing: fair: vertex {vertex} has a non-finite coordinate", report
+    assert state(obj) == before, "a rejected run changed the mesh"
+    print(f"ok: the compiled module rejects a NaN vertex -> CANCELLED, mesh unchanged: {report}")
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    bm.verts[vertex].co = original
+    bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
+    bpy.ops.ed.undo_push(message="repaired the vertex")
+    result, report = fair(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"}, report
+    bpy.ops.ed.undo()
+    print("ok: after repairing the vertex the run succeeds")
+
+
+def check_fair_object_failure(addon, obj):
+    """fair_object raises the solver's error and leaves the mesh unchanged (Object Mode)."""
+    bpy.ops.object.mode_set(mode="OBJECT")
+    co = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    obj.data.vertices.foreach_get("co", co)
+    real = addon.native.geofair
+    addon.native.geofair = FailingModule(real, RuntimeError("fair: simulated failure"))
+    try:
+        addon.fair_object(obj)
+    except RuntimeError as error:
+        assert str(error) == "fair: simulated failure", error
+    else:
+        raise AssertionError("fair_object did not raise")
+    finally:
+        addon.native.geofair = real
+    after = np.empty_like(co)
+    obj.data.vertices.foreach_get("co", after)
+    assert after.tobytes() == co.tobytes()
+    assert bpy.context.window_manager.geometric_fairing.last_run.status == "ERROR"
+    report = addon.fair_object(obj, inner_fairness="CONFORMAL")
+    assert report.converged
+    print("ok: fair_object re-raises the solver's error, mesh unchanged; the next call works")
+    bpy.ops.object.mode_set(mode="EDIT")
+
+
+def main():
+    folder, _ = parse_args()
+    print(f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {folder}")
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    addon = enable_addon(folder)
+    obj = add_subdivided_suzanne()
+    bpy.ops.object.mode_set(mode="EDIT")
+    check_bad_selections(obj)
+    check_solver_failure(
+        addon, obj, RuntimeError("fair: diverged (simulated)"), "Error: Geometric Fairing: fair: diverged (simulated)"
+    )
+    check_solver_failure(
+        addon, obj, ValueError("fair: rejected (simulated)"), "Error: Geometric Fairing: fair: rejected (simulated)"
+    )
+    check_solver_failure(addon, obj, MemoryError("simulated"), "Error: Geometric Fairing: MemoryError: simulated")
+    check_native_rejects(obj)
+    check_fair_object_failure(addon, obj)
+    assert isinstance(addon.native.geofair, types.ModuleType)
+    disable_addon()
+    print("check_errors: all checks passed")
+
+
+main()
