@@ -9,6 +9,8 @@ but fails when the environment variable CI is set.
   built for another Python.
 - check_inspect.py: the zebra and curvature toggles leave nothing behind.
 - check_errors.py: bad selections (exact reports), solver failures, Edit Mode and undo after them.
+- check_mesh_data.py: only positions change (shape keys, modifiers, custom normals, UV maps, colour
+  attributes byte-identical); Edit and Object Mode store the same shape keys; hidden faces.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
 - examples/fair_object.py: the documented script runs.
@@ -27,6 +29,9 @@ import pytest
 REPO = pathlib.Path(__file__).resolve().parents[1]
 BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
 CHECKS = REPO / "tests" / "blender"
+
+
+CHECKS_IN_BOTH = ["check_operator", "check_inspect", "check_scripting", "check_errors", "check_mesh_data"]
 
 
 def _unavailable(reason):
@@ -71,7 +76,7 @@ def _run(command, env=None, timeout=300):
 
 
 @pytest.mark.parametrize("variant", COMMANDS)
-@pytest.mark.parametrize("check", ["check_operator", "check_inspect", "check_scripting", "check_errors"])
+@pytest.mark.parametrize("check", CHECKS_IN_BOTH)
 def test_in_blender(check, variant):
     output = _run([*COMMANDS[variant](CHECKS / f"{check}.py"), "--", str(_built_addon())])
     assert f"{check}: all checks passed" in output, output

@@ -5,8 +5,9 @@ has shape keys, else the mesh's own. In Edit Mode that is what the BMesh holds;
 they are written back there (Blender stores them on leaving Edit Mode). In
 Object Mode they are written the way leaving Edit Mode would store the same
 edit, so both modes give the same bytes: the active key changes, and so do the
-keys relative to it, by the same offset (Blender's shape-key offsets); the
-mesh's own positions change with the reference key only.
+keys relative to it, by the same offset (Blender's shape-key offsets, see
+:func:`dependent_keys`); the mesh's own positions change with the reference
+key only.
 
 Everything else (other shape keys, UV maps, colour attributes, custom normals,
 vertex groups, selection, hiding) is only read, never written.
@@ -21,6 +22,7 @@ a BMesh has no ``foreach_get``/``foreach_set``.
 from dataclasses import dataclass
 
 import bmesh
+import bpy
 import numpy as np
 
 
@@ -183,15 +185,34 @@ def write_positions(obj, positions, indices):
         # are the reference key's.
         old = _get(key.data, "co", np.float32, 3)[indices]
         offset = new - old
-        for other in mesh.shape_keys.key_blocks:
-            if other != key and other.relative_key == key:
-                co = _get(other.data, "co", np.float32, 3)
-                co[indices] += offset
-                other.data.foreach_set("co", co.ravel())
+        for other in dependent_keys(mesh.shape_keys, key):
+            co = _get(other.data, "co", np.float32, 3)
+            co[indices] += offset
+            other.data.foreach_set("co", co.ravel())
         _set_rows(key.data, indices, new)
         if key == mesh.shape_keys.reference_key:
             _set_rows(mesh.vertices, indices, new)
     mesh.update()
+
+
+def dependent_keys(shape_keys, key):
+    """The shape keys that move with ``key`` when it is edited in Edit Mode.
+
+    Blender 4.0 and later: every key whose chain of relative keys reaches
+    ``key``; up to 3.6, only the keys directly relative to it.
+    """
+    recursive = bpy.app.version >= (4, 0, 0)
+    dependent = []
+    for other in shape_keys.key_blocks:
+        if other == key:
+            continue
+        relative, seen = other.relative_key, {other.name}
+        while relative != key and recursive and relative.name not in seen:  # ends at the basis, relative to itself
+            seen.add(relative.name)
+            relative = relative.relative_key
+        if relative == key:
+            dependent.append(other)
+    return dependent
 
 
 def _set_rows(collection, indices, values):
