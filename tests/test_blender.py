@@ -11,6 +11,7 @@ but fails when the environment variable CI is set.
 - check_errors.py: bad selections (exact reports), solver failures, Edit Mode and undo after them.
 - check_mesh_data.py: only positions change (shape keys, modifiers, custom normals, UV maps, colour
   attributes byte-identical); Edit and Object Mode store the same shape keys; hidden faces.
+- check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
 - examples/fair_object.py: the documented script runs.
@@ -31,7 +32,14 @@ BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
 CHECKS = REPO / "tests" / "blender"
 
 
-CHECKS_IN_BOTH = ["check_operator", "check_inspect", "check_scripting", "check_errors", "check_mesh_data"]
+CHECKS_IN_BOTH = [
+    "check_operator",
+    "check_inspect",
+    "check_scripting",
+    "check_errors",
+    "check_mesh_data",
+    "check_multi_object",
+]
 
 
 def _unavailable(reason):

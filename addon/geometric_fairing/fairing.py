@@ -535,6 +535,7 @@ def store_last_runs(window_manager, options, reports, errors, message):
         return
     if len(reports) == 1 and not errors:
         store_last_run(window_manager, options, reports[0])
+        session.last_run.message = message
         return
     store_last_run(window_manager, options, reports[0])
     last = session.last_run

@@ -24,7 +24,16 @@ import bmesh
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import add_subdivided_suzanne, disable_addon, enable_addon, parse_args, select_faces
+from helpers import (
+    FailingModule,
+    add_subdivided_suzanne,
+    disable_addon,
+    edit_state,
+    enable_addon,
+    parse_args,
+    run_fairing,
+    select_faces,
+)
 
 BROW = np.array([0.4, -0.7, 0.72])
 NOTHING = "Error: Geometric Fairing: No face is selected: select the faces to fair"
@@ -42,42 +51,13 @@ WHOLE_PART = (
 )
 
 
-def fair(**properties):
-    """Run the operator as a script would, with an undo push; return (result, error text)."""
-    try:
-        return bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", True, **properties), ""
-    except RuntimeError as error:  # an operator that reports an ERROR raises in scripts
-        return {"CANCELLED"}, str(error).strip()
-
-
-def state(obj):
-    """Everything the checks compare, as bytes: positions, every UV layer, selection and hiding of the edit mesh."""
-    obj.update_from_editmode()
-    mesh = obj.data
-    data = {}
-    for name, collection, attribute, dtype, width in (
-        ("co", mesh.vertices, "co", np.float32, 3),
-        ("vertex select", mesh.vertices, "select", bool, 1),
-        ("edge select", mesh.edges, "select", bool, 1),
-        ("face select", mesh.polygons, "select", bool, 1),
-        ("face hide", mesh.polygons, "hide", bool, 1),
-    ):
-        values = np.empty(len(collection) * width, dtype=dtype)
-        collection.foreach_get(attribute, values)
-        data[name] = values.tobytes()
-    bm = bmesh.from_edit_mesh(mesh)
-    for name, layer in bm.loops.layers.uv.items():  # in Edit Mode the mesh's UV layers read as empty
-        data[f"uv {name}"] = np.array([loop[layer].uv[:] for f in bm.faces for loop in f.loops], np.float32).tobytes()
-    return data
-
-
 def expect(obj, what, expected, **properties):
     """The operator cancels with exactly ``expected`` and leaves ``obj`` byte-identical."""
-    before = state(obj)
-    result, error = fair(**properties)
+    before = edit_state(obj)
+    result, error = run_fairing(**properties)
     assert result == {"CANCELLED"}, f"{what}: expected CANCELLED, got {result}"
     assert error == expected, f"{what}: report\n  {error!r}\nexpected\n  {expected!r}"
-    assert state(obj) == before, f"{what}: the mesh changed"
+    assert edit_state(obj) == before, f"{what}: the mesh changed"
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert last.status == "ERROR" and f"Error: Geometric Fairing: {last.message}" == expected, last.message
     print(f"ok: {what} -> CANCELLED, mesh unchanged: {error}")
@@ -139,24 +119,10 @@ def check_bad_selections(obj):
     bpy.ops.object.mode_set(mode="EDIT")
 
 
-class FailingModule:
-    """Stands in for the loaded ``geofair`` module: ``fair`` raises ``error``; everything else is the real one's."""
-
-    def __init__(self, real, error):
-        self.real, self.error, self.calls = real, error, 0
-
-    def fair(self, *args, **kwargs):
-        self.calls += 1
-        raise self.error
-
-    def __getattr__(self, name):
-        return getattr(self.real, name)
-
-
 def edit_mode_works(obj):
     """Edit Mode is usable after an error: selecting, the BMesh, and leaving and entering it again."""
     assert obj.mode == "EDIT" and bpy.context.active_object == obj
-    co = state(obj)["co"]
+    co = edit_state(obj)["co"]
     assert bpy.ops.mesh.select_all(action="SELECT") == {"FINISHED"}
     assert all(f.select for f in bmesh.from_edit_mesh(obj.data).faces)
     assert bpy.ops.mesh.select_all(action="DESELECT") == {"FINISHED"}
@@ -165,24 +131,24 @@ def edit_mode_works(obj):
     assert len(bm.verts) == len(obj.data.vertices) and not any(f.select for f in bm.faces)
     assert bpy.ops.object.mode_set(mode="OBJECT") == {"FINISHED"}
     assert bpy.ops.object.mode_set(mode="EDIT") == {"FINISHED"} and obj.mode == "EDIT"
-    assert state(obj)["co"] == co
+    assert edit_state(obj)["co"] == co
 
 
 def check_solver_failure(addon, obj, error, expected):
     """A solver that raises ``error``: a clean report, mesh and undo history untouched, the next run works."""
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     bpy.ops.ed.undo_push(message="selected the brow")
-    before = state(obj)
+    before = edit_state(obj)
 
     real = addon.native.geofair
     failing = addon.native.geofair = FailingModule(real, error)
     try:
-        result, report = fair(inner_fairness="CONFORMAL")
+        result, report = run_fairing(inner_fairness="CONFORMAL")
     finally:
         addon.native.geofair = real
     assert failing.calls == 1, "the solver was not called"
     assert result == {"CANCELLED"} and report == expected, (result, report)
-    assert state(obj) == before, "a failed solve changed the mesh"
+    assert edit_state(obj) == before, "a failed solve changed the mesh"
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert last.status == "ERROR" and last.object_name == obj.name, (last.status, last.object_name)
     assert addon.operators.running() is None
@@ -191,33 +157,33 @@ def check_solver_failure(addon, obj, error, expected):
     edit_mode_works(obj)
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     bpy.ops.ed.undo_push(message="selected the brow again")
-    assert state(obj) == before
+    assert edit_state(obj) == before
     print("ok: Edit Mode works after the error (select all/none, BMesh, leaving and entering)")
 
     # The failed run added no undo step: one undo after a successful run goes back to the state before it.
-    result, report = fair(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="CONFORMAL")
     assert result == {"FINISHED"}, report
-    after = state(obj)
+    after = edit_state(obj)
     assert after["co"] != before["co"], "the run after the error changed nothing"
     bpy.ops.ed.undo()
-    assert state(obj) == before, "undo did not return exactly to the state before the run"
+    assert edit_state(obj) == before, "undo did not return exactly to the state before the run"
     bpy.ops.ed.redo()
-    assert state(obj) == after, "redo did not return exactly to the faired mesh"
+    assert edit_state(obj) == after, "redo did not return exactly to the faired mesh"
     bpy.ops.ed.undo()
-    assert state(obj) == before
+    assert edit_state(obj) == before
     print("ok: the next run succeeds; undo and redo return exactly to the states before and after it")
 
     # An error right after a successful run: the mesh stays as faired, and undo then goes back past the run.
-    result, report = fair(inner_fairness="CONFORMAL")
-    assert result == {"FINISHED"} and state(obj)["co"] == after["co"], report
+    result, report = run_fairing(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"} and edit_state(obj)["co"] == after["co"], report
     failing = addon.native.geofair = FailingModule(real, error)
     try:
-        result, report = fair(inner_fairness="CONFORMAL")
+        result, report = run_fairing(inner_fairness="CONFORMAL")
     finally:
         addon.native.geofair = real
-    assert result == {"CANCELLED"} and report == expected and state(obj)["co"] == after["co"]
+    assert result == {"CANCELLED"} and report == expected and edit_state(obj)["co"] == after["co"]
     bpy.ops.ed.undo()
-    assert state(obj) == before, "undo after the error did not return exactly to the state before the last run"
+    assert edit_state(obj) == before, "undo after the error did not return exactly to the state before the last run"
     print("ok: an error after a run leaves the faired mesh; undo returns exactly to the state before that run")
 
 
@@ -233,18 +199,18 @@ def check_native_rejects(obj):
     inner[0].co = (float("nan"), 0.0, 0.0)
     bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
     bpy.ops.ed.undo_push(message="a NaN vertex")
-    before = state(obj)
-    result, report = fair(inner_fairness="CONFORMAL")
+    before = edit_state(obj)
+    result, report = run_fairing(inner_fairness="CONFORMAL")
     assert result == {"CANCELLED"}, result
     assert report == f"Error: Geometric Fairing: fair: vertex {vertex} has a non-finite coordinate", report
-    assert state(obj) == before, "a rejected run changed the mesh"
+    assert edit_state(obj) == before, "a rejected run changed the mesh"
     print(f"ok: the compiled module rejects a NaN vertex -> CANCELLED, mesh unchanged: {report}")
     bm = bmesh.from_edit_mesh(obj.data)
     bm.verts.ensure_lookup_table()
     bm.verts[vertex].co = original
     bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
     bpy.ops.ed.undo_push(message="repaired the vertex")
-    result, report = fair(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="CONFORMAL")
     assert result == {"FINISHED"}, report
     bpy.ops.ed.undo()
     print("ok: after repairing the vertex the run succeeds")

@@ -109,3 +109,46 @@ def in_view3d():
     area, space = view3d_space()
     region = next(r for r in area.regions if r.type == "WINDOW")
     return bpy.context.temp_override(area=area, region=region, space_data=space)
+
+
+def run_fairing(**properties):
+    """Run the operator as a script would, with an undo push; return (result, error text)."""
+    try:
+        return bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", True, **properties), ""
+    except RuntimeError as error:  # an operator that reports an ERROR raises in scripts
+        return {"CANCELLED"}, str(error).strip()
+
+
+def edit_state(obj):
+    """Everything the checks compare, as bytes: positions, every UV layer, selection and hiding of the edit mesh."""
+    obj.update_from_editmode()
+    mesh = obj.data
+    data = {}
+    for name, collection, attribute, dtype, width in (
+        ("co", mesh.vertices, "co", np.float32, 3),
+        ("vertex select", mesh.vertices, "select", bool, 1),
+        ("edge select", mesh.edges, "select", bool, 1),
+        ("face select", mesh.polygons, "select", bool, 1),
+        ("face hide", mesh.polygons, "hide", bool, 1),
+    ):
+        values = np.empty(len(collection) * width, dtype=dtype)
+        collection.foreach_get(attribute, values)
+        data[name] = values.tobytes()
+    bm = bmesh.from_edit_mesh(mesh)
+    for name, layer in bm.loops.layers.uv.items():  # in Edit Mode the mesh's UV layers read as empty
+        data[f"uv {name}"] = np.array([loop[layer].uv[:] for f in bm.faces for loop in f.loops], np.float32).tobytes()
+    return data
+
+
+class FailingModule:
+    """Stands in for the loaded ``geofair`` module: ``fair`` raises ``error``; everything else is the real one's."""
+
+    def __init__(self, real, error):
+        self.real, self.error, self.calls = real, error, 0
+
+    def fair(self, *args, **kwargs):
+        self.calls += 1
+        raise self.error
+
+    def __getattr__(self, name):
+        return getattr(self.real, name)
