@@ -456,7 +456,8 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             defaults of options not given.
         **options: ``inner_fairness`` ("UNIFORM" or "CONFORMAL"),
             ``outer_fairness`` ("INTRINSIC" or "BILAPLACIAN"), ``tolerance``,
-            ``max_iterations``, ``levels``, ``pin_group`` (vertex group name).
+            ``max_iterations``, ``levels``, ``pin_group`` (vertex group name),
+            ``use_hidden`` (False: hidden faces take no part, their vertices never move).
             Not given: the Fairing panel's settings, which follow the add-on
             preferences.
 
