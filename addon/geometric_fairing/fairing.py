@@ -122,7 +122,29 @@ _NOT_SOLVED = types.SimpleNamespace(
 )
 
 
-class FairingRun:
+class _WorkerThread:
+    """``solve()`` in a worker thread (the solver releases the GIL): start, poll, wait."""
+
+    _thread = None
+
+    def start(self):
+        """Run :meth:`solve` in a worker thread; poll :attr:`done`."""
+        self._thread = threading.Thread(target=self.solve, name="geometric-fairing", daemon=True)
+        self._thread.start()
+
+    @property
+    def done(self):
+        """Whether the worker thread (if any) has finished."""
+        return self._thread is None or not self._thread.is_alive()
+
+    def wait(self, timeout=None):
+        """Wait for the worker thread; return :attr:`done`."""
+        if self._thread is not None:
+            self._thread.join(timeout)
+        return self.done
+
+
+class FairingRun(_WorkerThread):
     """A fairing run on the mesh of ``obj`` (Edit Mode or Object Mode).
 
     Args:
@@ -217,22 +239,6 @@ class FairingRun:
         self.seconds = time.perf_counter() - start
         self.timings["solve"] = self.seconds
 
-    def start(self):
-        """Solve in a worker thread (the solver releases the GIL); poll :attr:`done`."""
-        self._thread = threading.Thread(target=self.solve, name="geometric-fairing", daemon=True)
-        self._thread.start()
-
-    @property
-    def done(self):
-        """Whether the worker thread (if any) has finished."""
-        return self._thread is None or not self._thread.is_alive()
-
-    def wait(self, timeout=None):
-        """Wait for the worker thread; return :attr:`done`."""
-        if self._thread is not None:
-            self._thread.join(timeout)
-        return self.done
-
     def request_cancel(self):
         """Ask the solver to stop at its next progress call (within about 0.1 s and one iteration)."""
         self._cancel.set()
@@ -313,7 +319,7 @@ class FairingRun:
         return metrics.uv_distortion(positions, self.mesh.triangles[keep], uv[self.mesh.triangle_corners[keep]])
 
 
-class FairingBatch:
+class FairingBatch(_WorkerThread):
     """The runs of several objects (multi-object Edit Mode), solved one after another.
 
     Solving, cancelling and waiting work as for one :class:`FairingRun`; a
@@ -356,20 +362,6 @@ class FairingBatch:
                 break
             self.index = index
             run.solve()
-
-    def start(self):
-        """Solve in a worker thread; poll :attr:`done`."""
-        self._thread = threading.Thread(target=self.solve, name="geometric-fairing", daemon=True)
-        self._thread.start()
-
-    @property
-    def done(self):
-        return self._thread is None or not self._thread.is_alive()
-
-    def wait(self, timeout=None):
-        if self._thread is not None:
-            self._thread.join(timeout)
-        return self.done
 
     def request_cancel(self):
         """Cancel every run: the one solving stops at its next progress call, the others never start."""
