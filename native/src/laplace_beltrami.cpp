@@ -119,7 +119,19 @@ Eigen::VectorXd DirichletMatrix::rhs(const Eigen::VectorXd& H) const {
   return b;
 }
 
-double DirichletMatrix::max_laplace_beltrami(const Eigen::VectorXd& H) const {
+Eigen::VectorXd DirichletMatrix::defects(const Eigen::VectorXd& H) const {
+  const OneRings& r = region_.rings;
+  Eigen::VectorXd d(region_.n_free);
+  for (int i = 0; i < region_.n_free; ++i) {
+    double sum = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) sum += slot_weight_[k] * (H(i) - H(r.ring[k]));
+    d(i) = sum;
+  }
+  return d;
+}
+
+double DirichletMatrix::max_laplace_beltrami(const Eigen::VectorXd& H,
+                                             const Eigen::VectorXd* source) const {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   double worst = 0.0;
@@ -127,6 +139,7 @@ double DirichletMatrix::max_laplace_beltrami(const Eigen::VectorXd& H) const {
     double sum = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
+    if (source) sum += (*source)(i);
     const double defect = 1.5 * std::abs(sum) / std::max(disk_area_[i], 1e-300);
     if (std::isnan(defect)) return defect;
     worst = std::max(worst, defect);

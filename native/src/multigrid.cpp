@@ -1,56 +1,68 @@
-// Prolongation of section 7.4.
+// Prolongation and nonlinear multigrid cycles of section 7.4.
 #include "geofair/multigrid.h"
 
 #include "geofair/inner_fairness.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace geofair {
-namespace {
 
-// λ of a closed fan: uniform, or clamped cotangent weights of the original positions.
-void split_weights(const int* ring, int m, int center, InnerFairness inner, const Positions& X0,
-                   std::vector<double>& lambda) {
-  lambda.assign(m, 1.0 / m);
-  if (inner != InnerFairness::Conformal) return;
-  const Vec3 q = X0.row(center);
+std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inner,
+                                  const Positions& X0) {
+  std::vector<double> weights(splits.ring.size());
   auto cot = [](const Vec3& o, const Vec3& a, const Vec3& b) {
     const Vec3 u = a - o, v = b - o;
     const double c = u.cross(v).norm();
     return c > 0.0 ? u.dot(v) / c : 0.0;
   };
-  double sum = 0.0;
-  std::vector<double> w(m, 0.0);
-  for (int k = 0; k < m; ++k) {
-    const Vec3 prev = X0.row(ring[(k + m - 1) % m]), here = X0.row(ring[k]),
-               next = X0.row(ring[(k + 1) % m]);
-    w[k] = std::max(0.0, cot(prev, q, here) + cot(next, q, here));
-    sum += w[k];
-  }
-  if (sum > 0.0)
-    for (int k = 0; k < m; ++k) lambda[k] = w[k] / sum;
-}
-
-}  // namespace
-
-void prolongate(const FairingRegion& level, const VertexSplits& splits, InnerFairness inner,
-                const Positions& X0, Positions& X, Construction& construction) {
-  const OneRings& rings = level.rings;
-  const std::vector<double>& lambda = construction.lambda();
-
-  // 1. Each new vertex at the inner-fairness position of the ring it is split into.
-  std::vector<double> w;
   for (std::size_t s = 0; s < splits.size(); ++s) {
     const int* ring = splits.ring.data() + splits.offset[s];
+    double* w = weights.data() + splits.offset[s];
     const int m = splits.offset[s + 1] - splits.offset[s];
-    split_weights(ring, m, splits.vertex[s], inner, X0, w);
-    Vec3 q = Vec3::Zero();
-    for (int k = 0; k < m; ++k) q += w[k] * X.row(ring[k]).transpose();
-    X.row(splits.vertex[s]) = q;
+    std::fill(w, w + m, 1.0 / m);
+    if (inner != InnerFairness::Conformal) continue;
+    // The ring of a split free vertex is a closed fan: cotangents of both triangles.
+    const Vec3 q = X0.row(splits.vertex[s]);
+    double sum = 0.0;
+    std::vector<double> c(m);
+    for (int k = 0; k < m; ++k) {
+      const Vec3 prev = X0.row(ring[(k + m - 1) % m]), here = X0.row(ring[k]),
+                 next = X0.row(ring[(k + 1) % m]);
+      c[k] = std::max(0.0, cot(prev, q, here) + cot(next, q, here));
+      sum += c[k];
+    }
+    if (sum > 0.0 && std::isfinite(sum))
+      for (int k = 0; k < m; ++k) w[k] = c[k] / sum;
+  }
+  return weights;
+}
+
+void prolongate(const FairingRegion& level, const VertexSplits& splits,
+                const std::vector<double>& weights, const std::vector<double>& lambda,
+                Positions& X, Eigen::VectorXd& H, Positions& N) {
+  const OneRings& rings = level.rings;
+
+  // 1. Inner-fairness position over the split ring; H and normal interpolated alike.
+  for (std::size_t s = 0; s < splits.size(); ++s) {
+    Vec3 q = Vec3::Zero(), n = Vec3::Zero();
+    double h = 0.0;
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k) {
+      const int j = splits.ring[k];
+      q += weights[k] * X.row(j).transpose();
+      n += weights[k] * N.row(j).transpose();
+      h += weights[k] * H(j);
+    }
+    const int v = splits.vertex[s];
+    X.row(v) = q;
+    N.row(v) = n.normalized();
+    H(v) = h;
   }
 
-  // The union of the 1-disks of the new vertices (free vertices only).
-  std::vector<std::uint8_t> in_disk(level.n, 0);
+  // 2. Relax the union of the 1-disks (free vertices); old vertices stay on the coarse
+  //    surface's osculating paraboloid.
+  std::vector<std::uint8_t> is_new(level.n, 0), in_disk(level.n, 0);
+  for (int v : splits.vertex) is_new[v] = 1;
   std::vector<int> disk;
   auto add = [&](int j) {
     if (j < level.n_free && !in_disk[j]) {
@@ -58,17 +70,139 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits, InnerFai
       disk.push_back(j);
     }
   };
-  for (int i : splits.vertex) {
-    add(i);
-    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) add(rings.ring[k]);
+  for (int v : splits.vertex) {
+    add(v);
+    for (int k = rings.offset[v]; k < rings.offset[v + 1]; ++k) add(rings.ring[k]);
+  }
+  const Positions P = X, NP = N;
+  for (int sweep = 0; sweep < kProlongationSweeps; ++sweep)
+    for (int l : disk) {
+      const Vec3 c = weighted_centroid(rings, lambda, X, l);
+      if (is_new[l]) {
+        X.row(l) = c;
+        continue;
+      }
+      const Vec3 p = P.row(l), n = NP.row(l);
+      Vec3 d = c - p;
+      d -= d.dot(n) * n;
+      X.row(l) = p + d - 0.5 * H(l) * d.squaredNorm() * n;
+      N.row(l) = (n + H(l) * d).normalized();
+    }
+
+  // 3. Lift each new vertex onto the surface its split ring predicts (H > 0 bends away
+  //    from the normal: the surface lies H/2·(tangential distance)² below a tangent plane).
+  for (std::size_t s = 0; s < splits.size(); ++s) {
+    const int v = splits.vertex[s];
+    const Vec3 q = X.row(v), n = N.row(v);
+    double t = 0.0, sum_w = 0.0;
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k) {
+      const int j = splits.ring[k];
+      const Vec3 nj = N.row(j), d = q - X.row(j).transpose();
+      const double cos = n.dot(nj), dn = d.dot(nj);
+      if (!(cos > 0.5)) continue;  // a tangent plane too steep to predict from
+      t += weights[k] * (-dn - 0.5 * H(j) * (d.squaredNorm() - dn * dn)) / cos;
+      sum_w += weights[k];
+    }
+    if (sum_w > 0.0 && std::isfinite(t)) X.row(v) = q + (t / sum_w) * n;
+  }
+}
+
+IterationReport Multigrid::solve(int l, Positions& X, double tolerance, int max_iterations,
+                                 int iteration_offset) {
+  Construction& construction = *levels_[l].construction;
+  const long start = construction.iterations();
+  IterationReport report;
+  cancelled_ = false;
+  for (;;) {
+    construction.set_source(nullptr, true);
+    report.residual = construction.evaluate(X);
+    report.converged = report.residual <= tolerance;
+    report.cancelled = cancelled_;
+    budget_ = max_iterations - int(construction.iterations() - start);
+    if (report.converged || cancelled_ || budget_ <= 0) break;
+    cycle(l, X, nullptr, true, iteration_offset + int(construction.iterations() - start));
+  }
+  report.iterations = int(construction.iterations() - start);
+  return report;
+}
+
+void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top, int offset) {
+  MultigridLevel& level = levels_[l];
+  Construction& construction = *level.construction;
+  const int nf = level.region.n_free;
+  construction.set_source(tau, top);
+  if (l == 0) {
+    const double r0 = construction.evaluate(X);
+    const IterationReport base = construction.run(X, kBaseIterations, kBaseReduction * r0, offset);
+    cancelled_ = cancelled_ || base.cancelled;
+    return;
+  }
+  // The smoothing iterations count against the budget only on the level being solved.
+  const int smoothing = top ? std::min(kSmoothing, budget_) : kSmoothing;
+  const IterationReport pre = construction.run(X, smoothing, 0.0, offset);
+  if (top) budget_ -= pre.iterations;
+  if (pre.cancelled || budget_ <= 0) {
+    cancelled_ = cancelled_ || pre.cancelled;
+    return;
   }
 
-  // 2. Relax the disks: Δq_l = Σ_j λ_lj q_j − q_l = 0.
-  for (int sweep = 0; sweep < 2; ++sweep)
-    for (int l : disk) X.row(l) = weighted_centroid(rings, lambda, X, l);
+  // Restrict the defects: transpose of the split interpolation, last split first.
+  Eigen::VectorXd defect = Eigen::VectorXd::Zero(level.region.n);
+  defect.head(nf) = construction.defects();
+  if (tau) defect.head(nf) -= *tau;
+  const VertexSplits& splits = level.splits;
+  for (std::size_t s = splits.size(); s-- > 0;) {
+    const int v = splits.vertex[s];
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
+      defect(splits.ring[k]) += level.weights[k] * defect(v);
+    defect(v) = 0.0;
+  }
 
-  // 3. Restore outer fairness locally.
-  construction.local_steps(X, disk, 2);
+  // The coarse problem d_c(Y) = d_c(Y_c) − R d at the injected positions Y_c.
+  MultigridLevel& coarse = levels_[l - 1];
+  const std::vector<int>& map = level.from_coarser;
+  Positions Yc(coarse.region.n, 3);
+  for (int c = 0; c < coarse.region.n; ++c) Yc.row(c) = X.row(map[c]);
+  coarse.construction->set_source(nullptr, false);
+  coarse.construction->evaluate(Yc);
+  Eigen::VectorXd tau_c = coarse.construction->defects();
+  for (int c = 0; c < coarse.region.n_free; ++c) tau_c(c) -= defect(map[c]);
+  Positions Y = Yc;
+  bool corrected = true;
+  try {
+    cycle(l - 1, Y, &tau_c, false, offset + smoothing);
+  } catch (const SolverError&) {
+    corrected = false;  // the coarse problem diverged: smooth without its correction
+  }
+  coarse.construction->set_source(nullptr, true);
+  construction.set_source(tau, top);
+  if (cancelled_) return;
+
+  // Interpolate the coarse change to the new vertices and add it.
+  const Positions X_pre = X;
+  if (corrected) {
+    Positions D = Positions::Zero(level.region.n, 3);
+    for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
+    for (std::size_t s = 0; s < splits.size(); ++s) {
+      Vec3 d = Vec3::Zero();
+      for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
+        d += level.weights[k] * D.row(splits.ring[k]).transpose();
+      D.row(splits.vertex[s]) = d;
+    }
+    X.topRows(nf) += D.topRows(nf);
+  }
+  const int post_smoothing = top ? std::min(kSmoothing, budget_) : kSmoothing;
+  IterationReport post;
+  try {
+    post = construction.run(X, post_smoothing, 0.0, offset + smoothing);
+  } catch (const SolverError&) {
+    if (!corrected) throw;
+    post.residual = HUGE_VAL;
+  }
+  if (top) budget_ -= post.iterations;
+  cancelled_ = cancelled_ || post.cancelled;
+  // Keep the correction only if it did not make things worse.
+  if (corrected && !(post.residual <= pre.residual)) X = X_pre;
 }
 
 }  // namespace geofair

@@ -35,6 +35,14 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   explicit ModFairingHierarchyT(MeshT& mesh) : Base(mesh, false), mesh_(mesh) {}
 
   float collapse_priority(const CollapseInfo& ci) override {
+    // Valences after the collapse: vl and vr lose an edge, v1 takes over v0's. Locked
+    // (boundary) vertices keep whatever fan the region gives them.
+    for (auto v : {ci.vl, ci.vr})
+      if (v.is_valid() && !mesh_.status(v).locked() && int(mesh_.valence(v)) - 1 < kMinValence)
+        return float(Base::ILLEGAL_COLLAPSE);
+    if (!mesh_.status(ci.v1).locked() &&
+        int(mesh_.valence(ci.v1) + mesh_.valence(ci.v0)) - 4 > kMaxValence)
+      return float(Base::ILLEGAL_COLLAPSE);
     for (auto f : mesh_.vf_range(ci.v0)) {
       if (f == ci.fl || f == ci.fr) continue;  // these two triangles disappear
       OpenMesh::Vec3d p[3], q[3];
@@ -81,14 +89,14 @@ Triangles snapshot(const Mesh& mesh) {
 }  // namespace
 
 int default_levels(int n_free) {
+  if (n_free <= 1000) return 1;
   int levels = 1;
   for (double n = n_free; n > 250.0; n /= 4.0) ++levels;
   return levels;
 }
 
-ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X_input,
-                                       int levels, const std::vector<double>* lambda) {
-  // Jacobi sweeps of the inner-fairness Laplacian on the free vertices.
+Positions hierarchy_positions(const FairingRegion& region, const Positions& X_input,
+                              const std::vector<double>* lambda) {
   Positions X = X_input;
   const OneRings& r = region.rings;
   for (int sweep = 0; sweep < kHierarchySmoothing; ++sweep) {
@@ -101,7 +109,10 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
     }
     X.swap(Y);
   }
+  return X;
+}
 
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels) {
   Mesh mesh;
   mesh.request_vertex_status();
   mesh.request_edge_status();
@@ -124,9 +135,17 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   std::vector<Triangles> fine_to_coarse{region.triangles};
   std::vector<VertexSplits> splits_fine_to_coarse;
   const int n_boundary = region.n - region.n_free;
+  const double n_free_min = kMinFreePerBoundary * n_boundary;
+  double previous = region.n_free;
   for (int level = levels - 2; level >= 0; --level) {
-    const double n_free = region.n_free / std::pow(4.0, levels - 1 - level);
-    if (n_free < 0.5 * n_boundary) break;  // a level of thin boundary fans
+    double n_free = region.n_free / std::pow(4.0, levels - 1 - level);
+    if (n_free < n_free_min) {
+      // Clamp the coarsest level to the floor, if that still coarsens by 1.5×.
+      if (previous < 1.5 * n_free_min) break;
+      n_free = n_free_min;
+      level = 0;
+    }
+    previous = n_free;
     const std::size_t target = std::size_t(n_boundary) + std::size_t(std::max(1.0, std::round(n_free)));
     collapses = VertexSplits{};
     // decimate_to counts deleted vertices too, so ask for the number of collapses.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "geofair/curvature_solve.h"
+#include "geofair/inner_fairness.h"
 #include "geofair/laplace_beltrami.h"
 #include "geofair/region.h"
 #include "geofair/types.h"
@@ -29,26 +30,40 @@ class Construction {
   Construction(const FairingRegion& region, std::vector<double> lambda,
                const FairingOptions& options, double length);
 
-  /// Normals and Moreton–Séquin H of all vertices of X (#region×3), S and the residual.
+  /// Normals and Moreton–Séquin H of all vertices of X (#region×3), S and the residual
+  /// (with the source term, if one is set).
   double evaluate(const Positions& X);
 
-  /// Iterates until the residual reaches the tolerance or `max_iterations` iterations;
-  /// local (Gauss–Seidel) and global (CG) steps alternate. `progress` receives
-  /// (iteration_offset + k, residual). Every vertex update divides its normal step by the
-  /// coupling factor max(1, ρ_i) (coupling_factors in vertex_update.h), refreshed every
-  /// kCouplingRefresh iterations.
+  /// Iterates until the residual reaches `tolerance` or `max_iterations` iterations; local
+  /// (Gauss–Seidel) and global (CG) steps alternate, and global steps move the vertices
+  /// tangentially by TangentialSolver before the update along the normals. Every vertex
+  /// update divides its normal step by the coupling factor max(1, ρ_i) (coupling_factors in
+  /// vertex_update.h), refreshed every kCouplingRefresh iterations. `progress` receives
+  /// (iteration_offset + k, residual).
   /// \throw SolverError if the iteration diverges.
-  IterationReport run(Positions& X, int max_iterations, int iteration_offset = 0);
+  IterationReport run(Positions& X, int max_iterations, double tolerance,
+                      int iteration_offset = 0);
 
-  /// Restores outer fairness locally (the third prolongation step of section 7.4): `steps`
-  /// passes of a Gauss–Seidel sweep for H~ restricted to `subset` (free vertex ids) followed
-  /// by the vertex update of those vertices only.
-  void local_steps(Positions& X, const std::vector<int>& subset, int steps);
+  /// Multigrid coarse-grid problems (multigrid.h): solve Σ_j w_ij (H_i − H_j) = τ_i
+  /// (#V_I, kept by pointer; nullptr: eq. (12) itself) instead of 0, and move along the
+  /// normals only (no inner fairness) if `tangential` is false.
+  void set_source(const Eigen::VectorXd* tau, bool tangential) {
+    source_ = tau;
+    tangential_ = tangential;
+  }
+
+  /// The defects d_i = Σ_j w_ij (H_i − H_j) (#V_I, 1/length) of the positions last evaluated.
+  Eigen::VectorXd defects() const { return dirichlet_.defects(H_); }
+  /// Mean curvatures (#region) and unit normals (#region×3) of the positions last evaluated.
+  const Eigen::VectorXd& mean_curvatures() const { return H_; }
+  const Positions& normals() const { return N_; }
+  /// Iterations performed by run() so far, all calls together.
+  long iterations() const { return iterations_; }
 
   const std::vector<double>& lambda() const { return lambda_; }
 
  private:
-  void curvatures(const Positions& X, const std::vector<int>* subset);
+  void curvatures(const Positions& X);
 
   const FairingRegion& region_;
   std::vector<double> lambda_;
@@ -59,10 +74,16 @@ class Construction {
   DirichletMatrix dirichlet_;
   CurvatureSolver solver_;
   std::vector<double> coupling_;  // ρ_i of the free vertices
+  TangentialSolver tangential_solver_;
+  const Eigen::VectorXd* source_ = nullptr;
+  bool tangential_ = true;
+  long iterations_ = 0;
 };
 
 /// Iterations between refreshes of the coupling factors: they follow the mesh shape, which
 /// changes slowly; one refresh costs about three iterations.
-constexpr int kCouplingRefresh = 8;
+constexpr int kCouplingRefresh = 16;
+/// BiCGSTAB iterations of a global tangential step.
+constexpr int kTangentialIterations = 10;
 
 }  // namespace geofair

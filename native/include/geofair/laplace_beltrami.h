@@ -48,7 +48,12 @@ class DirichletMatrix {
   /// max_i |Δ_B H(q_i)| over the free vertices, with the discrete Laplace–Beltrami operator
   /// of eq. (5): Δ_B g(q_i) = 3/(2 A_i) Σ_j w_ij (g_j − g_i), A_i the area of the 1-disk.
   /// Units: 1/length³. NaN if any value is NaN.
-  double max_laplace_beltrami(const Eigen::VectorXd& H) const;
+  /// With `source` (#V_I), the defect of Σ_j w_ij (H_i − H_j) = source_i instead.
+  double max_laplace_beltrami(const Eigen::VectorXd& H,
+                              const Eigen::VectorXd* source = nullptr) const;
+
+  /// d_i = Σ_j w_ij (H_i − H_j) = (S H_I − b)_i, #V_I, 1/length.
+  Eigen::VectorXd defects(const Eigen::VectorXd& H) const;
 
   const SparseRowMatrix& S() const { return S_; }
   /// w_ij per ring slot of the free vertices (indexed like OneRings::ring), from assemble().

@@ -30,37 +30,51 @@ struct ProgressiveMesh {
   std::vector<VertexSplits> splits;
 };
 
-/// Number of levels picked for a region with `n_free` free vertices: the vertex count
-/// grows 4× per level and the base mesh keeps at most about 250 free vertices.
+/// Number of levels picked for a region with `n_free` free vertices: one level up to 1000
+/// free vertices (a single level converges there within a few thousand iterations, about
+/// 3 s: measured on caps, multigrid saves 0.1 s at 300 and 1.7 s at 1000 free vertices);
+/// above, the vertex count grows 4× per level and the base mesh keeps at most about 250
+/// free vertices.
 int default_levels(int n_free);
+
+/// The copy of X (#region×3) the hierarchy is measured on: kHierarchySmoothing Jacobi sweeps
+/// q ← (q + Σ_j λ_ij q_j)/2 of the free vertices with the inner-fairness weights λ (per ring
+/// slot of the region; nullptr: uniform). The fairing moves the vertices that way, and on a
+/// noisy input (normal noise comparable to the edge length) the raw positions make the
+/// quality and flip tests meaningless: measured on the 2000-vertex cap disturbed as in the
+/// tests, the hierarchy measured on the raw input has 6 and 20 triangles folded over on its
+/// coarse levels, measured on this copy none.
+Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
+                              const std::vector<double>* lambda);
 
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
 /// is collapsed shortest first (so the smallest edge length of the coarse mesh grows), but
 /// never if a triangle around it would become distorted (quality 4√3·area / Σ edge² below
-/// 0.25, or its normal turns by more than 60°), and never from a G1 boundary vertex.
-/// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices; fewer levels come back if the
-/// mesh cannot be decimated that far, or if a level would keep fewer free vertices than
-/// half the G1 boundary vertices (the boundary is never coarsened, so such a level is mostly
-/// thin boundary fans, on which the construction converges badly or not at all: measured
-/// on a 20000-vertex cap, a base mesh of 126 free and 480 boundary vertices ends in a limit
-/// cycle).
+/// 0.25, or its normal turns by more than 60°), never from a G1 boundary vertex, and never
+/// if a free vertex would end with a valence outside [kMinValence, kMaxValence].
+/// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least half as many as
+/// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
+/// come back if that leaves nothing to coarsen or the mesh cannot be decimated that far).
 ///
-/// Priorities and the quality test are measured on a copy of X smoothed by
-/// kHierarchySmoothing Jacobi sweeps q ← (q + Σ_j λ_ij q_j)/2 of the free vertices, the
-/// inner-fairness Laplacian of section 7.3: the fairing will move the vertices that way,
-/// and on a noisy input (normal noise comparable to the edge length) the raw normals make
-/// the flip test meaningless — measured on the 2000-vertex cap disturbed as in the tests,
-/// the unsmoothed hierarchy has 6 and 20 triangles folded over on its coarse levels.
+/// Why the two limits (measured on the 20000-vertex cap; the boundary is never coarsened):
+/// a base mesh of 126 free and 480 boundary vertices is mostly thin boundary fans, where
+/// the construction ends in a limit cycle; and without the valence limits 3% of the free
+/// vertices of the coarse levels have valence 3 and 15% valence 4 (the fine mesh: none
+/// and 1%), where the spiral-sample estimate of H is far off on a coarse level (H = 5..10
+/// on the unit sphere) and the multigrid cycles stall (residual 8e-2 after 20000
+/// iterations of the finest level, against converged after 1200 with the limits).
 ///
-/// \param X       #region×3 positions used for the priorities (the original mesh)
+/// \param X       #region×3 positions to measure on (hierarchy_positions of the input)
 /// \param levels  requested number of levels, ≥ 1
-/// \param lambda  inner fairness weights per ring slot of the region (inner_fairness_weights),
-///                or nullptr for uniform weights
-ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels,
-                                       const std::vector<double>* lambda = nullptr);
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels);
 
-/// Smoothing sweeps applied to the copy the hierarchy is measured on.
+/// Smoothing sweeps of hierarchy_positions.
 constexpr int kHierarchySmoothing = 10;
+/// Valence range of the free vertices that the collapses keep.
+constexpr int kMinValence = 5;
+constexpr int kMaxValence = 8;
+/// Free vertices a coarse level keeps at least, per G1 boundary vertex.
+constexpr double kMinFreePerBoundary = 0.5;
 
 /// The fairing region of one level: its free vertices (region-local ids below n_free)
 /// first, then its boundary vertices; `global` maps to region-local ids.

@@ -62,7 +62,9 @@ struct FairingOptions {
   NormalWeighting normal_weighting = NormalWeighting::Area;
   /// Stop when the residual L³·max|Δ_B H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
-  /// Upper bound on the number of iterations M_k -> M_{k+1} on each level.
+  /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the
+  /// iterations that the cycles of a finer level run on it as its coarse grid are not
+  /// counted).
   int max_iterations = 20000;
   /// Damping s of the vertex update q <- q~ + s t n (section 7.2); 0 < s <= 1.
   double damping = 0.9;
