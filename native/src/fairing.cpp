@@ -96,7 +96,11 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       level.splits = hierarchy.splits[l];
       for (int& v : level.splits.vertex) v = local[v];
       for (int& v : level.splits.ring) v = local[v];
-      level.weights = split_weights(level.splits, inner, X0_level);
+      // Splits and their transposes interpolate smooth corrections: conformal weights of
+      // the smoothed copy on every level (those of a noisy original are not smooth, and the
+      // finest level's corrections got undone on the 1200-vertex cap with conformal inner
+      // fairness).
+      level.weights = split_weights(level.splits, InnerFairness::Conformal, gather(Xs, lr.global));
       const FairingRegion& coarser = levels_built[l - 1].region;
       level.from_coarser.resize(coarser.n);
       for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];

@@ -113,6 +113,7 @@ IterationReport Multigrid::solve(int l, Positions& X, double tolerance, int max_
   const long start = construction.iterations();
   IterationReport report;
   cancelled_ = false;
+  state_.assign(levels_.size(), CorrectionState{});
   for (;;) {
     construction.set_source(nullptr, true);
     report.residual = construction.evaluate(X);
@@ -137,14 +138,28 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
     cancelled_ = cancelled_ || base.cancelled;
     return;
   }
-  // The smoothing iterations count against the budget only on the level being solved.
-  const int smoothing = top ? std::min(kSmoothing, budget_) : kSmoothing;
-  const IterationReport pre = construction.run(X, smoothing, 0.0, offset);
-  if (top) budget_ -= pre.iterations;
-  if (pre.cancelled || budget_ <= 0) {
-    cancelled_ = cancelled_ || pre.cancelled;
+  CorrectionState& state = state_[l];
+
+  // Smoothing iterations count against the budget only on the level being solved.
+  auto smooth = [&](int at_offset) {
+    const int n = top ? std::min(kSmoothing, budget_) : kSmoothing;
+    IterationReport r = construction.run(X, n, 0.0, at_offset);
+    if (top) budget_ -= r.iterations;
+    cancelled_ = cancelled_ || r.cancelled;
+    return r;
+  };
+  const IterationReport pre = smooth(offset);
+  if (cancelled_ || budget_ <= 0) return;
+  if (state.skip > 0) {  // corrections did not help lately: smooth only
+    --state.skip;
+    smooth(offset + kSmoothing);
     return;
   }
+  auto reject = [&] {
+    state.damping = std::max(state.damping / 2, kMinCorrection);
+    state.skip = std::min((1 << state.rejections) - 1, kMaxSkip);
+    ++state.rejections;
+  };
 
   // Restrict the defects: transpose of the split interpolation, last split first.
   Eigen::VectorXd defect = Eigen::VectorXd::Zero(level.region.n);
@@ -168,41 +183,48 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   Eigen::VectorXd tau_c = coarse.construction->defects();
   for (int c = 0; c < coarse.region.n_free; ++c) tau_c(c) -= defect(map[c]);
   Positions Y = Yc;
-  bool corrected = true;
+  bool solved = true;
   try {
-    cycle(l - 1, Y, &tau_c, false, offset + smoothing);
+    cycle(l - 1, Y, &tau_c, false, offset + kSmoothing);
   } catch (const SolverError&) {
-    corrected = false;  // the coarse problem diverged: smooth without its correction
+    solved = false;  // the coarse problem diverged: smooth without its correction
   }
   coarse.construction->set_source(nullptr, true);
   construction.set_source(tau, top);
   if (cancelled_) return;
+  if (!solved) {
+    reject();
+    smooth(offset + kSmoothing);
+    return;
+  }
 
   // Interpolate the coarse change to the new vertices and add it.
-  const Positions X_pre = X;
-  if (corrected) {
-    Positions D = Positions::Zero(level.region.n, 3);
-    for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
-    for (std::size_t s = 0; s < splits.size(); ++s) {
-      Vec3 d = Vec3::Zero();
-      for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
-        d += level.weights[k] * D.row(splits.ring[k]).transpose();
-      D.row(splits.vertex[s]) = d;
-    }
-    X.topRows(nf) += D.topRows(nf);
+  Positions D = Positions::Zero(level.region.n, 3);
+  for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
+  for (std::size_t s = 0; s < splits.size(); ++s) {
+    Vec3 d = Vec3::Zero();
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
+      d += level.weights[k] * D.row(splits.ring[k]).transpose();
+    D.row(splits.vertex[s]) = d;
   }
-  const int post_smoothing = top ? std::min(kSmoothing, budget_) : kSmoothing;
+  const Positions X_pre = X;
+  X.topRows(nf) += state.damping * D.topRows(nf);
   IterationReport post;
   try {
-    post = construction.run(X, post_smoothing, 0.0, offset + smoothing);
+    post = smooth(offset + kSmoothing);
   } catch (const SolverError&) {
-    if (!corrected) throw;
     post.residual = HUGE_VAL;
   }
-  if (top) budget_ -= post.iterations;
-  cancelled_ = cancelled_ || post.cancelled;
-  // Keep the correction only if it did not make things worse.
-  if (corrected && !(post.residual <= pre.residual)) X = X_pre;
+  if (cancelled_) return;
+  if (post.residual <= pre.residual) {  // keep the correction
+    state.damping = std::min(2 * state.damping, 1.0);
+    state.rejections = 0;
+    return;
+  }
+  // It made things worse: undo it, damp and pause the corrections, smooth instead.
+  X = X_pre;
+  reject();
+  smooth(offset + 2 * kSmoothing);
 }
 
 }  // namespace geofair

@@ -79,8 +79,12 @@ struct MultigridLevel {
 ///     kBaseReduction, at most kBaseIterations);
 ///  3. the change Y − Y_c of the coarse vertices is interpolated to the new vertices of
 ///     level l by the split weights, replayed in order, and added;
-///  4. kSmoothing iterations again. A cycle whose correction leaves the residual above the
-///     one before it is undone, and a coarse problem that fails to converge is skipped.
+///  4. kSmoothing iterations again. A correction that leaves the residual above the one
+///     before it is undone (and smoothing repeated without it), one whose coarse problem
+///     diverges is dropped; then the level's corrections are damped and paused for a while
+///     (measured: on the 1200-vertex cap with conformal weights of a noisy input, some
+///     corrections of the finest level are 10 times the error; undoing them alone left
+///     the finest level at 6300 iterations, single level 3700).
 /// The normal-only coarse problems correct the smooth error of the shape; the tangential
 /// one is the global inner-fairness step's (inner_fairness.h). Measured on the
 /// 2000-vertex cap (uniform weights, area normals): the finest level converges in 280
@@ -104,7 +108,23 @@ class Multigrid {
   std::deque<MultigridLevel>& levels_;
   bool cancelled_ = false;
   int budget_ = 0;  // iterations left for level l's smoothing
+
+  // Per level: the factor its corrections are applied with, how many cycles to run
+  // without one, and how many corrections in a row were undone.
+  struct CorrectionState {
+    double damping = 1.0;
+    int skip = 0;
+    int rejections = 0;
+  };
+  std::vector<CorrectionState> state_;
 };
+
+/// After an undone correction a level's corrections are damped by 2 (down to
+/// kMinCorrection) and, after r undone in a row, paused for 2^(r−1) − 1 cycles (at most
+/// kMaxSkip): a correction that does not help costs its coarse problem and kSmoothing
+/// iterations, a paused cycle nothing extra.
+constexpr double kMinCorrection = 1.0 / 16;
+constexpr int kMaxSkip = 15;
 
 /// Smoothing iterations before and after each coarse-grid correction (measured on the
 /// 2000-vertex cap and catenoid: 10 takes 15-20% less time than 25).
