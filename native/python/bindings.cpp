@@ -194,7 +194,7 @@ PYBIND11_MODULE(geofair, m) {
         py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
         py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
-        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 1,
+        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
         py::arg("progress") = py::none(),
         R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -228,8 +228,8 @@ max_iterations : upper bound on the iterations spent solving each level (iterati
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
 levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6): 1 solves the
-    whole region as one level; 0 picks one level up to 1000 free vertices and about
-    log4(free vertices / 250) + 1 above. Each finer level is solved by nonlinear multigrid
+    whole region as one level; 0 (default) picks one level up to 1000 free vertices and
+    about log4(free vertices / 250) + 1 above. Each finer level is solved by nonlinear multigrid
     cycles on the coarser ones.
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).

@@ -71,8 +71,8 @@ struct FairingOptions {
   /// Conjugate-gradient iterations n of a global step (section 7.1).
   int cg_iterations = 10;
   /// Levels of the progressive-mesh multigrid (section 7.4): 1 = single level,
-  /// 0 = picked from the region size (default_levels).
-  int levels = 1;
+  /// 0 = picked from the region size (default_levels: one level up to 1000 free vertices).
+  int levels = 0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
 };
