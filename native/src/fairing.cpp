@@ -100,7 +100,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       // the smoothed copy on every level (those of a noisy original are not smooth, and the
       // finest level's corrections got undone on the 1200-vertex cap with conformal inner
       // fairness).
-      level.weights = split_weights(level.splits, InnerFairness::Conformal, gather(Xs, lr.global));
+      level.weights =
+          split_weights(level.splits, InnerFairness::Conformal, gather(Xs, lr.global));
       const FairingRegion& coarser = levels_built[l - 1].region;
       level.from_coarser.resize(coarser.n);
       for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
@@ -128,7 +129,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       N.row(lr.global[i]) = construction.normals().row(i);
     }
     result.iterations = 0;
-    for (const MultigridLevel& done : levels_built) result.iterations += int(done.construction->iterations());
+    for (const MultigridLevel& done : levels_built)
+      result.iterations += int(done.construction->iterations());
     result.vertices_per_level.push_back(lr.n);
     result.residual = report.residual;
     result.converged = report.converged;

@@ -124,7 +124,8 @@ Eigen::VectorXd DirichletMatrix::defects(const Eigen::VectorXd& H) const {
   Eigen::VectorXd d(region_.n_free);
   for (int i = 0; i < region_.n_free; ++i) {
     double sum = 0.0;
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) sum += slot_weight_[k] * (H(i) - H(r.ring[k]));
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      sum += slot_weight_[k] * (H(i) - H(r.ring[k]));
     d(i) = sum;
   }
   return d;

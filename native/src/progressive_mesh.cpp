@@ -112,7 +112,8 @@ Positions hierarchy_positions(const FairingRegion& region, const Positions& X_in
   return X;
 }
 
-ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels) {
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
+                                       int levels) {
   Mesh mesh;
   mesh.request_vertex_status();
   mesh.request_edge_status();

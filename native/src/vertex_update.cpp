@@ -72,7 +72,8 @@ void coupling_factors(const FairingRegion& region, const std::vector<double>& we
     X.row(i) = q + h * n;
     N.row(i) = vertex_normal(rings, X, i, weighting);
     for (int k = begin; k < end; ++k)
-      if (rings.ring[k] < nf) N.row(rings.ring[k]) = vertex_normal(rings, X, rings.ring[k], weighting);
+      if (rings.ring[k] < nf)
+        N.row(rings.ring[k]) = vertex_normal(rings, X, rings.ring[k], weighting);
     double defect = estimate(i) - H(i);
     for (int k = begin; k < end; ++k)
       defect -= weights[k] / sum_w * (estimate(rings.ring[k]) - H(rings.ring[k]));

@@ -22,8 +22,9 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 
 /// Inserts the vertices a level adds to the coarser one, replaying the vertex splits in
 /// order (section 7.4):
-///  1. each new vertex q_i at its inner-fairness position Σ_j λ_ij q_j over the ring it is
-///     split into (`weights`), with H and the normal interpolated the same way;
+///  1. each new vertex q_i at Σ_j w_ij q_j over the ring it is split into (`weights`: the
+///     conformal weights of the smoothed input, i.e. the inner-fairness position of the
+///     coarse levels), with H and the normal interpolated the same way;
 ///  2. the 1-disks D(q_i) are relaxed, Δq_l = 0, by kProlongationSweeps Gauss–Seidel sweeps
 ///     of q_l ← Σ_j λ_lj q_j (`lambda`, the level's inner fairness) over their union;
 ///  3. outer fairness is restored: each new vertex moves along its normal onto the surface

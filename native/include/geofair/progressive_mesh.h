@@ -66,7 +66,8 @@ Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
 ///
 /// \param X       #region×3 positions to measure on (hierarchy_positions of the input)
 /// \param levels  requested number of levels, ≥ 1
-ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X, int levels);
+ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
+                                       int levels);
 
 /// Smoothing sweeps of hierarchy_positions.
 constexpr int kHierarchySmoothing = 10;
