@@ -42,7 +42,7 @@ def test_levels_are_nested_and_keep_the_boundary(noisy_cap):
     assert len(levels) == 3
     assert {tuple(t) for t in levels[-1]} == {tuple(t) for t in region}
     sets = [set(np.unique(T).tolist()) for T in levels]
-    for coarse, fine in zip(sets, sets[1:]):
+    for coarse, fine in zip(sets[:-1], sets[1:], strict=True):
         assert coarse < fine
     for vertices in sets:
         assert set(boundary.tolist()) <= vertices
@@ -83,8 +83,16 @@ def test_construction_converges_on_the_base_mesh(inner, weighting):
     s = scenes.sphere_cap(n_free=2000, irregular=True, seed=1)
     T = geofair.progressive_mesh(s.vertices, s.faces, s.free, 3)[0]
     free = s.free & np.isin(np.arange(len(s.vertices)), T)
-    r = geofair.fair(s.vertices, T, free, boundary_normals=s.normals, inner_fairness=inner,
-                     normal_weighting=weighting, levels=1, max_iterations=2000)
+    r = geofair.fair(
+        s.vertices,
+        T,
+        free,
+        boundary_normals=s.normals,
+        inner_fairness=inner,
+        normal_weighting=weighting,
+        levels=1,
+        max_iterations=2000,
+    )
     assert r.converged
     # Max's normals make the sphere an exact solution; area-weighted ones on a base mesh
     # this coarse leave a discretization error of a few percent.
@@ -93,12 +101,10 @@ def test_construction_converges_on_the_base_mesh(inner, weighting):
 
 def test_default_levels_follow_the_region_size():
     small = scenes.sphere_cap(n_free=300, irregular=True, seed=3)
-    r = geofair.fair(small.disturbed(seed=1), small.faces, small.free,
-                     boundary_normals=small.normals)
+    r = geofair.fair(small.disturbed(seed=1), small.faces, small.free, boundary_normals=small.normals)
     assert len(r.iterations_per_level) == 1
     large = scenes.sphere_cap(n_free=2000, irregular=True, seed=3)
-    r = geofair.fair(large.disturbed(seed=1), large.faces, large.free,
-                     boundary_normals=large.normals, max_iterations=0)
+    r = geofair.fair(large.disturbed(seed=1), large.faces, large.free, boundary_normals=large.normals, max_iterations=0)
     assert len(r.vertices_per_level) == 3
     assert r.vertices_per_level == sorted(r.vertices_per_level)
 
@@ -109,9 +115,11 @@ def single_and_multigrid(s, v, **kw):
     t1 = time.perf_counter()
     multi = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, **kw)  # levels=0
     t2 = time.perf_counter()
-    print(f"\n{s.name} {kw}: single level {single.iterations} iterations {t1 - t0:.2f} s, "
-          f"max error {max_error(s, single):.3e}; multigrid {multi.iterations_per_level} "
-          f"{t2 - t1:.2f} s, max error {max_error(s, multi):.3e}")
+    print(
+        f"\n{s.name} {kw}: single level {single.iterations} iterations {t1 - t0:.2f} s, "
+        f"max error {max_error(s, single):.3e}; multigrid {multi.iterations_per_level} "
+        f"{t2 - t1:.2f} s, max error {max_error(s, multi):.3e}"
+    )
     assert single.converged and multi.converged
     assert len(multi.iterations_per_level) == 3
     # The same discrete solution: the errors against the analytic surface agree to a small
@@ -134,8 +142,7 @@ def test_multigrid_with_conformal_weights_of_a_noisy_input():
     # Conformal weights of a noisy mesh make some coarse-grid corrections of the finest
     # level useless; multigrid then falls back to smoothing and is no slower than one level.
     s = scenes.sphere_cap(n_free=1200, irregular=True, seed=5)
-    single, multi = single_and_multigrid(s, s.disturbed(seed=2, amplitude=0.1),
-                                         inner_fairness="conformal")
+    single, multi = single_and_multigrid(s, s.disturbed(seed=2, amplitude=0.1), inner_fairness="conformal")
     assert multi.iterations_per_level[-1] <= single.iterations
 
 
