@@ -104,12 +104,15 @@ def render(
     edges: bool = True,
     stripes: int = 14,
     supersample: int = 3,
+    normals: np.ndarray | None = None,
 ) -> np.ndarray:
     """Render a triangle mesh; returns (height, width, 3) float64 RGB in [0, 1].
 
     vertices (n, 3), faces (m, 3) int (counter-clockwise seen from outside); `frame`
     (k, 3): points the picture must show (default: the vertices), so that several
-    renders of one scene share a camera; `highlight` (m,) bool: triangles to tint.
+    renders of one scene share a camera; `highlight` (m,) bool: triangles to tint;
+    `normals` (n, 3): exact vertex normals for the reflection lines where a row is
+    finite (NaN rows: the area-weighted normal of the mesh).
     """
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
@@ -125,6 +128,9 @@ def render(
     hit = face_id >= 0
     t = face_id[hit]
     vn, fc = _vertex_normals(v, f)
+    if normals is not None:
+        given = np.isfinite(normals).all(axis=1)
+        vn[given] = normals[given]
     fn = fc / np.maximum(np.linalg.norm(fc, axis=1, keepdims=True), 1e-300)
     view = -camera.forward  # towards the camera
     facing = fn[t] @ view
