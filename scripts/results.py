@@ -22,7 +22,6 @@ seeded; only the timings vary between runs.
 from __future__ import annotations
 
 import argparse
-import io
 import os
 import platform
 import subprocess
@@ -37,15 +36,15 @@ for sub in ("tests", "scripts", "bench", os.path.join("addon", "geometric_fairin
     sys.path.insert(0, os.path.join(ROOT, sub))
 sys.path.insert(0, os.path.join(os.environ.get("GEOFAIR_BUILD", os.path.join(ROOT, "build")), "python"))
 
-import geofair  # noqa: E402
-import measures  # noqa: E402
 import metrics  # noqa: E402  (the add-on's bpy-free UV distortion)
-import paper_scenes  # noqa: E402
-import raster  # noqa: E402
-import scenes  # noqa: E402
 from cgal_fair import available as cgal_available  # noqa: E402
 from cgal_fair import cgal_fair  # noqa: E402
 from matplotlib import pyplot as plt  # noqa: E402
+
+import geofair  # noqa: E402
+import measures  # noqa: E402
+import paper_scenes  # noqa: E402
+import raster  # noqa: E402
 
 CGAL_DATA = "/usr/share/doc/libcgal-dev/data.tar.gz"
 PX = 420  # pixels per panel
@@ -96,7 +95,9 @@ class Report:
         seconds = time.perf_counter() - start
         if not result.converged:
             self._save(label, vertices, faces, free, options)
-            self.problems.append(f"{label}: not converged after {result.iterations} iterations, residual {result.residual:.2e}")
+            self.problems.append(
+                f"{label}: not converged after {result.iterations} iterations, residual {result.residual:.2e}"
+            )
         print(f"  {label}: {result} {seconds:.2f} s, levels {result.vertices_per_level}", flush=True)
         return result, seconds
 
@@ -261,9 +262,7 @@ def cylinder_blend_part(rep):
             results[(size, name)] = res.vertices
             stats.append((size, sc, name, res, secs))
             rows_flat.append(raster.render(res.vertices, sc.faces, cam, "flat", PX, PX, highlight=hl))
-            rows_zebra.append(
-                raster.render(res.vertices, sc.faces, cam, "zebra", PX, PX, highlight=hl, normals=exact)
-            )
+            rows_zebra.append(raster.render(res.vertices, sc.faces, cam, "zebra", PX, PX, highlight=hl, normals=exact))
     titles = [f"{s}: {t}" for s in ("920", "118") for t in ["start mesh M_0", *[m for m, _ in methods]]]
     rep.figure("blend_flat.png", rows_flat, titles, 2,
                "Cylinder blend, flat shaded: the start meshes (left), linear Δ²f = 0 fairing with uniform "
@@ -277,7 +276,7 @@ def cylinder_blend_part(rep):
         "|---|---|---:|---:|---:|---:|",
     )
     diag = measures.bounding_box_diagonal(fine.vertices[np.unique(fine.region_faces)])
-    for size, sc, name, res, secs in stats:
+    for _size, sc, name, res, secs in stats:
         sym = measures.symmetry_error(res.vertices, sc.region_faces, sc.symmetries)
         iters = "linear solve" if name.startswith("linear") else f"{res.iterations}"
         resid = "" if name.startswith("linear") else f"{res.residual:.1e}"
@@ -451,7 +450,9 @@ def face_part(rep, timings):
         )
         if inner == "conformal":
             timings["face"] = (region_vertices, free, res, secs, v, f)
-        panels += [raster.render(res.vertices, f, cam, s, PX, PX, frame=frame, highlight=sel) for s in ("flat", "zebra")]
+        panels += [
+            raster.render(res.vertices, f, cam, s, PX, PX, frame=frame, highlight=sel) for s in ("flat", "zebra")
+        ]
         titles += [f"{inner} inner fairness"] * 2
     rep.add("")
     rep.figure("face.png", panels, titles, 1,
@@ -569,7 +570,7 @@ def main():
         "software renderer (`scripts/raster.py`): flat shading with the mesh edges, and reflection lines "
         "(the view direction reflected at interpolated vertex normals, striped by its azimuth: vertical light "
         "bars), orthographic. Scenes: `tests/paper_scenes.py`; measures: `tests/measures.py` (both tested in "
-        "`tests/test_paper_scenes.py`, `tests/test_measures.py`). \"Ours\" is `geofair.fair` with the "
+        '`tests/test_paper_scenes.py`, `tests/test_measures.py`). "Ours" is `geofair.fair` with the '
         "library's defaults unless a row names a setting.",
         "",
     )
