@@ -267,7 +267,7 @@ def cylinder_blend_part(rep):
     rep.figure("blend_flat.png", rows_flat, titles, 2,
                "Cylinder blend, flat shaded: the start meshes (left), linear Δ²f = 0 fairing with uniform "
                "and cotangent Laplacians (Fig. 1), and our intrinsic Δ_B H = 0 fairing with uniform and conformal "
-               "inner fairness (Fig. 2); top: 920 vertices, bottom: 118. Seen from below.")  # fmt: skip
+               "inner fairness (Fig. 2); top: 920 vertices, bottom: 118; seen from above.")  # fmt: skip
     rep.figure("blend_zebra.png", rows_zebra, titles, 2,
                "The same results with reflection lines (vertical light bars).")  # fmt: skip
 
