@@ -617,7 +617,11 @@ def main():
         "(the view direction reflected at interpolated vertex normals, striped by its azimuth: vertical light "
         "bars), orthographic. Scenes: `tests/paper_scenes.py`; measures: `tests/measures.py` (both tested in "
         '`tests/test_paper_scenes.py`, `tests/test_measures.py`). "Ours" is `geofair.fair` with the '
-        "library's defaults unless a row names a setting.",
+        "library's defaults unless a row names a setting. The defaults of this build:",
+        "",
+        "```",
+        geofair.fair.__doc__.splitlines()[0],
+        "```",
         "",
     )
     if rep.problems:
