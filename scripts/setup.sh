@@ -12,7 +12,7 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   blender python3-numpy xvfb clang-14 libclang-rt-14-dev >/dev/null
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 python3 -m pip install -q --disable-pip-version-check \
-  "pybind11>=2.12" pytest ruff numpy scipy "bpy==4.5.*"
+  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*"
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
