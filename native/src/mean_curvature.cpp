@@ -43,8 +43,16 @@ struct NormalEquations {
     const double reg = 1e-12 * M.trace();
     if (!(reg > 0.0)) return {};
     M.diagonal().array() += reg;
-    // H = (x0 + x2)/2 = g·Atb / 2 with g = M⁻¹ (1, 0, 1), M symmetric.
-    const Vec3 g = M.ldlt().solve(Vec3(1.0, 0.0, 1.0));
+    // H = (x0 + x2)/2 = g·Atb / 2 with g = M⁻¹ (1, 0, 1), M symmetric positive definite:
+    // g = adj(M) (1, 0, 1) / det M, the cofactors written out (3×3, no factorization).
+    const double c00 = M(1, 1) * M(2, 2) - M(1, 2) * M(1, 2);
+    const double c01 = M(0, 2) * M(1, 2) - M(0, 1) * M(2, 2);
+    const double c02 = M(0, 1) * M(1, 2) - M(0, 2) * M(1, 1);
+    const double c12 = M(0, 2) * M(0, 1) - M(0, 0) * M(1, 2);
+    const double c22 = M(0, 0) * M(1, 1) - M(0, 1) * M(0, 1);
+    const double det = M(0, 0) * c00 + M(0, 1) * c01 + M(0, 2) * c02;
+    if (!(det > 0.0)) return {};
+    const Vec3 g = Vec3(c00 + c02, c01 + c12, c02 + c22) / det;
     return {0.5 * g.dot(Atb), 0.5 * g.dot(Atc)};
   }
 };
