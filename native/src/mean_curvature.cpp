@@ -19,7 +19,8 @@ void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
 // Accumulates the normal equations (11) of the least-squares fit (9), (10).
 struct NormalEquations {
   Vec3 p, n, bx, by;
-  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  // The symmetric AtA, entries (0,0) (0,1) (0,2) (1,1) (1,2) (2,2), accumulated as scalars.
+  double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
   Vec3 Atb = Vec3::Zero();  // right-hand side from κ_j, eq. (8)
   Vec3 Atc = Vec3::Zero();  // right-hand side from dκ_j/dt = 2/|q_j - p|², section 7.2
 
@@ -32,14 +33,19 @@ struct NormalEquations {
     const double tx = d.dot(bx), ty = d.dot(by);
     const double tt = tx * tx + ty * ty;
     if (!(tt > 1e-24 * dd) || !(dd > 0.0)) return;  // sample on the normal line: no direction
-    const Vec3 row(tx * tx / tt, tx * ty / tt, ty * ty / tt);
-    AtA.noalias() += row * row.transpose();
-    Atb += row * (-2.0 * dn / dd);
-    Atc += row * (2.0 / dd);
+    const double inv = 1.0 / tt;
+    const double r0 = tx * tx * inv, r1 = tx * ty * inv, r2 = ty * ty * inv;
+    a00 += r0 * r0, a01 += r0 * r1, a02 += r0 * r2;
+    a11 += r1 * r1, a12 += r1 * r2, a22 += r2 * r2;
+    const double inv_dd = 1.0 / dd;
+    const Vec3 row(r0, r1, r2);
+    Atb += row * (-2.0 * dn * inv_dd);
+    Atc += row * (2.0 * inv_dd);
   }
 
   CurvatureEstimate solve() const {
-    Eigen::Matrix3d M = AtA;
+    Eigen::Matrix3d M;
+    M << a00, a01, a02, a01, a11, a12, a02, a12, a22;
     const double reg = 1e-12 * M.trace();
     if (!(reg > 0.0)) return {};
     M.diagonal().array() += reg;
