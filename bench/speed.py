@@ -19,8 +19,8 @@ takes about 5 minutes and 1 GiB in tests/scenes.py (100k: 11 s), so scenes are c
 .npz files in ``--cache`` (default /tmp/geofair_bench_scenes) and reused.
 
 Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM, which
-includes the Python interpreter, numpy and the scene arrays: about 60 MiB + 150 bytes per
-vertex for ours) is its own; "solve MiB" is the part added by fair() itself. Times are
+includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
+is its own; "solve MiB" is the part added by fair() itself. Times are
 wall times of the fair() call alone (not the scene I/O). The machine may be shared: rerun
 when a figure matters.
 """
