@@ -56,17 +56,19 @@ def test_fixed_vertices_bit_identical_and_free_moved():
     assert np.abs(r.vertices[s.free] - v[s.free]).max() > 1e-3
 
 
-@pytest.mark.parametrize("weighting, bound", [("max", 1e-6), ("area", 5e-3)])
-def test_inner_fairness_moves_vertices_along_the_surface(weighting, bound):
+@pytest.mark.parametrize("weighting, bound, tolerance", [("max", 1e-6, 1e-6), ("area", 5e-3, 1e-4)])
+def test_inner_fairness_moves_vertices_along_the_surface(weighting, bound, tolerance):
     # Uniform and conformal inner fairness: different vertex distributions, same shape.
-    # With Max's normals (consistent on a sphere) both land on the sphere to 1e-6; with the
-    # paper's area-weighted normals the conformal mesh keeps the input's irregularity and
-    # the normals' inconsistency leaves a few 1e-3.
+    # With Max's normals (consistent on a sphere) the sphere is the exact discrete solution
+    # and both land on it up to the iteration error (measured: 0.3 * tolerance on this
+    # single-level cap, hence the tighter tolerance); with the paper's area-weighted normals
+    # the conformal mesh keeps the input's irregularity and the normals' inconsistency
+    # leaves a few 1e-3.
     s = scenes.sphere_cap(n_free=400, irregular=True, seed=14)
     # Conformal weights come from the input mesh: disturb it smoothly, without noise.
     v = s.disturbed(seed=7, amplitude=0.1, noise=0.0)
-    a = fair(s, v, inner_fairness="uniform", normal_weighting=weighting)
-    b = fair(s, v, inner_fairness="conformal", normal_weighting=weighting)
+    a = fair(s, v, inner_fairness="uniform", normal_weighting=weighting, tolerance=tolerance)
+    b = fair(s, v, inner_fairness="conformal", normal_weighting=weighting, tolerance=tolerance)
     assert a.converged and b.converged
     moved = np.linalg.norm(a.vertices - b.vertices, axis=1).max() / s.size
     assert moved > 1e-2  # vertices sit elsewhere ...

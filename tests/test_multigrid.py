@@ -92,10 +92,12 @@ def test_construction_converges_on_the_base_mesh(inner, weighting):
         normal_weighting=weighting,
         levels=1,
         max_iterations=2000,
+        tolerance=1e-5 if weighting == "max" else 1e-4,
     )
     assert r.converged
-    # Max's normals make the sphere an exact solution; area-weighted ones on a base mesh
-    # this coarse leave a discretization error of a few percent.
+    # Max's normals make the sphere an exact solution (the error left is the iteration
+    # error, measured 0.05 * tolerance here); area-weighted ones on a base mesh this coarse
+    # leave a discretization error of a few percent.
     assert np.abs(s.distance(r.vertices[free])).max() < (1e-6 if weighting == "max" else 0.06)
 
 

@@ -75,7 +75,7 @@ def _tolerance(**options):
         name="Tolerance",
         description="Stop when the normalized residual of Δ_B H = 0 falls below this (dimensionless)",
         default=DEFAULTS["tolerance"],
-        min=1e-12,
+        min=1e-15,
         max=1.0,
         precision=6,
         **options,

@@ -218,11 +218,15 @@ outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0
 normal_weighting : free-vertex normals: "area" (the paper's: sum of face cross products),
     "angle" or "max" (Max 1999).
 tolerance : stop when the residual is at most this (dimensionless). The residual is
-    L**3 * max_i |Δ_B H(q_i)| over the free vertices, with the cotangent Laplace–Beltrami
-    operator of eq. (5), Δ_B H(q_i) = 3/(2 A_i) Σ_j w_ij (H_j - H_i), and L the
-    bounding-box diagonal of the region: invariant under scaling, and about the same for a
-    coarse and a fine mesh of one shape. 1e-4 leaves an iteration error well below the
-    discretization error on meshes of up to some 10^4 vertices.
+    L * max_i |Hbar_i - H_i| over the free vertices: how far the mean curvature H_i
+    deviates from the cotangent-weighted mean Hbar_i = Σ_j w_ij H_j / Σ_j w_ij of its
+    neighbours (the Jacobi-scaled residual of eq. (12), about h**2 |Δ_B H| for edge length
+    h), with L the bounding-box diagonal of the region. Invariant under scaling, and it
+    asks the same local smoothness of H on a coarse and a fine mesh (L**3 |Δ_B H| would
+    ask (L/h)**2 times more of the fine one). Measured on disturbed sphere caps with Max's
+    normals (the sphere is the exact discrete solution): 1e-4 leaves a max radial error of
+    1e-6 (2000 free vertices) to 6e-6 (13000), below the discretization error of area
+    normals there (1e-3 to 3e-4).
 max_iterations : upper bound on the iterations spent solving each level (iterations that
     the multigrid cycles of a finer level run on a coarser one are not counted).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].

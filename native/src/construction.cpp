@@ -26,15 +26,21 @@ Construction::Construction(const FairingRegion& region, std::vector<double> lamb
 void Construction::curvatures(const Positions& X) {
   const OneRings& rings = region_.rings;
   const NormalWeighting w = options_.normal_weighting;
-  for (int i = 0; i < region_.n_free; ++i) N_.row(i) = vertex_normal(rings, X, i, w);
-  for (int i = 0; i < region_.n; ++i)
-    H_(i) = moreton_sequin(rings, X, N_, i, X.row(i), N_.row(i), needs_spiral_samples(rings, i)).H;
+  const int nf = region_.n_free, n = region_.n;
+#pragma omp parallel if (n > kParallelMin)
+  {
+#pragma omp for schedule(static)
+    for (int i = 0; i < nf; ++i) N_.row(i) = vertex_normal(rings, X, i, w);
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i)
+      H_(i) = moreton_sequin(rings, X, N_, i, X.row(i), N_.row(i), needs_spiral_samples(rings, i)).H;
+  }
 }
 
 double Construction::evaluate(const Positions& X) {
   curvatures(X);
   dirichlet_.assemble(X);
-  return length_ * length_ * length_ * dirichlet_.max_laplace_beltrami(H_, source_);
+  return length_ * dirichlet_.max_mean_deviation(H_, source_);
 }
 
 IterationReport Construction::run(Positions& X, int max_iterations, double tolerance,

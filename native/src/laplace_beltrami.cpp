@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <cstdlib>
 
 namespace geofair {
 namespace {
@@ -90,7 +92,10 @@ void DirichletMatrix::assemble(const Positions& X) {
   const OneRings& r = region_.rings;
   double* values = S_.valuePtr();
   std::fill(values, values + S_.nonZeros(), 0.0);
-  for (int i = 0; i < region_.n_free; ++i) {
+  const int nf = region_.n_free;
+  // Row i of S and the slots of vertex i are written by vertex i alone.
+#pragma omp parallel for schedule(static) if (nf > kParallelMin)
+  for (int i = 0; i < nf; ++i) {
     cotangent_weights(r, X, i, slot_weight_.data() + r.offset[i]);
     double diag = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
@@ -113,6 +118,7 @@ Eigen::VectorXd DirichletMatrix::rhs(const Eigen::VectorXd& H) const {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(nf);
+#pragma omp parallel for schedule(static) if (nf > kParallelMin)
   for (int i = 0; i < nf; ++i)
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       if (r.ring[k] >= nf) b(i) += slot_weight_[k] * H(r.ring[k]);
@@ -121,8 +127,10 @@ Eigen::VectorXd DirichletMatrix::rhs(const Eigen::VectorXd& H) const {
 
 Eigen::VectorXd DirichletMatrix::defects(const Eigen::VectorXd& H) const {
   const OneRings& r = region_.rings;
-  Eigen::VectorXd d(region_.n_free);
-  for (int i = 0; i < region_.n_free; ++i) {
+  const int nf = region_.n_free;
+  Eigen::VectorXd d(nf);
+#pragma omp parallel for schedule(static) if (nf > kParallelMin)
+  for (int i = 0; i < nf; ++i) {
     double sum = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       sum += slot_weight_[k] * (H(i) - H(r.ring[k]));
@@ -136,16 +144,39 @@ double DirichletMatrix::max_laplace_beltrami(const Eigen::VectorXd& H,
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   double worst = 0.0;
+  bool nan = false;
+#pragma omp parallel for schedule(static) reduction(max : worst) reduction(|| : nan) if (nf > kParallelMin)
   for (int i = 0; i < nf; ++i) {
     double sum = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
     if (source) sum += (*source)(i);
     const double defect = 1.5 * std::abs(sum) / std::max(disk_area_[i], 1e-300);
-    if (std::isnan(defect)) return defect;
+    if (std::isnan(defect)) nan = true;
     worst = std::max(worst, defect);
   }
-  return worst;
+  return nan ? std::numeric_limits<double>::quiet_NaN() : worst;
+}
+
+double DirichletMatrix::max_mean_deviation(const Eigen::VectorXd& H,
+                                           const Eigen::VectorXd* source) const {
+  const OneRings& r = region_.rings;
+  const int nf = region_.n_free;
+  double worst = 0.0;
+  bool nan = false;
+#pragma omp parallel for schedule(static) reduction(max : worst) reduction(|| : nan) if (nf > kParallelMin)
+  for (int i = 0; i < nf; ++i) {
+    double sum = 0.0, sum_w = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+      sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
+      sum_w += slot_weight_[k];
+    }
+    if (source) sum += (*source)(i);
+    const double deviation = std::abs(sum) / std::max(sum_w, 1e-300);
+    if (std::isnan(deviation)) nan = true;
+    worst = std::max(worst, deviation);
+  }
+  return nan ? std::numeric_limits<double>::quiet_NaN() : worst;
 }
 
 }  // namespace geofair

@@ -19,7 +19,8 @@ void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
 // Accumulates the normal equations (11) of the least-squares fit (9), (10).
 struct NormalEquations {
   Vec3 p, n, bx, by;
-  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  // The symmetric AtA, entries (0,0) (0,1) (0,2) (1,1) (1,2) (2,2), accumulated as scalars.
+  double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0;
   Vec3 Atb = Vec3::Zero();  // right-hand side from κ_j, eq. (8)
   Vec3 Atc = Vec3::Zero();  // right-hand side from dκ_j/dt = 2/|q_j - p|², section 7.2
 
@@ -32,19 +33,32 @@ struct NormalEquations {
     const double tx = d.dot(bx), ty = d.dot(by);
     const double tt = tx * tx + ty * ty;
     if (!(tt > 1e-24 * dd) || !(dd > 0.0)) return;  // sample on the normal line: no direction
-    const Vec3 row(tx * tx / tt, tx * ty / tt, ty * ty / tt);
-    AtA.noalias() += row * row.transpose();
-    Atb += row * (-2.0 * dn / dd);
-    Atc += row * (2.0 / dd);
+    const double inv = 1.0 / tt;
+    const double r0 = tx * tx * inv, r1 = tx * ty * inv, r2 = ty * ty * inv;
+    a00 += r0 * r0, a01 += r0 * r1, a02 += r0 * r2;
+    a11 += r1 * r1, a12 += r1 * r2, a22 += r2 * r2;
+    const double inv_dd = 1.0 / dd;
+    const Vec3 row(r0, r1, r2);
+    Atb += row * (-2.0 * dn * inv_dd);
+    Atc += row * (2.0 * inv_dd);
   }
 
   CurvatureEstimate solve() const {
-    Eigen::Matrix3d M = AtA;
+    Eigen::Matrix3d M;
+    M << a00, a01, a02, a01, a11, a12, a02, a12, a22;
     const double reg = 1e-12 * M.trace();
     if (!(reg > 0.0)) return {};
     M.diagonal().array() += reg;
-    // H = (x0 + x2)/2 = g·Atb / 2 with g = M⁻¹ (1, 0, 1), M symmetric.
-    const Vec3 g = M.ldlt().solve(Vec3(1.0, 0.0, 1.0));
+    // H = (x0 + x2)/2 = g·Atb / 2 with g = M⁻¹ (1, 0, 1), M symmetric positive definite:
+    // g = adj(M) (1, 0, 1) / det M, the cofactors written out (3×3, no factorization).
+    const double c00 = M(1, 1) * M(2, 2) - M(1, 2) * M(1, 2);
+    const double c01 = M(0, 2) * M(1, 2) - M(0, 1) * M(2, 2);
+    const double c02 = M(0, 1) * M(1, 2) - M(0, 2) * M(1, 1);
+    const double c12 = M(0, 2) * M(0, 1) - M(0, 0) * M(1, 2);
+    const double c22 = M(0, 0) * M(1, 1) - M(0, 1) * M(0, 1);
+    const double det = M(0, 0) * c00 + M(0, 1) * c01 + M(0, 2) * c02;
+    if (!(det > 0.0)) return {};
+    const Vec3 g = Vec3(c00 + c02, c01 + c12, c02 + c22) / det;
     return {0.5 * g.dot(Atb), 0.5 * g.dot(Atc)};
   }
 };

@@ -114,7 +114,7 @@ def check_cancel_by_callback(addon, obj):
             return budget[0] > 0
 
         report = addon.fair_object(
-            obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**6, progress=three_calls
+            obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**6, progress=three_calls
         )
         assert report.cancelled and report.iterations > 0 and np.array_equal(positions(obj), before), report
         print(f"ok: {mode.title()} Mode: cancelled after {report.iterations} iterations, mesh unchanged")
@@ -126,7 +126,7 @@ def check_cancel_from_main_thread(addon, obj):
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     before = positions(obj)
-    options = addon.FairingOptions(inner_fairness="CONFORMAL", tolerance=1e-12, max_iterations=10**7)
+    options = addon.FairingOptions(inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**7)
     run = addon.fairing.FairingRun(obj, options)
     start = time.perf_counter()
     run.start()

@@ -15,7 +15,7 @@ namespace geofair {
 /// How an iteration ended.
 struct IterationReport {
   int iterations = 0;      ///< iterations M_k -> M_{k+1} performed
-  double residual = 0.0;   ///< L³·max|Δ_B H| of the final mesh
+  double residual = 0.0;   ///< L·max|H̄ − H| of the final mesh (see fairing.h)
   bool converged = false;  ///< residual <= tolerance
   bool cancelled = false;  ///< the progress callback asked to stop
 };

@@ -52,6 +52,14 @@ class DirichletMatrix {
   double max_laplace_beltrami(const Eigen::VectorXd& H,
                               const Eigen::VectorXd* source = nullptr) const;
 
+  /// max_i |H̄_i − H_i| over the free vertices, H̄_i = Σ_j w_ij H_j / Σ_j w_ij the
+  /// cotangent-weighted mean of the neighbours: the Jacobi-scaled residual |(b − S H_I)_i| /
+  /// S_ii of eq. (12), equal to (2 A_i / 3) |Δ_B H(q_i)| / Σ_j w_ij with Δ_B of eq. (5), so
+  /// about h² |Δ_B H| for edge length h. Units: 1/length. NaN if any value is NaN.
+  /// With `source` (#V_I), |Σ_j w_ij (H_i − H_j) − source_i| / Σ_j w_ij instead.
+  double max_mean_deviation(const Eigen::VectorXd& H,
+                            const Eigen::VectorXd* source = nullptr) const;
+
   /// d_i = Σ_j w_ij (H_i − H_j) = (S H_I − b)_i, #V_I, 1/length.
   Eigen::VectorXd defects(const Eigen::VectorXd& H) const;
 

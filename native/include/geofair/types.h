@@ -52,6 +52,10 @@ enum class OuterFairness {
   Bilaplacian,  ///< the linear Δ²f = 0 solution alone (section 7.4's initial mesh)
 };
 
+/// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
+/// threads' start-up costs more than they save.
+constexpr int kParallelMin = 2000;
+
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
 
@@ -60,7 +64,7 @@ struct FairingOptions {
   InnerFairness inner_fairness = InnerFairness::Uniform;
   OuterFairness outer_fairness = OuterFairness::Intrinsic;
   NormalWeighting normal_weighting = NormalWeighting::Area;
-  /// Stop when the residual L³·max|Δ_B H| (see fairing.h) falls below this. Dimensionless.
+  /// Stop when the residual L·max|H̄ − H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the
   /// iterations that the cycles of a finer level run on it as its coarse grid are not

@@ -1,0 +1,200 @@
+"""Speed of geofair.fair on disturbed irregular sphere caps, with CGAL's linear fair beside it.
+
+For each size (free vertices, default about 2k, 13k, 100k and 1M) prints: our wall time,
+iterations per level (coarsest first), final residual, max radial error |‖q‖ − 1| over
+the free vertices (unit sphere), peak resident memory, and the same input through CGAL's
+``Polygon_mesh_processing::fair`` (continuity 1, bench/cgal_fair.py) with its time, peak
+memory and max radial error, and the time ratio ours/CGAL. Then the measured time exponent
+(least-squares slope of log time over log free vertices) of both.
+
+    PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
+        [--normal-weighting max|area|angle] [--inner uniform|conformal] [--no-cgal]
+        [--cache DIR] [--timeout SECONDS]
+
+Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
+disturbed by ``disturbed(seed=2, amplitude=0.1)``. CGAL gets the whole mesh (its second,
+outer fixed ring gives it tangent continuity); geofair the same vertices and free mask with
+the exact sphere normals as G1 boundary normals. Generating the 1M-vertex irregular cap
+takes about 5 minutes and 1 GiB in tests/scenes.py (100k: 11 s), so scenes are cached as
+.npz files in ``--cache`` (default /tmp/geofair_bench_scenes) and reused.
+
+Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM, which
+includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
+is its own; "solve MiB" is the part added by fair() itself. Times are
+wall times of the fair() call alone (not the scene I/O). The machine may be shared: rerun
+when a figure matters.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))
+sys.path.insert(0, HERE)
+
+
+def vm_hwm_mib():
+    """Peak resident set of this process so far, MiB (Linux /proc)."""
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
+
+
+def scene_path(cache, n):
+    return os.path.join(cache, f"sphere_cap_irregular_seed1_rings2_{n}.npz")
+
+
+def load_scene(cache, n):
+    """(vertices disturbed, faces, free, normals) of the cap with about n free vertices."""
+    path = scene_path(cache, n)
+    if not os.path.exists(path):
+        import scenes
+
+        t = time.perf_counter()
+        s = scenes.sphere_cap(n_free=n, irregular=True, seed=1, boundary_rings=2)
+        v = s.disturbed(seed=2, amplitude=0.1)
+        os.makedirs(cache, exist_ok=True)
+        tmp = path + ".tmp.npz"
+        np.savez(tmp, vertices=v, faces=s.faces.astype(np.int32), free=s.free, normals=s.normals)
+        os.replace(tmp, path)
+        print(f"# generated {path} in {time.perf_counter() - t:.0f} s", file=sys.stderr, flush=True)
+    d = np.load(path)
+    return d["vertices"], d["faces"], d["free"], d["normals"]
+
+
+def radial_error(vertices, free):
+    return float(np.abs(np.linalg.norm(vertices[free], axis=1) - 1.0).max())
+
+
+def child(args):
+    """Runs one of our solves; prints a JSON line."""
+    import geofair
+
+    v, f, free, normals = load_scene(args.cache, args.child)
+    before = vm_hwm_mib()
+    t = time.perf_counter()
+    r = geofair.fair(
+        v,
+        f,
+        free,
+        boundary_normals=normals,
+        normal_weighting=args.normal_weighting,
+        inner_fairness=args.inner,
+        max_iterations=args.max_iterations,
+    )
+    seconds = time.perf_counter() - t
+    peak = vm_hwm_mib()
+    print(
+        json.dumps(
+            {
+                "n_free": int(free.sum()),
+                "seconds": seconds,
+                "iterations": list(r.iterations_per_level),
+                "vertices": list(r.vertices_per_level),
+                "residual": r.residual,
+                "converged": r.converged,
+                "error": radial_error(r.vertices, free),
+                "peak_mib": peak,
+                "solve_mib": peak - before,
+            }
+        )
+    )
+
+
+def run_ours(args, n):
+    cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--cache", args.cache]
+    cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
+    cmd += ["--max-iterations", str(args.max_iterations)]
+    try:
+        run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
+    except subprocess.TimeoutExpired:
+        return None
+    if run.returncode != 0:
+        raise RuntimeError(f"geofair run for {n} failed:\n{run.stderr}")
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def slope(ns, ts):
+    """Least-squares exponent p of t ~ n^p."""
+    ok = [(n, t) for n, t in zip(ns, ts, strict=True) if t and t > 0]
+    if len(ok) < 2:
+        return float("nan")
+    x, y = np.log([n for n, _ in ok]), np.log([t for _, t in ok])
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("sizes", nargs="*", type=int, default=[2000, 13000, 100000, 1000000])
+    parser.add_argument("--normal-weighting", default="max")
+    parser.add_argument("--inner", default="uniform")
+    parser.add_argument("--max-iterations", type=int, default=20000)
+    parser.add_argument("--no-cgal", action="store_true")
+    parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
+    parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
+    parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child is not None:
+        child(args)
+        return
+
+    import cgal_fair
+
+    use_cgal = not args.no_cgal and cgal_fair.available()
+    print(
+        f"# geofair.fair: normal_weighting={args.normal_weighting}, inner_fairness={args.inner}, "
+        f"default tolerance and levels; {os.cpu_count()} cores, load average "
+        f"{os.getloadavg()[0]:.1f}"
+    )
+    print(
+        f"{'free':>8} {'time [s]':>9} {'iterations per level':>30} {'residual':>9} {'max err':>9} "
+        f"{'peak MiB':>9} {'solve MiB':>9} | {'CGAL [s]':>9} {'CGAL MiB':>9} {'CGAL err':>9} "
+        f"{'ours/CGAL':>9}"
+    )
+    ns, ours_t, cgal_t = [], [], []
+    for n in args.sizes:
+        load_scene(args.cache, n)  # generate outside the timed children
+        r = run_ours(args, n)
+        c = None
+        if use_cgal:
+            v, f, free, _ = load_scene(args.cache, n)
+            c = cgal_fair.cgal_fair(v, f, free)
+            c_err = radial_error(c.vertices, free)
+            n_free = int(free.sum())
+            del v, f, free
+        else:
+            n_free = r["n_free"] if r else n
+        ns.append(n_free)
+        ours_t.append(r["seconds"] if r else None)
+        cgal_t.append(c.seconds if c and c.success else None)
+        if r:
+            its = "/".join(map(str, r["iterations"]))
+            mark = "" if r["converged"] else "*"
+            ours = (
+                f"{r['seconds']:>9.3f} {its:>30} {r['residual']:>8.1e}{mark:1} {r['error']:>9.1e} "
+                f"{r['peak_mib']:>9.0f} {r['solve_mib']:>9.0f}"
+            )
+        else:
+            ours = f"{'timeout':>9} {'':>30} {'':>9} {'':>9} {'':>9} {'':>9}"
+        if c:
+            ok = "" if c.success else " (failed)"
+            ratio = f"{r['seconds'] / c.seconds:>9.2f}" if r and c.seconds > 0 else f"{'':>9}"
+            theirs = f"{c.seconds:>9.3f} {c.peak_mib:>9.0f} {c_err:>9.1e} {ratio}{ok}"
+        else:
+            theirs = "(CGAL not run)"
+        print(f"{n_free:>8} {ours} | {theirs}", flush=True)
+    print(f"time exponent (log-log slope over the sizes): ours {slope(ns, ours_t):.2f}", end="")
+    print(f", CGAL {slope(ns, cgal_t):.2f}" if use_cgal else "")
+    print("(* = not converged within max_iterations)")
+
+
+if __name__ == "__main__":
+    main()
