@@ -37,7 +37,7 @@ OUTER_FAIRNESS_ITEMS = (
 )
 
 # Defaults when the add-on's preferences are not available (imported by a script without enabling it).
-DEFAULTS = {"tolerance": 1e-4, "max_iterations": 20000, "levels": 1}
+DEFAULTS = {"tolerance": 1e-4, "max_iterations": 20000, "levels": 0}
 OPTION_NAMES = (
     "inner_fairness",
     "outer_fairness",
@@ -96,7 +96,8 @@ def _max_iterations(**options):
 def _levels(**options):
     return IntProperty(
         name="Levels",
-        description="Levels of the progressive-mesh multigrid: 1 solves the region as one mesh, 0 picks the number",
+        description="Levels of the progressive-mesh multigrid: 0 picks the number from the region size (one level up "
+        "to 1000 free vertices), 1 solves the region as one mesh",
         default=DEFAULTS["levels"],
         min=0,
         max=12,
