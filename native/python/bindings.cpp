@@ -89,7 +89,8 @@ NormalWeighting parse_weighting(const std::string& s) {
   return parse<NormalWeighting>(s, "normal_weighting",
                                 {{"area", NormalWeighting::Area},
                                  {"angle", NormalWeighting::Angle},
-                                 {"max", NormalWeighting::Max}});
+                                 {"max", NormalWeighting::Max},
+                                 {"quadric", NormalWeighting::Quadric}});
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
@@ -192,7 +193,7 @@ PYBIND11_MODULE(geofair, m) {
 
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
         py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
-        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
+        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "quadric",
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
         py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
         py::arg("progress") = py::none(),
@@ -215,8 +216,10 @@ inner_fairness : "uniform" (regular vertex distribution) or "conformal" (weights
     input mesh: discrete-conformal to it, keeps texture distortion low), section 7.3.
 outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
     of section 7.4 alone, for comparison).
-normal_weighting : free-vertex normals: "area" (the paper's: sum of face cross products),
-    "angle" or "max" (Max 1999).
+normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent
+    plane of a least-squares quadric through the one-ring, consistent on irregular meshes),
+    "area" (the paper's choice, section 6: sum of face cross products), "angle" (Thürmer &
+    Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in the README.
 tolerance : stop when the residual is at most this (dimensionless). The residual is
     L**3 * max_i |Δ_B H(q_i)| over the free vertices, with the cotangent Laplace–Beltrami
     operator of eq. (5), Δ_B H(q_i) = 3/(2 A_i) Σ_j w_ij (H_j - H_i), and L the
@@ -299,7 +302,7 @@ uniform Laplacian (fair() smooths with its inner fairness weights).
 Raises ValueError for invalid input.)doc");
 
   m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
-        py::arg("normals") = py::none(), py::arg("normal_weighting") = "area",
+        py::arg("normals") = py::none(), py::arg("normal_weighting") = "quadric",
         R"doc(Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
 2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
 valence 3 or 4 and on the mesh border.
@@ -309,7 +312,9 @@ Parameters
 vertices : (n, 3) float64 array.
 faces : (m, 3) integer array of consistently oriented triangles.
 normals : (n, 3) float64 unit normals (tangent planes) or None to estimate them from the
-    triangles with `normal_weighting` ("area", the paper's choice, "angle" or "max").
+    triangles with `normal_weighting` ("quadric", the default: tangent plane of a
+    least-squares quadric through the one-ring; "area", the paper's choice; "angle" or
+    "max").
 
 Returns
 -------
