@@ -1,6 +1,7 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/fairing.h"
+#include "geofair/intrinsic_delaunay.h"
 #include "geofair/laplace_beltrami.h"
 #include "geofair/progressive_mesh.h"
 #include "geofair/mean_curvature.h"
@@ -263,6 +264,47 @@ L[i, j] = cot α_ij + cot β_ij for every edge (a single cotangent on a border e
 L[i, i] = -Σ_j L[i, j]: symmetric, L @ ones = 0. (L @ f)[i] = (2 A_i / 3) Δ_B f(q_i) with A_i
 the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of eqs. (6),
 (7) is -L restricted to the free rows and columns.
+
+Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "intrinsic_delaunay",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        py::gil_scoped_release release;
+        IntrinsicTriangulation T = intrinsic_delaunay(V, F);
+        return std::make_tuple(std::move(T.triangles), std::move(T.lengths), T.flips);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
+2006; Bobenko & Springborn 2007): same vertices, same surface, other edges (geodesics on
+the mesh) such that the two angles opposite every interior edge sum to at most π.
+
+Returns
+-------
+(triangles, lengths, flips): (m, 3) int32 vertex indices (counter-clockwise like faces; a
+triangle may repeat a vertex), (m, 3) float64 edge lengths in mesh units (lengths[t, k]
+from corner k to corner k+1 of triangle t), and the number of flips (0 if the mesh was
+intrinsically Delaunay).
+
+Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "intrinsic_delaunay_laplacian",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        py::gil_scoped_release release;
+        return intrinsic_delaunay_laplacian(V, F);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(The cotangent Laplacian of the intrinsic Delaunay triangulation (Bobenko &
+Springborn 2007) as an (n, n) scipy.sparse CSR matrix, with the conventions of
+cotangent_laplacian: L[i, j] = Σ cot of the angles opposite the intrinsic edges between
+i and j, L[i, i] = -Σ_j L[i, j]. Every off-diagonal entry is >= 0 (to round-off), unlike
+the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_laplacian
+where the mesh is already intrinsically Delaunay.
 
 Raises ValueError for invalid input.)doc");
 
