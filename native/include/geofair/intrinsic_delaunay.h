@@ -10,9 +10,9 @@
 // edges whose two opposite angles sum to more than π (obtuse and needle triangles). The
 // intrinsic Delaunay triangulation has the same vertices and the same metric (the surface
 // is not moved) but other edges — geodesics of the piecewise-flat surface — chosen so that
-// every edge satisfies α + β ≤ π; its cotangent Laplacian is then a non-negative-weight,
-// positive semi-definite operator with the linear precision of the original on flat
-// regions (Bobenko & Springborn 2007, Theorem and Proposition 11).
+// every edge satisfies α + β ≤ π; its cotangent Laplacian then has non-negative weights
+// (a discrete maximum principle), stays positive semi-definite, and keeps the linear
+// precision of the original on flat regions (Bobenko & Springborn 2007).
 #pragma once
 
 #include "geofair/laplace_beltrami.h"
@@ -36,7 +36,8 @@ struct IntrinsicTriangulation {
 /// whose opposite angles α, β satisfy cot α + cot β < −1e-12 (i.e. α + β > π) is flipped
 /// in the intrinsic metric of its two triangles (their layout in the plane) until none is
 /// left. Border edges are never flipped. Terminates on every mesh (Bobenko & Springborn
-/// 2007, Prop. 12); O(#flips) work after the O(#F) setup.
+/// 2007); O(#flips) work after the O(#F) setup.
+/// \throw SolverError if round-off made the flips cycle (more than 100·#F + 1000 flips).
 ///
 /// \param V  #V×3 positions, mesh units
 /// \param F  #F×3 consistently oriented manifold triangles
