@@ -288,7 +288,7 @@ triangle may repeat a vertex), (m, 3) float64 edge lengths in mesh units (length
 from corner k to corner k+1 of triangle t), and the number of flips (0 if the mesh was
 intrinsically Delaunay).
 
-Raises ValueError for invalid input.)doc");
+Raises ValueError for invalid input, RuntimeError if round-off made the flips cycle.)doc");
 
   m.def(
       "intrinsic_delaunay_laplacian",
