@@ -12,9 +12,9 @@ Settings: "bilaplacian" = outer_fairness="bilaplacian"; "paper" = normal_weighti
 (Schneider & Kobbelt 2001, section 6), everything else default; "defaults" = geofair.fair's
 defaults (normal_weighting="quadric"). All with uniform inner fairness, tolerance 1e-4.
 
-    PYTHONPATH=build/python python3 bench/accuracy.py [--quick]
+    PYTHONPATH=build/python python3 bench/accuracy.py [--quick] [--only patches|torus]
 
---quick: a quarter of the vertices.
+--quick: a quarter of the vertices; --only: the patch rows or the torus row alone.
 """
 
 import argparse
@@ -51,11 +51,12 @@ def fair(scene, settings):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--only", choices=("patches", "torus"), help="print only these rows")
     args = parser.parse_args()
     scale = 0.25 if args.quick else 1.0
     print("| scene | mesh | free | " + " | ".join(SETTINGS) + " | iterations (paper, defaults) | time [s] |")
     print("|---|---|---:|" + "---:|" * len(SETTINGS) + "---|---:|")
-    for name, make, n in PATCHES:
+    for name, make, n in PATCHES if args.only != "torus" else []:
         for irregular in (False, True):
             s = make(n_free=round(n * scale), irregular=irregular, seed=1)
             cells, iterations, total = [], [], 0.0
@@ -68,6 +69,8 @@ def main():
             mesh = "irregular" if irregular else "regular"
             row = [name, mesh, str(s.n_free), *cells, ", ".join(iterations), f"{total:.0f}"]
             print("| " + " | ".join(row) + " |", flush=True)
+    if args.only == "patches":
+        return
     pair = [scenes.torus_patch(n_free=round(10000 * scale), irregular=irr, seed=1) for irr in (False, True)]
     cells, iterations, total = [], [], 0.0
     for key, settings in SETTINGS.items():
