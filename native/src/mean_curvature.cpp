@@ -49,7 +49,8 @@ struct NormalEquations {
   }
 };
 
-// Tangent plane of the least-squares paraboloid through q_i and its ring neighbours:
+// Tangent plane of the least-squares paraboloid through q_i and its ring neighbours (and
+// the flaps' far corners below valence 5):
 // in the frame of the first guess n0, the height z_j = ⟨q_j - q_i, n0⟩ of neighbour j at
 // tangent coordinates (x_j, y_j) is fitted by z = a x + b y + (L x² + 2M xy + N y²)/2, each
 // equation scaled by 2/|q_j - q_i|² as the Moreton–Séquin rows (8)-(10) are; the normal is

@@ -22,8 +22,9 @@ namespace geofair {
 /// the normal is that of the fitted plane, (n0 − a b_x − b b_y)/|…|. Taylor's theorem makes
 /// its error O(h²) on any smooth surface and ring shape, where weighted face normals are
 /// O(h) off by irregular rings; κ of eq. (8) divides the normal's error by |q_j − q_i|, so
-/// only an O(h²) normal gives a consistent H. Falls back to n0 below valence 5 (the fit is
-/// undetermined) and where the fitted plane tilts by 45° or more (a degenerate ring).
+/// only an O(h²) normal gives a consistent H. Below valence 5 the vertices across the ring
+/// edges join the samples (five unknowns); falls back to n0 where fewer than five samples
+/// remain or the fitted plane tilts by 45° or more (a degenerate ring).
 Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeighting weighting);
 
 /// The extra sample p_j between the ring neighbours a = q_j and b = q_{j+1} (section 6.2).
