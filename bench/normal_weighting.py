@@ -3,7 +3,9 @@
 For each scene (sphere cap, cylinder patch, catenoid patch; regular and irregular; two
 resolutions) prints the max distance of the faired free vertices to the analytic surface,
 relative to the patch size, for linear bilaplacian fairing and for intrinsic fairing with
-the area-weighted normals of the paper, angle-weighted normals and Max's (1999) weights.
+the area-weighted normals of the paper, angle-weighted normals, Max's (1999) weights and
+the tangent plane of the quadric fit (the default). Single level (levels=1), uniform inner
+fairness.
 
     PYTHONPATH=build/python python3 bench/normal_weighting.py [n_free ...]
 """
@@ -19,7 +21,7 @@ import geofair  # noqa: E402
 import scenes  # noqa: E402
 
 SCENES = {"sphere cap": scenes.sphere_cap, "cylinder": scenes.cylinder_patch, "catenoid": scenes.catenoid_patch}
-WEIGHTINGS = ("area", "angle", "max")
+WEIGHTINGS = ("area", "angle", "max", "quadric")
 
 
 def error(scene, vertices):
@@ -36,7 +38,7 @@ def main():
                 s = make(n_free=n, irregular=irregular, seed=1)
                 v = s.disturbed(seed=2, amplitude=0.1)
                 t = time.perf_counter()
-                kw = dict(boundary_normals=s.normals, max_iterations=50000)
+                kw = dict(boundary_normals=s.normals, max_iterations=50000, levels=1)
                 linear = error(s, geofair.fair(v, s.faces, s.free, outer_fairness="bilaplacian", **kw).vertices)
                 errs = [
                     error(s, geofair.fair(v, s.faces, s.free, normal_weighting=w, **kw).vertices) for w in WEIGHTINGS

@@ -4,7 +4,9 @@ Prints, for each size, the max radial error |‖q‖ − 1| over the free vertic
 and the wall time of the linear bilaplacian solution and of intrinsic fairing.
 
     PYTHONPATH=build/python python3 bench/sphere_cap.py [n_free ...] [--levels N]
-        [--normal-weighting area|angle|max] [--inner uniform|conformal]
+        [--normal-weighting area|angle|max|quadric] [--inner uniform|conformal]
+
+--normal-weighting defaults to area, the paper's choice (geofair.fair's default is quadric).
 """
 
 import argparse

@@ -53,6 +53,7 @@ __all__ = [
     "border_mask",
     "face_normals",
     "triangle_angles",
+    "torus_patch",
 ]
 
 MIN_ANGLE_DEG = 18.0
@@ -780,3 +781,73 @@ def _irregular_tube(P, hz, n_vertices, rng):
     movable = np.arange(len(uv)) < len(inner)
     uv, faces, _ = _triangulate(uv, pad, movable, lambda p: np.abs(p[:, 1]) < hz - 0.55 * h_u, P)
     return uv, faces
+
+
+# --------------------------------------------------------------------------------------
+# Torus patch (a boundary condition whose solution of Delta_B H = 0 is not known in closed
+# form: for comparing the faired results of different meshes of one region)
+
+
+def torus_patch(
+    major_radius: float = 2.0,
+    minor_radius: float = 1.0,
+    angle: float = 90.0,
+    theta_range=(45.0, 135.0),
+    n_free: int = 2000,
+    irregular: bool = False,
+    seed: int = 0,
+    boundary_rings: int = 1,
+) -> Scene:
+    """Patch of the torus ((sqrt(x^2 + y^2) - R)^2 + z^2 = r^2 around the z axis.
+
+    Points are (R + r cos theta)(cos phi, sin phi, 0) + r sin theta (0, 0, 1).  Region:
+    phi in [-angle/2, angle/2] (degrees) around +x, theta in `theta_range` (degrees; the
+    default 45..135 around the top circle theta = 90 covers positive Gaussian curvature
+    outside, theta < 90, and negative inside).  Built in conformal coordinates
+    (R phi, R (psi - psi_c)) with psi(theta) = integral r / (R + r cos theta) dtheta and psi_c
+    the middle of the psi range: the surface metric is ((R + r cos theta) / R)^2 times
+    Euclidean there (1 on the top circle), so triangles keep their angles.
+
+    The torus does not solve Delta_B H = 0 (its H is not harmonic): the patch is a boundary
+    condition (positions and exact normals) whose faired solution is unknown, for comparing
+    results on different meshes.  `mean_curvature` is NaN; `distance` is the exact signed
+    distance to the torus; normals point away from the tube's core circle.
+    """
+    R, r = float(major_radius), float(minor_radius)
+    if not 0 < r < R:
+        raise ValueError("torus_patch: need 0 < minor_radius < major_radius")
+    root = math.sqrt(R * R - r * r)
+
+    def psi(theta):  # integral_0^theta r / (R + r cos t) dt, for |theta| < pi
+        return 2 * r / root * np.arctan(math.sqrt((R - r) / (R + r)) * np.tan(theta / 2))
+
+    def theta_of(p):
+        return 2 * np.arctan(math.sqrt((R + r) / (R - r)) * np.tan(p * root / (2 * r)))
+
+    t1, t2 = (math.radians(t) for t in theta_range)
+    if not -math.pi < t1 < t2 < math.pi:
+        raise ValueError("torus_patch: theta_range must satisfy -180 < theta1 < theta2 < 180")
+    psi1, psi2 = float(psi(t1)), float(psi(t2))
+    psi_c = 0.5 * (psi1 + psi2)
+    dom = _Rect(R * math.radians(angle) / 2, R * (psi2 - psi1) / 2)
+
+    def to_surface(uv):
+        phi, theta = uv[:, 0] / R, theta_of(uv[:, 1] / R + psi_c)
+        rho = R + r * np.cos(theta)
+        p = np.column_stack([rho * np.cos(phi), rho * np.sin(phi), r * np.sin(theta)])
+        n = np.column_stack([np.cos(theta) * np.cos(phi), np.cos(theta) * np.sin(phi), np.sin(theta)])
+        return p, n
+
+    def distance(p):
+        p = np.asarray(p, float)
+        return np.hypot(np.hypot(p[:, 0], p[:, 1]) - R, p[:, 2]) - r
+
+    def boundary_distance(p):
+        p = np.asarray(p, float)
+        theta = np.arctan2(p[:, 2], np.hypot(p[:, 0], p[:, 1]) - R)
+        return dom.sd(np.column_stack([R * np.arctan2(p[:, 1], p[:, 0]), R * (psi(theta) - psi_c)]))
+
+    return _patch(
+        "torus_patch", dom, n_free, irregular, seed, boundary_rings, to_surface,
+        (distance, boundary_distance), min(dom.U, dom.V), math.nan,
+    )  # fmt: skip

@@ -75,6 +75,16 @@ def test_hausdorff_is_symmetric_and_takes_the_larger_side():
     assert point_mesh_distance(small, big, fb).max() == pytest.approx(0.0, abs=1e-15)
 
 
+def test_dense_hausdorff_sees_the_surface_between_shared_vertices():
+    # A non-planar quad split along either diagonal: the same four vertices, two surfaces.
+    # The midpoint (1/2, 1/2, 0) of one diagonal is 1/(2√2) from both planes of the other
+    # split (x + z = 1 and z = y), with its projections inside those triangles.
+    v = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 1]])
+    a, b = np.array([[0, 1, 2], [0, 2, 3]]), np.array([[0, 1, 3], [1, 2, 3]])
+    assert hausdorff(v, a, v, b) == 0.0  # vertices only: blind to it
+    assert hausdorff(v, a, v, b, dense=True) == pytest.approx(1 / (2 * math.sqrt(2)), abs=1e-15)
+
+
 def test_symmetry_error_of_a_rectangle_under_a_quarter_turn():
     a, b = 1.0, 0.6
     v, f = rectangle(a, b)

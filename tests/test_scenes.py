@@ -289,3 +289,60 @@ def test_catenoid_is_parametrized_as_documented():
     assert math.isclose(phi.max(), 60.0) and math.isclose(phi.min(), -60.0)
     assert s.vertices[:, 2].max() == 1.0 and s.vertices[:, 2].min() == -1.0
     assert s.mean_curvature == 0.0
+
+
+# ------------------------------------------------------------------------------------
+# Torus patch
+
+
+@functools.cache
+def torus(irregular: bool):
+    return scenes.torus_patch(n_free=1000, irregular=irregular, seed=3)
+
+
+@pytest.mark.parametrize("irregular", [False, True])
+def test_torus_patch_is_on_the_torus_with_exact_normals(irregular):
+    s = torus(irregular)
+    p = s.vertices
+    rho = np.hypot(p[:, 0], p[:, 1])
+    assert np.abs(np.hypot(rho - 2.0, p[:, 2]) - 1.0).max() < 1e-14  # R = 2, r = 1
+    assert np.abs(s.distance(p)).max() < 1e-14
+    core = np.column_stack([2.0 * p[:, 0] / rho, 2.0 * p[:, 1] / rho, np.zeros(len(p))])
+    assert np.abs((p - core) - s.normals).max() < 1e-14  # r = 1: the normal is p - core
+    assert (np.einsum("ij,ikj->ik", face_normals(p, s.faces), s.normals[s.faces]) > 0).all()
+    # a point pushed along the normal by d has signed distance d
+    assert np.allclose(s.distance(p + 0.1 * s.normals), 0.1)
+    assert math.isnan(s.mean_curvature)
+
+
+@pytest.mark.parametrize("irregular", [False, True])
+def test_torus_patch_region_is_as_documented(irregular):
+    s = torus(irregular)
+    p = s.vertices
+    phi = np.degrees(np.arctan2(p[:, 1], p[:, 0]))
+    theta = np.degrees(np.arctan2(p[:, 2], np.hypot(p[:, 0], p[:, 1]) - 2.0))
+    fixed = ~s.free
+    assert math.isclose(phi.max(), 45.0) and math.isclose(phi.min(), -45.0)
+    assert math.isclose(theta.max(), 135.0) and math.isclose(theta.min(), 45.0)
+    assert (np.abs(phi[s.free]) < 45.0).all() and ((theta[s.free] > 45.0) & (theta[s.free] < 135.0)).all()
+    assert np.abs(s.boundary_distance(p[fixed])).max() < 1e-12
+    assert (s.boundary_distance(p[s.free]) < 0).all()
+    assert abs(s.n_free - 1000) < 100
+    assert not (border_mask(s.faces, len(p)) & s.free).any()
+    if irregular:
+        assert triangle_angles(p, s.faces).min() >= scenes.MIN_ANGLE_DEG
+        assert len(np.unique(valences(s.faces, len(p))[s.free])) >= 4
+
+
+def test_torus_patch_conformal_coordinates():
+    # uv are conformal: the triangles' angles on the surface are those in the (u, v) plane
+    s = torus(True)
+    flat = np.column_stack([s.uv, np.zeros(len(s.uv))])
+    assert np.abs(triangle_angles(s.vertices, s.faces) - triangle_angles(flat, s.faces)).max() < 3.0
+
+
+def test_torus_patch_invalid():
+    with pytest.raises(ValueError):
+        scenes.torus_patch(major_radius=1.0, minor_radius=1.0)
+    with pytest.raises(ValueError):
+        scenes.torus_patch(theta_range=(0.0, 200.0))

@@ -1,12 +1,14 @@
-// libFuzzer target for the library's entry points: geofair::fair and mean_curvature must
-// either return finite geometry with the fixed vertices untouched, or throw one of the two
-// documented exceptions. Anything else (a crash, a sanitizer report, another exception,
-// NaN in the result) is a bug.
+// libFuzzer target for the library's entry points: geofair::fair, mean_curvature and
+// intrinsic_delaunay_laplacian must either return finite geometry (fair: with the fixed
+// vertices untouched), or throw one of the two documented exceptions. Anything else (a
+// crash, a sanitizer report, another exception, NaN in the result) is a bug.
 //
 // Input layout (little-endian bytes, all wrapped into range): n_vertices (1 byte, 3..66),
-// n_triangles (1 byte, 1..128), options (1 byte), then per vertex 3 coordinates (int8 each,
-// scaled by 1/16) and a free flag (1 bit per vertex), then per triangle 3 vertex indices.
+// n_triangles (1 byte, 1..128), options (1 byte: inner, outer fairness, levels, normal
+// weighting), then per vertex 3 coordinates (int8 each, scaled by 1/16) and a free flag
+// (1 bit per vertex), then per triangle 3 vertex indices.
 #include "geofair/fairing.h"
+#include "geofair/intrinsic_delaunay.h"
 #include "geofair/mean_curvature.h"
 
 #include <cmath>
@@ -47,11 +49,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const geofair::SolverError&) {
   }
 
+  try {
+    const geofair::SparseRowMatrix L = geofair::intrinsic_delaunay_laplacian(V, F);
+    for (int k = 0; k < L.nonZeros(); ++k)
+      if (!std::isfinite(L.valuePtr()[k])) std::abort();
+  } catch (const geofair::InvalidInputError&) {
+  } catch (const geofair::SolverError&) {
+  }
+
   geofair::FairingOptions options;
   options.inner_fairness = flags & 1 ? geofair::InnerFairness::Conformal : geofair::InnerFairness::Uniform;
   options.outer_fairness = flags & 2 ? geofair::OuterFairness::Bilaplacian : geofair::OuterFairness::Intrinsic;
   options.max_iterations = 30;
   options.levels = 1 + (flags >> 2) % 3;
+  options.normal_weighting = static_cast<geofair::NormalWeighting>((flags >> 6) % 4);
   try {
     const geofair::FairingResult r = geofair::fair(V, F, free, nullptr, options);
     if (!r.vertices.allFinite() || !std::isfinite(r.residual)) std::abort();

@@ -1,6 +1,7 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/fairing.h"
+#include "geofair/intrinsic_delaunay.h"
 #include "geofair/laplace_beltrami.h"
 #include "geofair/progressive_mesh.h"
 #include "geofair/mean_curvature.h"
@@ -89,7 +90,8 @@ NormalWeighting parse_weighting(const std::string& s) {
   return parse<NormalWeighting>(s, "normal_weighting",
                                 {{"area", NormalWeighting::Area},
                                  {"angle", NormalWeighting::Angle},
-                                 {"max", NormalWeighting::Max}});
+                                 {"max", NormalWeighting::Max},
+                                 {"quadric", NormalWeighting::Quadric}});
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
@@ -192,7 +194,7 @@ PYBIND11_MODULE(geofair, m) {
 
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
         py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
-        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "area",
+        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "quadric",
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
         py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
         py::arg("progress") = py::none(),
@@ -215,8 +217,10 @@ inner_fairness : "uniform" (regular vertex distribution) or "conformal" (weights
     input mesh: discrete-conformal to it, keeps texture distortion low), section 7.3.
 outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
     of section 7.4 alone, for comparison).
-normal_weighting : free-vertex normals: "area" (the paper's: sum of face cross products),
-    "angle" or "max" (Max 1999).
+normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent
+    plane of a least-squares quadric through the one-ring, consistent on irregular meshes),
+    "area" (the paper's choice, section 6: sum of face cross products), "angle" (Thürmer &
+    Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in the README.
 tolerance : stop when the residual is at most this (dimensionless). The residual is
     L * max_i |Hbar_i - H_i| over the free vertices: how far the mean curvature H_i
     deviates from the cotangent-weighted mean Hbar_i = Σ_j w_ij H_j / Σ_j w_ij of its
@@ -268,6 +272,47 @@ the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of 
 Raises ValueError for invalid input.)doc");
 
   m.def(
+      "intrinsic_delaunay",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        py::gil_scoped_release release;
+        IntrinsicTriangulation T = intrinsic_delaunay(V, F);
+        return std::make_tuple(std::move(T.triangles), std::move(T.lengths), T.flips);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
+2006; Bobenko & Springborn 2007): same vertices, same surface, other edges (geodesics on
+the mesh) such that the two angles opposite every interior edge sum to at most π.
+
+Returns
+-------
+(triangles, lengths, flips): (m, 3) int32 vertex indices (counter-clockwise like faces; a
+triangle may repeat a vertex), (m, 3) float64 edge lengths in mesh units (lengths[t, k]
+from corner k to corner k+1 of triangle t), and the number of flips (0 if the mesh was
+intrinsically Delaunay).
+
+Raises ValueError for invalid input, RuntimeError if round-off made the flips cycle.)doc");
+
+  m.def(
+      "intrinsic_delaunay_laplacian",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        py::gil_scoped_release release;
+        return intrinsic_delaunay_laplacian(V, F);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(The cotangent Laplacian of the intrinsic Delaunay triangulation (Bobenko &
+Springborn 2007) as an (n, n) scipy.sparse CSR matrix, with the conventions of
+cotangent_laplacian: L[i, j] = Σ cot of the angles opposite the intrinsic edges between
+i and j, L[i, i] = -Σ_j L[i, j]. Every off-diagonal entry is >= 0 (to round-off), unlike
+the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_laplacian
+where the mesh is already intrinsically Delaunay.
+
+Raises ValueError for invalid input.)doc");
+
+  m.def(
       "progressive_mesh",
       [](const py::object& vertices, const py::object& faces, const py::object& free, int levels) {
         const Positions V = to_positions(vertices, "vertices");
@@ -303,7 +348,7 @@ uniform Laplacian (fair() smooths with its inner fairness weights).
 Raises ValueError for invalid input.)doc");
 
   m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
-        py::arg("normals") = py::none(), py::arg("normal_weighting") = "area",
+        py::arg("normals") = py::none(), py::arg("normal_weighting") = "quadric",
         R"doc(Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
 2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
 valence 3 or 4 and on the mesh border.
@@ -313,7 +358,9 @@ Parameters
 vertices : (n, 3) float64 array.
 faces : (m, 3) integer array of consistently oriented triangles.
 normals : (n, 3) float64 unit normals (tangent planes) or None to estimate them from the
-    triangles with `normal_weighting` ("area", the paper's choice, "angle" or "max").
+    triangles with `normal_weighting` ("quadric", the default: tangent plane of a
+    least-squares quadric through the one-ring; "area", the paper's choice; "angle" or
+    "max").
 
 Returns
 -------

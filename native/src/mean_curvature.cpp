@@ -63,6 +63,59 @@ struct NormalEquations {
   }
 };
 
+// Tangent plane of the least-squares paraboloid through q_i and its ring neighbours (and
+// the flaps' far corners below valence 5):
+// in the frame of the first guess n0, the height z_j = ⟨q_j - q_i, n0⟩ of neighbour j at
+// tangent coordinates (x_j, y_j) is fitted by z = a x + b y + (L x² + 2M xy + N y²)/2, each
+// equation scaled by 2/|q_j - q_i|² as the Moreton–Séquin rows (8)-(10) are; the normal is
+// (n0 - a bx - b by)/|…|. Taylor's theorem makes the tilt error O(h²) on any smooth surface
+// and any ring shape (the weighted normals are O(h) on irregular rings), so the curvature
+// fit of eq. (11) in that plane is consistent. Returns n0 where fewer than five samples
+// leave the fit undetermined or the fit tilts the plane by 45° or more.
+Vec3 fitted_normal(const OneRings& rings, const Positions& X, int i, const Vec3& n0) {
+  // Samples: the ring neighbours; below valence 5 (too few for five unknowns) also the
+  // vertices across the ring edges (the far corners of the flaps).
+  const int begin = rings.offset[i], end = rings.offset[i + 1];
+  const bool flaps = end - begin < 5;
+  const Vec3 q = X.row(i);
+  auto for_each_sample = [&](auto&& f) {
+    for (int k = begin; k < end; ++k) f(Vec3(X.row(rings.ring[k]).transpose() - q));
+    if (flaps)
+      for (int k = begin; k < end; ++k)
+        if (rings.has_face[k] && rings.across[k] >= 0)
+          f(Vec3(X.row(rings.across[k]).transpose() - q));
+  };
+  int count = 0;
+  double mean_dd = 0.0;
+  for_each_sample([&](const Vec3& d) { ++count, mean_dd += d.squaredNorm(); });
+  if (count < 5) return n0;
+  // Lengths in units of the samples' rms distance, so that the slopes and curvatures of
+  // the fit are of one order and the relative Tikhonov term does not depend on the scale.
+  const double unit = std::sqrt(mean_dd / count);
+  if (!(unit > 0.0) || !std::isfinite(unit)) return n0;
+  Vec3 bx, by;
+  tangent_basis(n0, bx, by);
+  Eigen::Matrix<double, 5, 5> AtA = Eigen::Matrix<double, 5, 5>::Zero();
+  Eigen::Matrix<double, 5, 1> Atz = Eigen::Matrix<double, 5, 1>::Zero();
+  for_each_sample([&](const Vec3& sample) {
+    const Vec3 d = sample / unit;
+    const double dd = d.squaredNorm();
+    if (!(dd > 0.0)) return;
+    const double x = d.dot(bx), y = d.dot(by), w = 2.0 / dd;
+    Eigen::Matrix<double, 5, 1> row;
+    row << w * x, w * y, 0.5 * w * x * x, w * x * y, 0.5 * w * y * y;
+    AtA.noalias() += row * row.transpose();
+    Atz += row * (w * d.dot(n0));
+  });
+  const double reg = 1e-12 * AtA.trace();
+  if (!(reg > 0.0)) return n0;
+  AtA.diagonal().array() += reg;
+  const Eigen::Matrix<double, 5, 1> c = AtA.ldlt().solve(Atz);
+  const double a = c(0), b = c(1);
+  if (!(a * a + b * b < 1.0)) return n0;
+  return (n0 - a * bx - b * by).normalized();
+}
+
 }  // namespace
 
 Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeighting weighting) {
@@ -82,7 +135,8 @@ Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeigh
         if (cn > 0.0) sum += std::atan2(cn, e1.dot(e2)) / cn * c;
         break;
       }
-      case NormalWeighting::Max: {
+      case NormalWeighting::Max:
+      case NormalWeighting::Quadric: {
         const double w = e1.squaredNorm() * e2.squaredNorm();
         if (w > 0.0) sum += c / w;
         break;
@@ -90,7 +144,9 @@ Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeigh
     }
   }
   const double len = sum.norm();
-  return len > 0.0 && std::isfinite(len) ? Vec3(sum / len) : Vec3::Zero();
+  if (!(len > 0.0) || !std::isfinite(len)) return Vec3::Zero();
+  if (weighting == NormalWeighting::Quadric) return fitted_normal(rings, X, i, sum / len);
+  return sum / len;
 }
 
 Vec3 spiral_sample(const Vec3& a, const Vec3& normal_a, const Vec3& b, const Vec3& normal_b,

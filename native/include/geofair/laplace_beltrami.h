@@ -33,8 +33,12 @@ SparseRowMatrix cotangent_laplacian(const Positions& V, const Triangles& F);
 /// S H_I = b with S_ii = Σ_j w_ij (6), S_ij = -w_ij for free q_j (7),
 /// b_i = Σ_{q_j ∈ V_B} w_ij H_j.
 ///
-/// S is #V_I×#V_I, symmetric and positive definite while no triangle area vanishes and the
-/// weights are positive. The sparsity pattern is built once; assemble() refreshes values.
+/// S is #V_I×#V_I, symmetric and positive definite while no triangle area vanishes: it is
+/// the stiffness matrix of piecewise-linear functions (its quadratic form is the Dirichlet
+/// energy), so the negative weights of obtuse triangles keep it definite; they only cost
+/// the M-matrix property (maximum principle), see intrinsic_delaunay.h and
+/// tests/test_negative_weights.py. The sparsity pattern is built once; assemble() refreshes
+/// values.
 class DirichletMatrix {
  public:
   explicit DirichletMatrix(const FairingRegion& region);

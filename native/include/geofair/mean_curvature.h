@@ -15,6 +15,16 @@ namespace geofair {
 
 /// Unit normal of vertex i from the triangles of its one-ring, weighted as requested.
 /// Returns the zero vector if the triangles are degenerate (no defined normal).
+///
+/// Quadric (beyond the paper): starting from Max's normal n0, the heights ⟨q_j − q_i, n0⟩
+/// of the ring neighbours are fitted by a x + b y + (L x² + 2M xy + N y²)/2 in tangent
+/// coordinates (each equation scaled by 2/|q_j − q_i|² like the rows of eqs. (8)–(10)), and
+/// the normal is that of the fitted plane, (n0 − a b_x − b b_y)/|…|. Taylor's theorem makes
+/// its error O(h²) on any smooth surface and ring shape, where weighted face normals are
+/// O(h) off by irregular rings; κ of eq. (8) divides the normal's error by |q_j − q_i|, so
+/// only an O(h²) normal gives a consistent H. Below valence 5 the vertices across the ring
+/// edges join the samples (five unknowns); falls back to n0 where fewer than five samples
+/// remain or the fitted plane tilts by 45° or more (a degenerate ring).
 Vec3 vertex_normal(const OneRings& rings, const Positions& X, int i, NormalWeighting weighting);
 
 /// The extra sample p_j between the ring neighbours a = q_j and b = q_{j+1} (section 6.2).
@@ -58,11 +68,11 @@ inline bool needs_spiral_samples(const OneRings& rings, int i) {
 /// \param V        #V×3 positions
 /// \param F        #F×3 consistently oriented triangles
 /// \param normals  #V×3 unit normals (the tangent planes), or nullptr to estimate them
-///                 with `weighting` from the triangles (section 6)
+///                 with `weighting` from the triangles (section 6; the paper's is Area)
 /// \return #V mean curvatures, 1/length, H = 1/r on a sphere with outward normals;
 ///         0 at vertices that belong to no triangle.
 /// \throw InvalidInputError for invalid topology, non-finite positions or normals.
 Eigen::VectorXd mean_curvature(const Positions& V, const Triangles& F, const Positions* normals,
-                               NormalWeighting weighting = NormalWeighting::Area);
+                               NormalWeighting weighting = NormalWeighting::Quadric);
 
 }  // namespace geofair

@@ -35,9 +35,12 @@ class SolverError : public std::runtime_error {
 
 /// How the tangent plane of a free vertex is estimated (Schneider & Kobbelt 2001, section 6).
 enum class NormalWeighting {
-  Area,   ///< normalized sum of face cross products: the paper's choice (section 6)
-  Angle,  ///< face normals weighted by the incident angle (Thürmer & Wüthrich 1998)
-  Max,    ///< cross products divided by the squared edge lengths (Max 1999)
+  Area,     ///< normalized sum of face cross products: the paper's choice (section 6)
+  Angle,    ///< face normals weighted by the incident angle (Thürmer & Wüthrich 1998)
+  Max,      ///< cross products divided by the squared edge lengths (Max 1999)
+  Quadric,  ///< tangent plane of the least-squares quadric (osculating paraboloid) through
+            ///< the one-ring (see vertex_normal; beyond the paper): consistent on irregular
+            ///< meshes of any smooth surface. The default.
 };
 
 /// Inner fairness: where vertices sit on the surface (Schneider & Kobbelt 2001, section 7.3).
@@ -59,11 +62,12 @@ constexpr int kParallelMin = 2000;
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
 
-/// Options of geofair::fair. Defaults follow the paper.
+/// Options of geofair::fair. Defaults follow the paper except normal_weighting (Quadric; the
+/// paper's is Area), see README "Accuracy".
 struct FairingOptions {
   InnerFairness inner_fairness = InnerFairness::Uniform;
   OuterFairness outer_fairness = OuterFairness::Intrinsic;
-  NormalWeighting normal_weighting = NormalWeighting::Area;
+  NormalWeighting normal_weighting = NormalWeighting::Quadric;
   /// Stop when the residual L·max|H̄ − H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the
