@@ -111,7 +111,8 @@ def test_default_levels_follow_the_region_size():
     assert r.vertices_per_level == sorted(r.vertices_per_level)
 
 
-def single_and_multigrid(s, v, **kw):
+def single_and_multigrid(s, v, tolerance=1e-5, **kw):
+    kw["tolerance"] = tolerance
     t0 = time.perf_counter()
     single = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, levels=1, **kw)
     t1 = time.perf_counter()
@@ -120,13 +121,16 @@ def single_and_multigrid(s, v, **kw):
     print(
         f"\n{s.name} {kw}: single level {single.iterations} iterations {t1 - t0:.2f} s, "
         f"max error {max_error(s, single):.3e}; multigrid {multi.iterations_per_level} "
-        f"{t2 - t1:.2f} s, max error {max_error(s, multi):.3e}"
+        f"{t2 - t1:.2f} s, max error {max_error(s, multi):.3e}, difference "
+        f"{np.linalg.norm(multi.vertices - single.vertices, axis=1).max() / s.size:.2e} · size"
     )
     assert single.converged and multi.converged
     assert len(multi.iterations_per_level) == 3
-    # The same discrete solution: the errors against the analytic surface agree to a small
-    # part of the discretization error.
-    assert abs(max_error(s, multi) - max_error(s, single)) <= 0.05 * max_error(s, single)
+    # The same discrete solution: the two results differ by no more than the iteration error
+    # that the tolerance allows (measured: 0.17-0.26 · tolerance · size), far less than the
+    # discretization error of these meshes (up to 1e-4 · size on the catenoid).
+    difference = np.linalg.norm(multi.vertices - single.vertices, axis=1).max()
+    assert difference <= tolerance * s.size
     return single, multi
 
 
