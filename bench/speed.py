@@ -8,7 +8,7 @@ memory and max radial error, and the time ratio ours/CGAL. Then the measured tim
 (least-squares slope of log time over log free vertices) of both.
 
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
-        [--normal-weighting max|area|angle] [--inner uniform|conformal] [--no-cgal]
+        [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
         [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
@@ -134,7 +134,7 @@ def slope(ns, ts):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[2000, 13000, 100000, 1000000])
-    parser.add_argument("--normal-weighting", default="max")
+    parser.add_argument("--normal-weighting", default="quadric", help="default: the library's")
     parser.add_argument("--inner", default="uniform")
     parser.add_argument("--max-iterations", type=int, default=20000)
     parser.add_argument("--no-cgal", action="store_true")
