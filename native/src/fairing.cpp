@@ -13,8 +13,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-#include <cstdlib>
-#include <cstdio>
 #include <cmath>
 #include <deque>
 #include <memory>
