@@ -162,6 +162,18 @@ Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& 
   return mean_curvature(V, F, N ? &*N : nullptr, w);
 }
 
+// A binding of f(V, F) taking (vertices, faces) arrays: converts and checks them, then runs
+// f without the GIL.
+template <class Function>
+auto on_mesh(Function f) {
+  return [f](const py::object& vertices, const py::object& faces) {
+    const Positions V = to_positions(vertices, "vertices");
+    const Triangles F = to_triangles(faces);
+    py::gil_scoped_release release;
+    return f(V, F);
+  };
+}
+
 }  // namespace
 
 PYBIND11_MODULE(geofair, m) {
@@ -254,12 +266,7 @@ RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
 
   m.def(
       "cotangent_laplacian",
-      [](const py::object& vertices, const py::object& faces) {
-        const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
-        py::gil_scoped_release release;
-        return cotangent_laplacian(V, F);
-      },
+      on_mesh([](const Positions& V, const Triangles& F) { return cotangent_laplacian(V, F); }),
       py::arg("vertices"), py::arg("faces"),
       R"doc(The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
 2001, eqs. (5)-(7)) as an (n, n) scipy.sparse CSR matrix (needs scipy).
@@ -273,13 +280,10 @@ Raises ValueError for invalid input.)doc");
 
   m.def(
       "intrinsic_delaunay",
-      [](const py::object& vertices, const py::object& faces) {
-        const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
-        py::gil_scoped_release release;
+      on_mesh([](const Positions& V, const Triangles& F) {
         IntrinsicTriangulation T = intrinsic_delaunay(V, F);
         return std::make_tuple(std::move(T.triangles), std::move(T.lengths), T.flips);
-      },
+      }),
       py::arg("vertices"), py::arg("faces"),
       R"doc(Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
 2006; Bobenko & Springborn 2007): same vertices, same surface, other edges (geodesics on
@@ -296,12 +300,9 @@ Raises ValueError for invalid input, RuntimeError if round-off made the flips cy
 
   m.def(
       "intrinsic_delaunay_laplacian",
-      [](const py::object& vertices, const py::object& faces) {
-        const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
-        py::gil_scoped_release release;
+      on_mesh([](const Positions& V, const Triangles& F) {
         return intrinsic_delaunay_laplacian(V, F);
-      },
+      }),
       py::arg("vertices"), py::arg("faces"),
       R"doc(The cotangent Laplacian of the intrinsic Delaunay triangulation (Bobenko &
 Springborn 2007) as an (n, n) scipy.sparse CSR matrix, with the conventions of

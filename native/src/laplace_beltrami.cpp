@@ -74,7 +74,6 @@ DirichletMatrix::DirichletMatrix(const FairingRegion& region) : region_(region) 
   slot_weight_.assign(r.offset[nf], 0.0);
   slot_value_.assign(r.offset[nf], -1);
   diag_value_.assign(nf, -1);
-  disk_area_.assign(nf, 0.0);
   const int* outer = S_.outerIndexPtr();
   const int* inner = S_.innerIndexPtr();
   auto find = [&](int row, int col) {
@@ -103,14 +102,6 @@ void DirichletMatrix::assemble(const Positions& X) {
       if (slot_value_[k] >= 0) values[slot_value_[k]] -= slot_weight_[k];
     }
     values[diag_value_[i]] += diag;
-    double twice_area = 0.0;
-    const Vec3 qi = X.row(i);
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
-      if (r.has_face[k])
-        twice_area += (X.row(r.ring[k]).transpose() - qi)
-                          .cross(X.row(r.ring[r.next_slot(i, k)]).transpose() - qi)
-                          .norm();
-    disk_area_[i] = 0.5 * twice_area;
   }
 }
 
@@ -137,25 +128,6 @@ Eigen::VectorXd DirichletMatrix::defects(const Eigen::VectorXd& H) const {
     d(i) = sum;
   }
   return d;
-}
-
-double DirichletMatrix::max_laplace_beltrami(const Eigen::VectorXd& H,
-                                             const Eigen::VectorXd* source) const {
-  const OneRings& r = region_.rings;
-  const int nf = region_.n_free;
-  double worst = 0.0;
-  bool nan = false;
-#pragma omp parallel for schedule(static) reduction(max : worst) reduction(|| : nan) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i) {
-    double sum = 0.0;
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
-      sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
-    if (source) sum += (*source)(i);
-    const double defect = 1.5 * std::abs(sum) / std::max(disk_area_[i], 1e-300);
-    if (std::isnan(defect)) nan = true;
-    worst = std::max(worst, defect);
-  }
-  return nan ? std::numeric_limits<double>::quiet_NaN() : worst;
 }
 
 double DirichletMatrix::max_mean_deviation(const Eigen::VectorXd& H,

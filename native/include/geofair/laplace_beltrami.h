@@ -49,13 +49,6 @@ class DirichletMatrix {
   /// b for the current weights and the mean curvatures H (#region, boundary rows used).
   Eigen::VectorXd rhs(const Eigen::VectorXd& H) const;
 
-  /// max_i |Δ_B H(q_i)| over the free vertices, with the discrete Laplace–Beltrami operator
-  /// of eq. (5): Δ_B g(q_i) = 3/(2 A_i) Σ_j w_ij (g_j − g_i), A_i the area of the 1-disk.
-  /// Units: 1/length³. NaN if any value is NaN.
-  /// With `source` (#V_I), the defect of Σ_j w_ij (H_i − H_j) = source_i instead.
-  double max_laplace_beltrami(const Eigen::VectorXd& H,
-                              const Eigen::VectorXd* source = nullptr) const;
-
   /// max_i |H̄_i − H_i| over the free vertices, H̄_i = Σ_j w_ij H_j / Σ_j w_ij the
   /// cotangent-weighted mean of the neighbours: the Jacobi-scaled residual |(b − S H_I)_i| /
   /// S_ii of eq. (12), equal to (2 A_i / 3) |Δ_B H(q_i)| / Σ_j w_ij with Δ_B of eq. (5), so
@@ -77,7 +70,6 @@ class DirichletMatrix {
   std::vector<double> slot_weight_;  // w_ij per ring slot of the free vertices
   std::vector<int> slot_value_;      // index into S_'s values, or -1 for a boundary neighbour
   std::vector<int> diag_value_;      // index of S_ii
-  std::vector<double> disk_area_;    // A_i, area of the 1-disk of free vertex i
 };
 
 }  // namespace geofair
