@@ -54,6 +54,7 @@ __all__ = [
     "face_normals",
     "triangle_angles",
     "torus_patch",
+    "squashed_lattice",
 ]
 
 MIN_ANGLE_DEG = 18.0
@@ -217,6 +218,23 @@ class _Rect:
 
     def bump(self, uv):
         return (1.0 - (uv[:, 0] / self.U) ** 2) * (1.0 - (uv[:, 1] / self.V) ** 2)
+
+
+def squashed_lattice(nu: int, width: float, squash: float = 4.0):
+    """A mesh of obtuse triangles in the (u, v) plane: a hexagonal lattice of nu + 1 columns
+    over u in [-width/2, width/2] and 2 nu + 1 rows, squashed `squash` times along v
+    (centred on v = 0), triangulated as the unsquashed lattice. Nearly every triangle has
+    the apex angle 2 atan(squash / sqrt 3) (133 degrees for 4); the shifted rows are
+    clipped to the width at the sides. Returns uv (n, 2) float64 and counter-clockwise
+    faces (m, 3) int64."""
+    hu = width / nu
+    hv = hu * math.sqrt(3) / 2 / squash
+    nv = 2 * nu
+    j, i = np.meshgrid(np.arange(nv + 1), np.arange(nu + 1), indexing="ij")
+    u = np.clip(-width / 2 + (i + 0.5 * (j % 2)) * hu, -width / 2, width / 2).ravel()
+    v = (j * hv - nv * hv / 2).ravel()
+    uv = np.column_stack([u, v])
+    return uv, _ccw(uv, Delaunay(uv * [1.0, squash]).simplices.astype(np.int64))
 
 
 def _hex_lattice(U, V, h, rng=None):

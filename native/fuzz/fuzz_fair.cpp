@@ -58,7 +58,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   geofair::FairingOptions options;
-  options.inner_fairness = flags & 1 ? geofair::InnerFairness::Conformal : geofair::InnerFairness::Uniform;
+  // Conformal inner fairness with the mesh's or the intrinsic Delaunay weights, picked by the
+  // bits that also pick the levels (a quotient beside their remainder).
+  options.inner_fairness = !(flags & 1)                ? geofair::InnerFairness::Uniform
+                           : ((flags >> 2) / 3) % 2 == 0 ? geofair::InnerFairness::Conformal
+                                                         : geofair::InnerFairness::ConformalIntrinsic;
   options.outer_fairness = flags & 2 ? geofair::OuterFairness::Bilaplacian : geofair::OuterFairness::Intrinsic;
   options.max_iterations = 30;
   options.levels = 1 + (flags >> 2) % 3;

@@ -112,7 +112,9 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   FairingOptions options;
   options.inner_fairness = parse<InnerFairness>(
       inner_fairness, "inner_fairness",
-      {{"uniform", InnerFairness::Uniform}, {"conformal", InnerFairness::Conformal}});
+      {{"uniform", InnerFairness::Uniform},
+       {"conformal", InnerFairness::Conformal},
+       {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
   options.outer_fairness = parse<OuterFairness>(
       outer_fairness, "outer_fairness",
       {{"intrinsic", OuterFairness::Intrinsic}, {"bilaplacian", OuterFairness::Bilaplacian}});
@@ -225,8 +227,16 @@ free : (n,) bool array, True where a vertex may move. Each free vertex must be s
 boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
     prescribed unit normals (other rows are ignored). None: the area-weighted normal of the
     triangles at that vertex that contain no free vertex (the surrounding surface).
-inner_fairness : "uniform" (regular vertex distribution) or "conformal" (weights of the
-    input mesh: discrete-conformal to it, keeps texture distortion low), section 7.3.
+inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
+    vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
+    of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
+    that obtuse triangles make negative are clamped to 0); or "conformal_intrinsic" (the
+    discrete harmonic map with the cotangent weights of the intrinsic Delaunay
+    triangulation of the input, Bobenko & Springborn 2007: never negative, nothing
+    clamped, so vertices land where the harmonic map puts them also on meshes of obtuse
+    triangles; identical to "conformal" on a mesh that needs no intrinsic flip. On rough
+    inputs (noise as large as the features) it can stall where "conformal" converges; see
+    the README, "Negative cotangent weights").
 outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
     of section 7.4 alone, for comparison).
 normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent

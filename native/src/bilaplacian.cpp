@@ -6,13 +6,13 @@
 
 namespace geofair {
 
-Positions bilaplacian_initial_mesh(const FairingRegion& region, const std::vector<double>& lambda,
+Positions bilaplacian_initial_mesh(const FairingRegion& region,
+                                   const InnerFairnessWeights& lambda,
                                    const Positions& X) {
-  const OneRings& r = region.rings;
   const int nf = region.n_free;
   using Mat3 = Eigen::Matrix3d;
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(std::size_t(r.offset[nf]) * 7 * 3 + 9 * nf);
+  triplets.reserve(std::size_t(lambda.offset[nf]) * 7 * 3 + 9 * nf);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * nf);
 
   // Adds  weight · Δf(q_j)  to the equation block of free vertex `row`: the part linear in
@@ -33,12 +33,14 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region, const std::vecto
       }
     };
     add_term(j, -1.0);
-    for (int k = r.offset[j]; k < r.offset[j + 1]; ++k) add_term(r.ring[k], lambda[k]);
+    for (int k = lambda.offset[j]; k < lambda.offset[j + 1]; ++k)
+      add_term(lambda.neighbour[k], lambda.weight[k]);
     rhs.segment<3>(3 * row) -= weight * (P * constant);
   };
   for (int i = 0; i < nf; ++i) {
     add_laplacian(i, -1.0, i);
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) add_laplacian(i, lambda[k], r.ring[k]);
+    for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k)
+      add_laplacian(i, lambda.weight[k], lambda.neighbour[k]);
   }
   Eigen::SparseMatrix<double> K(3 * nf, 3 * nf);
   K.setFromTriplets(triplets.begin(), triplets.end());

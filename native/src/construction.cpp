@@ -9,7 +9,7 @@
 
 namespace geofair {
 
-Construction::Construction(const FairingRegion& region, std::vector<double> lambda,
+Construction::Construction(const FairingRegion& region, InnerFairnessWeights lambda,
                            const FairingOptions& options, double length)
     : region_(region),
       lambda_(std::move(lambda)),
@@ -19,7 +19,7 @@ Construction::Construction(const FairingRegion& region, std::vector<double> lamb
       H_(region.n),
       dirichlet_(region),
       solver_(options.cg_iterations),
-      tangential_solver_(region.rings, region.n_free, kTangentialIterations) {
+      tangential_solver_(region.rings, lambda_, region.n_free, kTangentialIterations) {
   N_.bottomRows(region.n - region.n_free) = region.g1_normals;
 }
 

@@ -73,8 +73,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   ProgressiveMesh hierarchy;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
   if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic) {
-    const std::vector<double> lambda =
-        inner_fairness_weights(region.rings, X0, options.inner_fairness);
+    const InnerFairnessWeights lambda = inner_fairness_weights(region, X0, options.inner_fairness);
     Xs = hierarchy_positions(region, X0, &lambda);
     hierarchy = build_progressive_mesh(region, Xs, levels);
   }
@@ -111,7 +110,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     // conformal weights of the smoothed copy with their connectivity (see fairing.h).
     const Positions X0_level = gather(finest ? X0 : Xs, lr.global);
     const InnerFairness inner = finest ? options.inner_fairness : InnerFairness::Conformal;
-    std::vector<double> lambda = inner_fairness_weights(lr.rings, X0_level, inner);
+    InnerFairnessWeights lambda = finest ? inner_fairness_weights(lr, X0_level, inner)
+                                         : ring_inner_fairness_weights(lr.rings, X0_level, inner);
     Positions Y = gather(X, lr.global);
     if (l == 0) {
       Y = bilaplacian_initial_mesh(lr, lambda, Y);

@@ -1,6 +1,8 @@
-// Uniform and discrete-conformal inner fairness weights (section 7.3).
+// Uniform and discrete-conformal inner fairness weights (section 7.3), the latter from the
+// intrinsic Delaunay triangulation (Bobenko & Springborn 2007), and the global tangential step.
 #include "geofair/inner_fairness.h"
 
+#include "geofair/intrinsic_delaunay.h"
 #include "geofair/laplace_beltrami.h"
 
 #include <algorithm>
@@ -8,53 +10,85 @@
 
 namespace geofair {
 
-std::vector<double> inner_fairness_weights(const OneRings& rings, const Positions& X0,
-                                           InnerFairness type) {
+namespace {
+
+// λ_ij = w_ij / Σ_k w_ik over vertex i's weights [begin, end), w clamped at 0; uniform if
+// they all vanish (or are not finite).
+void normalize(double* w, int m) {
+  double sum = 0.0;
+  for (int k = 0; k < m; ++k) {
+    w[k] = std::max(w[k], 0.0);
+    sum += w[k];
+  }
+  if (!(sum > 0.0) || !std::isfinite(sum)) {
+    std::fill(w, w + m, 1.0);
+    sum = m;
+  }
+  for (int k = 0; k < m; ++k) w[k] /= sum;
+}
+
+}  // namespace
+
+InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Positions& X0,
+                                                 InnerFairness type) {
   const int nv = int(rings.offset.size()) - 1;
-  std::vector<double> lambda(rings.ring.size(), 0.0);
+  InnerFairnessWeights lambda;
+  lambda.offset = rings.offset;
+  lambda.neighbour = rings.ring;
+  lambda.weight.assign(rings.ring.size(), 1.0);
   for (int i = 0; i < nv; ++i) {
     const int begin = rings.offset[i], m = rings.valence(i);
     if (m == 0) continue;
-    double sum = 0.0;
-    if (type == InnerFairness::Conformal) {
-      cotangent_weights(rings, X0, i, lambda.data() + begin);
-      for (int k = begin; k < begin + m; ++k) {
-        lambda[k] = std::max(lambda[k], 0.0);
-        sum += lambda[k];
-      }
-    }
-    if (!(sum > 0.0) || !std::isfinite(sum)) {
-      std::fill(lambda.begin() + begin, lambda.begin() + begin + m, 1.0);
-      sum = m;
-    }
-    for (int k = begin; k < begin + m; ++k) lambda[k] /= sum;
+    if (type != InnerFairness::Uniform) cotangent_weights(rings, X0, i, lambda.weight.data() + begin);
+    normalize(lambda.weight.data() + begin, m);
   }
   return lambda;
 }
 
-Vec3 weighted_centroid(const OneRings& rings, const std::vector<double>& lambda,
-                       const Positions& X, int i) {
-  Vec3 c = Vec3::Zero();
-  for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-    c += lambda[k] * X.row(rings.ring[k]).transpose();
-  return c;
+InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const Positions& X0,
+                                            InnerFairness type) {
+  if (type != InnerFairness::ConformalIntrinsic)
+    return ring_inner_fairness_weights(region.rings, X0, type);
+  int flips = 0;
+  const SparseRowMatrix L =
+      intrinsic_delaunay_laplacian(X0, region.triangles, &flips);
+  // Intrinsically Delaunay already: the mesh's own cotangent weights, as the paper's.
+  if (flips == 0) return ring_inner_fairness_weights(region.rings, X0, type);
+  InnerFairnessWeights lambda;
+  lambda.offset.assign(1, 0);
+  lambda.neighbour.reserve(L.nonZeros());
+  lambda.weight.reserve(L.nonZeros());
+  for (int i = 0; i < region.n; ++i) {
+    for (SparseRowMatrix::InnerIterator it(L, i); it; ++it) {
+      if (it.col() == i) continue;
+      lambda.neighbour.push_back(int(it.col()));
+      lambda.weight.push_back(it.value());
+    }
+    lambda.offset.push_back(int(lambda.neighbour.size()));
+    normalize(lambda.weight.data() + lambda.offset[i], lambda.offset[i + 1] - lambda.offset[i]);
+  }
+  return lambda;
 }
 
-TangentialSolver::TangentialSolver(const OneRings& rings, int n_free, int iterations)
+TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWeights& pattern,
+                                   int n_free, int iterations)
     : rings_(rings), n_free_(n_free) {
-  // Block pattern: 2×2 blocks at (i, i) and at (i, j) for free ring neighbours j.
-  std::vector<Eigen::Triplet<double>> pattern;
+  // Block pattern: 2×2 blocks at (i, i) and at (i, j) for free neighbours j (of λ: with
+  // intrinsic weights not necessarily ring neighbours).
+  const std::vector<int>& offset = pattern.offset;
+  const std::vector<int>& neighbour = pattern.neighbour;
+  std::vector<Eigen::Triplet<double>> blocks;
   for (int i = 0; i < n_free; ++i) {
     auto block = [&](int j) {
       for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b) pattern.emplace_back(2 * i + a, 2 * j + b, 1.0);
+        for (int b = 0; b < 2; ++b) blocks.emplace_back(2 * i + a, 2 * j + b, 1.0);
     };
     block(i);
-    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-      if (rings.ring[k] < n_free) block(rings.ring[k]);
+    for (int k = offset[i]; k < offset[i + 1]; ++k)
+      if (neighbour[k] < n_free) block(neighbour[k]);
   }
   A_.resize(2 * n_free, 2 * n_free);
-  A_.setFromTriplets(pattern.begin(), pattern.end());
+  A_.setFromTriplets(blocks.begin(), blocks.end());
   A_.makeCompressed();
   // Blocks are found through the first of their four entries (row 2i, column 2j); the
   // second row of the block starts at the same offset in row 2i+1.
@@ -64,17 +98,17 @@ TangentialSolver::TangentialSolver(const OneRings& rings, int n_free, int iterat
     return int(std::lower_bound(inner, end, col) - A_.innerIndexPtr());
   };
   diag_value_.resize(n_free);
-  slot_value_.assign(rings.offset[n_free], -1);
+  slot_value_.assign(offset[n_free], -1);
   for (int i = 0; i < n_free; ++i) {
     diag_value_[i] = find(2 * i, 2 * i);
-    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-      if (rings.ring[k] < n_free) slot_value_[k] = find(2 * i, 2 * rings.ring[k]);
+    for (int k = offset[i]; k < offset[i + 1]; ++k)
+      if (neighbour[k] < n_free) slot_value_[k] = find(2 * i, 2 * neighbour[k]);
   }
   solver_.setMaxIterations(iterations);
   solver_.setTolerance(1e-12);
 }
 
-void TangentialSolver::step(const std::vector<double>& lambda, const Positions& N, double damping,
+void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions& N, double damping,
                             Positions& X) {
   const int nf = n_free_;
   std::vector<Vec3> t1(nf), t2(nf);
@@ -95,16 +129,17 @@ void TangentialSolver::step(const std::vector<double>& lambda, const Positions& 
     const int p = diag_value_[i];
     entry(i, p, 0, 0) = entry(i, p, 1, 1) = 1.0;
     entry(i, p, 0, 1) = entry(i, p, 1, 0) = 0.0;
-    const Vec3 residual = weighted_centroid(rings_, lambda, X, i) - X.row(i).transpose();
+    const Vec3 residual = weighted_centroid(lambda, X, i) - X.row(i).transpose();
     rhs(2 * i) = residual.dot(t1[i]);
     rhs(2 * i + 1) = residual.dot(t2[i]);
-    for (int k = rings_.offset[i]; k < rings_.offset[i + 1]; ++k) {
+    for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k) {
       if (slot_value_[k] < 0) continue;
-      const int j = rings_.ring[k], q = slot_value_[k];
-      entry(i, q, 0, 0) = -lambda[k] * t1[i].dot(t1[j]);
-      entry(i, q, 0, 1) = -lambda[k] * t1[i].dot(t2[j]);
-      entry(i, q, 1, 0) = -lambda[k] * t2[i].dot(t1[j]);
-      entry(i, q, 1, 1) = -lambda[k] * t2[i].dot(t2[j]);
+      const int j = lambda.neighbour[k], q = slot_value_[k];
+      const double w = lambda.weight[k];
+      entry(i, q, 0, 0) = -w * t1[i].dot(t1[j]);
+      entry(i, q, 0, 1) = -w * t1[i].dot(t2[j]);
+      entry(i, q, 1, 0) = -w * t2[i].dot(t1[j]);
+      entry(i, q, 1, 1) = -w * t2[i].dot(t2[j]);
     }
   }
   solver_.compute(A_);

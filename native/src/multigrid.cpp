@@ -21,7 +21,7 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
     double* w = weights.data() + splits.offset[s];
     const int m = splits.offset[s + 1] - splits.offset[s];
     std::fill(w, w + m, 1.0 / m);
-    if (inner != InnerFairness::Conformal) continue;
+    if (inner == InnerFairness::Uniform) continue;
     // The ring of a split free vertex is a closed fan: cotangents of both triangles.
     const Vec3 q = X0.row(splits.vertex[s]);
     double sum = 0.0;
@@ -39,7 +39,7 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 }
 
 void prolongate(const FairingRegion& level, const VertexSplits& splits,
-                const std::vector<double>& weights, const std::vector<double>& lambda,
+                const std::vector<double>& weights, const InnerFairnessWeights& lambda,
                 Positions& X, Eigen::VectorXd& H, Positions& N) {
   const OneRings& rings = level.rings;
 
@@ -77,7 +77,7 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
   const Positions P = X, NP = N;
   for (int sweep = 0; sweep < kProlongationSweeps; ++sweep)
     for (int l : disk) {
-      const Vec3 c = weighted_centroid(rings, lambda, X, l);
+      const Vec3 c = weighted_centroid(lambda, X, l);
       if (is_new[l]) {
         X.row(l) = c;
         continue;

@@ -96,15 +96,18 @@ int default_levels(int n_free) {
 }
 
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X_input,
-                              const std::vector<double>* lambda) {
+                              const InnerFairnessWeights* lambda) {
   Positions X = X_input;
   const OneRings& r = region.rings;
   for (int sweep = 0; sweep < kHierarchySmoothing; ++sweep) {
     Positions Y = X;
     for (int i = 0; i < region.n_free; ++i) {
       Vec3 c = Vec3::Zero();
-      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
-        c += (lambda ? (*lambda)[k] : 1.0 / r.valence(i)) * X.row(r.ring[k]).transpose();
+      if (lambda)
+        c = weighted_centroid(*lambda, X, i);
+      else
+        for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+          c += (1.0 / r.valence(i)) * X.row(r.ring[k]).transpose();
       Y.row(i) = 0.5 * (X.row(i) + c.transpose());
     }
     X.swap(Y);

@@ -9,7 +9,7 @@
 
 namespace geofair {
 
-double update_free_vertices(const FairingRegion& region, const std::vector<double>& lambda,
+double update_free_vertices(const FairingRegion& region, const InnerFairnessWeights& lambda,
                             const Eigen::VectorXd& H_target, NormalWeighting weighting,
                             double damping, Positions& X, Positions& N,
                             const std::vector<int>* subset,
@@ -23,7 +23,7 @@ double update_free_vertices(const FairingRegion& region, const std::vector<doubl
     if (n.squaredNorm() == 0.0) continue;  // degenerate ring: leave the vertex this pass
     N.row(i) = n;
     const Vec3 q = X.row(i);
-    const Vec3 c = weighted_centroid(rings, lambda, X, i);
+    const Vec3 c = weighted_centroid(lambda, X, i);
     const Vec3 q_tilde = tangential ? Vec3(c - (c - q).dot(n) * n) : q;
     const CurvatureEstimate est =
         moreton_sequin(rings, X, N, i, q_tilde, n, needs_spiral_samples(rings, i));

@@ -2,6 +2,7 @@
 // section 7.4, last part; Fig. 1c).
 #pragma once
 
+#include "geofair/inner_fairness.h"
 #include "geofair/region.h"
 #include "geofair/types.h"
 
@@ -20,10 +21,11 @@ namespace geofair {
 /// through n_b only next to the boundary; the 3#V_I×3#V_I system is solved by sparse LU.
 ///
 /// \param X       #region×3 positions (boundary rows are the fixed data)
-/// \param lambda  inner fairness weights per ring slot of every region vertex
+/// \param lambda  inner fairness weights of every region vertex (inner_fairness_weights)
 /// \return #region×3 positions with the free rows replaced.
 /// \throw SolverError if the sparse factorization fails.
-Positions bilaplacian_initial_mesh(const FairingRegion& region, const std::vector<double>& lambda,
+Positions bilaplacian_initial_mesh(const FairingRegion& region,
+                                   const InnerFairnessWeights& lambda,
                                    const Positions& X);
 
 }  // namespace geofair

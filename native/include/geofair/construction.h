@@ -25,9 +25,9 @@ struct IterationReport {
 class Construction {
  public:
   /// \param region  the mesh to fair (kept by reference)
-  /// \param lambda  inner fairness weights per ring slot (inner_fairness_weights)
+  /// \param lambda  inner fairness weights (inner_fairness_weights)
   /// \param length  L, the length that makes the residual dimensionless (see fairing.h)
-  Construction(const FairingRegion& region, std::vector<double> lambda,
+  Construction(const FairingRegion& region, InnerFairnessWeights lambda,
                const FairingOptions& options, double length);
 
   /// Normals and Moreton–Séquin H of all vertices of X (#region×3), S and the residual
@@ -60,13 +60,13 @@ class Construction {
   /// Iterations performed by run() so far, all calls together.
   long iterations() const { return iterations_; }
 
-  const std::vector<double>& lambda() const { return lambda_; }
+  const InnerFairnessWeights& lambda() const { return lambda_; }
 
  private:
   void curvatures(const Positions& X);
 
   const FairingRegion& region_;
-  std::vector<double> lambda_;
+  InnerFairnessWeights lambda_;
   const FairingOptions& options_;
   double length_;
   Positions N_;

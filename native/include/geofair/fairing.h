@@ -24,6 +24,17 @@ struct FairingResult {
 /// with the G1 boundary condition of positions and unit normals at the fixed vertices that
 /// share a triangle with a free vertex.
 ///
+/// Inner fairness (section 7.3, options.inner_fairness, see inner_fairness_weights): uniform
+/// weights give a regular vertex distribution; conformal ones the discrete harmonic map
+/// with the cotangent weights of the ORIGINAL mesh, negative weights (obtuse triangles)
+/// clamped to 0 (InnerFairness::Conformal, the paper's weights), or with the cotangent
+/// weights of the original's intrinsic Delaunay triangulation, which are never negative
+/// (InnerFairness::ConformalIntrinsic; Bobenko & Springborn 2007, "A discrete
+/// Laplace–Beltrami operator for simplicial surfaces"): the same weights where no edge needs
+/// a flip; elsewhere the vertices land on the harmonic map of the original's metric
+/// instead of 0.35–3.2 edge lengths off it, but the construction can stall on rough inputs
+/// (see inner_fairness.h). Either way only the finest level's weights decide the result.
+///
 /// Steps (Fig. 6): a progressive mesh of the region (7.4, progressive_mesh.h); on the base
 /// mesh the linear Δ²f = 0 initial mesh (7.4), then the construction: per iteration,
 /// normals and Moreton–Séquin H at all region vertices (6), the cotangent Dirichlet matrix

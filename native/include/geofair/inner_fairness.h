@@ -12,19 +12,78 @@
 
 namespace geofair {
 
-/// Weights λ_ij per ring slot of every vertex 0 .. rings.offset.size()-2, with Σ_j λ_ij = 1.
+/// Inner fairness weights λ_ij of every vertex of a region, in flat (CSR) arrays for the
+/// inner loops: vertex i (0 .. size()-1) has the neighbours neighbour[offset[i] ..
+/// offset[i+1]) with the weights weight[...], each ≥ 0, summing to 1 (a convex combination).
 ///
-/// Uniform: λ_ij = 1/valence. Conformal: λ_ij = w_ij / Σ_k w_ik with the cotangent weights
-/// w_ij of the ORIGINAL positions X0 (a discrete harmonic map, approximately conformal to
-/// the original mesh). Negative cotangent weights (obtuse triangles) are clamped to 0 so
-/// that λ stays a convex combination; a vertex whose weights all vanish falls back to
-/// uniform weights.
-std::vector<double> inner_fairness_weights(const OneRings& rings, const Positions& X0,
-                                           InnerFairness type);
+/// The neighbours are the one-ring (in ring order, one entry per ring slot), except for
+/// InnerFairness::ConformalIntrinsic on a mesh that is not intrinsically Delaunay: its
+/// intrinsic edges can join vertices that are not mesh neighbours (and miss some that
+/// are), and the neighbours of vertex i are the other ends of its intrinsic edges, in
+/// increasing order.
+struct InnerFairnessWeights {
+  std::vector<int> offset;     ///< #vertices + 1
+  std::vector<int> neighbour;  ///< vertex ids (local ids of the region)
+  std::vector<double> weight;  ///< λ_ij, dimensionless
 
-/// Σ_j λ_ij q_j for vertex i.
-Vec3 weighted_centroid(const OneRings& rings, const std::vector<double>& lambda,
-                       const Positions& X, int i);
+  int size() const { return int(offset.size()) - 1; }
+};
+
+/// Inner fairness weights λ of a fairing region (Schneider & Kobbelt 2001, section 7.3) for
+/// all its vertices, free and G1 boundary; X0 #region×3 the ORIGINAL positions.
+///
+/// Uniform: λ_ij = 1/valence over the one-ring.
+///
+/// Conformal (the paper's): λ_ij = w_ij / Σ_k w_ik with the cotangent weights
+/// w_ij = cot α_ij + cot β_ij of the mesh X0 itself, per ring slot: a discrete harmonic map
+/// (Pinkall & Polthier 1993), approximately conformal to the original. w_ij < 0 across an
+/// edge whose opposite angles sum to more than π (obtuse and needle triangles); such
+/// weights are clamped to 0 so that λ stays a convex combination (with negative weights
+/// q_i = Σ_j λ_ij q_j has no maximum principle and the iteration can diverge). Clamping
+/// changes the map: on the obtuse lattices of bench/negative_weights.py the vertices land
+/// 0.35–3.2 mean edge lengths away from the harmonic map of the original's metric.
+///
+/// ConformalIntrinsic: the same with the Laplace–Beltrami operator of Bobenko & Springborn
+/// 2007 ("A discrete Laplace–Beltrami operator for simplicial surfaces", DCG 38):
+/// λ_ij = L_ij / Σ_k L_ik with L the cotangent Laplacian of the intrinsic Delaunay
+/// triangulation of X0 over the region's triangles (intrinsic_delaunay.h). That
+/// triangulation describes the same piecewise-flat surface (no vertex moves) with edges
+/// across which α + β ≤ π, so L_ij ≥ 0 and nothing needs clamping at a free vertex: every
+/// edge there is interior and flippable. The conformal fairing then puts the vertices where
+/// the discrete harmonic map of the original's metric puts them (tests/test_negative_weights.py,
+/// to round-off on a plane). Where the mesh is already intrinsically Delaunay (no flip,
+/// e.g. no obtuse triangle) the weights are exactly those of Conformal, per ring slot;
+/// otherwise the neighbours are those of the intrinsic edges (see InnerFairnessWeights).
+/// Clamping stays only where the triangulation cannot help: border edges of the region
+/// (between two G1 boundary vertices: one triangle, never flipped; they enter only the
+/// one-sided Laplacian of G1 boundary vertices in the linear initial mesh, bilaplacian.h),
+/// and round-off (the flips stop at cot α + cot β ≥ −1e-12). Not what Conformal does,
+/// measured: the harmonic map of a rough original (noise as large as the features) onto
+/// the smooth faired surface can bring two vertices within 0.14 mean edge lengths of each
+/// other (0.23 with clamping), and there the construction stalls in a spike of one of them
+/// (3 of 4 noisy 600-vertex caps stop at residuals of 0.1–60 after 5000 iterations, the
+/// first also with damping 0.5 or 0.25 or 30 CG iterations; with Conformal all four
+/// converge in 1200–2100 iterations).
+///
+/// A vertex whose weights all vanish falls back to uniform weights over its neighbours.
+/// \throw InvalidInputError as intrinsic_delaunay (not for a valid region).
+InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const Positions& X0,
+                                            InnerFairness type);
+
+/// The weights of inner_fairness_weights for Uniform and Conformal, per ring slot of
+/// `rings` (the neighbours are the one-rings), X0 #V×3; ConformalIntrinsic is taken as
+/// Conformal. Used where the mesh's own edges are wanted: by the coarse multigrid levels
+/// (fairing.h), and by inner_fairness_weights.
+InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Positions& X0,
+                                                 InnerFairness type);
+
+/// Σ_j λ_ij q_j for vertex i, positions X (#region×3).
+inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Positions& X, int i) {
+  Vec3 c = Vec3::Zero();
+  for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k)
+    c += lambda.weight[k] * X.row(lambda.neighbour[k]).transpose();
+  return c;
+}
 
 /// The global step of inner fairness (beyond the paper, measured below): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
@@ -44,20 +103,24 @@ Vec3 weighted_centroid(const OneRings& rings, const std::vector<double>& lambda,
 /// with multigrid: the fine level needs 550 instead of 3250 iterations.
 class TangentialSolver {
  public:
-  /// \param n_free  free vertices are 0 .. n_free-1 of `rings`
-  TangentialSolver(const OneRings& rings, int n_free, int iterations);
+  /// \param rings    one-rings of the region (the step length limit uses them)
+  /// \param pattern  inner fairness weights whose neighbours give the sparsity pattern;
+  ///                 every step must pass weights with the same neighbours
+  /// \param n_free   free vertices are 0 .. n_free-1 of `rings`
+  TangentialSolver(const OneRings& rings, const InnerFairnessWeights& pattern, int n_free,
+                   int iterations);
 
-  /// \param lambda  inner fairness weights per ring slot
+  /// \param lambda  inner fairness weights, with the neighbours of the constructor's pattern
   /// \param X       #region×3 positions, free rows updated in place
   /// \param N       #region×3 unit normals of the free vertices at X
   /// \param damping s in (0, 1]
-  void step(const std::vector<double>& lambda, const Positions& N, double damping, Positions& X);
+  void step(const InnerFairnessWeights& lambda, const Positions& N, double damping, Positions& X);
 
  private:
   const OneRings& rings_;
   int n_free_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> A_;
-  std::vector<int> slot_value_;  // per ring slot of a free vertex: index of its 2×2 block, or -1
+  std::vector<int> slot_value_;  // per weight of a free vertex: index of its 2×2 block, or -1
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;

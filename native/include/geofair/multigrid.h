@@ -15,8 +15,8 @@
 namespace geofair {
 
 /// λ of every vertex split over the ring it is split into (layout of VertexSplits::ring):
-/// uniform, or for conformal inner fairness the clamped cotangent weights of the original
-/// positions X0 (#level×3), as inner_fairness_weights computes them.
+/// uniform, or for conformal inner fairness the clamped cotangent weights of the positions
+/// X0 (#level×3), as ring_inner_fairness_weights computes them.
 std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inner,
                                   const Positions& X0);
 
@@ -42,12 +42,12 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 /// \param level    the finer level's region
 /// \param splits   the level's vertex splits, in level-local ids
 /// \param weights  split_weights of `splits`
-/// \param lambda   inner fairness weights per ring slot of `level`
+/// \param lambda   inner fairness weights of `level`
 /// \param X        #level×3 positions: valid for all but the new vertices, which are set
 /// \param H        #level mean curvatures, valid for the old vertices; the new are set
 /// \param N        #level×3 unit normals, valid for the old vertices; the new are set
 void prolongate(const FairingRegion& level, const VertexSplits& splits,
-                const std::vector<double>& weights, const std::vector<double>& lambda,
+                const std::vector<double>& weights, const InnerFairnessWeights& lambda,
                 Positions& X, Eigen::VectorXd& H, Positions& N);
 
 /// Gauss–Seidel sweeps of the relaxation, step 2 of prolongate.

@@ -2,6 +2,7 @@
 // built by half-edge collapses (Hoppe 1996; Schneider & Kobbelt 2001, section 7.4, Fig. 6).
 #pragma once
 
+#include "geofair/inner_fairness.h"
 #include "geofair/region.h"
 #include "geofair/types.h"
 
@@ -38,14 +39,14 @@ struct ProgressiveMesh {
 int default_levels(int n_free);
 
 /// The copy of X (#region×3) the hierarchy is measured on: kHierarchySmoothing Jacobi sweeps
-/// q ← (q + Σ_j λ_ij q_j)/2 of the free vertices with the inner-fairness weights λ (per ring
-/// slot of the region; nullptr: uniform). The fairing moves the vertices that way, and on a
+/// q ← (q + Σ_j λ_ij q_j)/2 of the free vertices with the inner-fairness weights λ
+/// (inner_fairness_weights of the region; nullptr: uniform). The fairing moves the vertices that way, and on a
 /// noisy input (normal noise comparable to the edge length) the raw positions make the
 /// quality and flip tests meaningless: measured on the 2000-vertex cap disturbed as in the
 /// tests, the hierarchy measured on the raw input has 6 and 20 triangles folded over on its
 /// coarse levels, measured on this copy none.
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
-                              const std::vector<double>* lambda);
+                              const InnerFairnessWeights* lambda);
 
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
 /// is collapsed shortest first (so the smallest edge length of the coarse mesh grows), but

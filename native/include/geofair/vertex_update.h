@@ -2,6 +2,7 @@
 // move every free vertex so that its mean curvature becomes the target H~, eq. (13).
 #pragma once
 
+#include "geofair/inner_fairness.h"
 #include "geofair/region.h"
 #include "geofair/types.h"
 
@@ -26,12 +27,12 @@ namespace geofair {
 /// \param X       #region×3 positions, updated in place (boundary rows untouched)
 /// \param N       #region×3 unit normals; free rows are refreshed as vertices move
 /// \param H_target #V_I target curvatures H~
-/// \param lambda  inner fairness weights per ring slot (inner_fairness_weights)
+/// \param lambda  inner fairness weights (inner_fairness_weights)
 /// \param subset  free vertices to update, in this order; nullptr: all free vertices
 /// \param coupling #V_I factors ρ_i from coupling_factors, or nullptr for the paper's step
 /// \param tangential false: move along the normal only (q~ = q_i)
 /// \return the largest displacement of a vertex in this pass (length units).
-double update_free_vertices(const FairingRegion& region, const std::vector<double>& lambda,
+double update_free_vertices(const FairingRegion& region, const InnerFairnessWeights& lambda,
                             const Eigen::VectorXd& H_target, NormalWeighting weighting,
                             double damping, Positions& X, Positions& N,
                             const std::vector<int>* subset = nullptr,
