@@ -32,7 +32,7 @@ struct FairingResult {
 /// (InnerFairness::ConformalIntrinsic; Bobenko & Springborn 2007, "A discrete
 /// Laplace–Beltrami operator for simplicial surfaces"): the same weights where no edge needs
 /// a flip; elsewhere the vertices land on the harmonic map of the original's metric
-/// instead of 0.35–3.2 edge lengths off it, but the construction can stall on rough inputs
+/// instead of 0.34–3.2 edge lengths off it, but the construction can stall on rough inputs
 /// (see inner_fairness.h). Either way only the finest level's weights decide the result.
 ///
 /// Steps (Fig. 6): a progressive mesh of the region (7.4, progressive_mesh.h); on the base

@@ -41,7 +41,7 @@ struct InnerFairnessWeights {
 /// weights are clamped to 0 so that λ stays a convex combination (with negative weights
 /// q_i = Σ_j λ_ij q_j has no maximum principle and the iteration can diverge). Clamping
 /// changes the map: on the obtuse lattices of bench/negative_weights.py the vertices land
-/// 0.35–3.2 mean edge lengths away from the harmonic map of the original's metric.
+/// 0.34–3.2 mean edge lengths away from the harmonic map of the original's metric.
 ///
 /// ConformalIntrinsic: the same with the Laplace–Beltrami operator of Bobenko & Springborn
 /// 2007 ("A discrete Laplace–Beltrami operator for simplicial surfaces", DCG 38):
