@@ -60,10 +60,15 @@ struct InnerFairnessWeights {
 /// and round-off (the flips stop at cot α + cot β ≥ −1e-12). Not what Conformal does,
 /// measured: the harmonic map of a rough original (noise as large as the features) onto
 /// the smooth faired surface can bring two vertices within 0.14 mean edge lengths of each
-/// other (0.23 with clamping), and there the construction stalls in a spike of one of them
-/// (3 of 4 noisy 600-vertex caps stop at residuals of 0.1–60 after 5000 iterations, the
-/// first also with damping 0.5 or 0.25 or 30 CG iterations; with Conformal all four
-/// converge in 1200–2100 iterations).
+/// other (0.23 with clamping), and the construction does not converge there: the pair
+/// oscillates along the normal, their normal offset flipping sign between iterations
+/// (±0.027 against a tangential distance of 0.011 on the first cap). 3 of 4 noisy
+/// 600-vertex caps stop at residuals of 0.1–60 after 5000 iterations, the first also with
+/// damping 0.5 or 0.25, 30 CG iterations, coupling factors refreshed every iteration, or
+/// |t| limited to half the smallest tangential distance to a neighbour; with Conformal
+/// all four converge in 1200–2100 iterations. The sphere positions of that harmonic map
+/// satisfy the discrete equations (H = 1 to 1e-3): a limit of the iteration, not of the
+/// weights.
 ///
 /// A vertex whose weights all vanish falls back to uniform weights over its neighbours.
 /// \throw InvalidInputError as intrinsic_delaunay (not for a valid region).
