@@ -1,14 +1,16 @@
 """Speed of geofair.fair on disturbed irregular sphere caps, with CGAL's linear fair beside it.
 
 For each size (free vertices, default about 2k, 13k, 100k and 1M) prints: our wall time,
-iterations per level (coarsest first), final residual, max radial error |‖q‖ − 1| over
-the free vertices (unit sphere), peak resident memory, and the same input through CGAL's
-``Polygon_mesh_processing::fair`` (continuity 1, bench/cgal_fair.py) with its time, peak
-memory and max radial error, and the time ratio ours/CGAL. Then the measured time exponent
-(least-squares slope of log time over log free vertices) of both.
+the iteration used ("newton": steps; "paper": iterations per level, coarsest first), final
+residual, max radial error |‖q‖ − 1| over the free vertices (unit sphere), peak resident
+memory, and the same input through CGAL's ``Polygon_mesh_processing::fair`` (continuity 1,
+bench/cgal_fair.py) with its time, peak memory and max radial error, and the time ratio
+ours/CGAL. Then the measured time exponent (least-squares slope of log time over log free
+vertices) of both.
 
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
+        [--iteration auto|newton|paper]
         [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
@@ -89,6 +91,7 @@ def child(args):
         normal_weighting=args.normal_weighting,
         inner_fairness=args.inner,
         max_iterations=args.max_iterations,
+        iteration=args.iteration,
     )
     seconds = time.perf_counter() - t
     peak = vm_hwm_mib()
@@ -98,6 +101,8 @@ def child(args):
                 "n_free": int(free.sum()),
                 "seconds": seconds,
                 "iterations": list(r.iterations_per_level),
+                "iteration": r.iteration,
+                "newton_iterations": r.newton_iterations,
                 "vertices": list(r.vertices_per_level),
                 "residual": r.residual,
                 "converged": r.converged,
@@ -112,7 +117,7 @@ def child(args):
 def run_ours(args, n):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
-    cmd += ["--max-iterations", str(args.max_iterations)]
+    cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
@@ -137,6 +142,7 @@ def main():
     parser.add_argument("--normal-weighting", default="quadric", help="default: the library's")
     parser.add_argument("--inner", default="uniform")
     parser.add_argument("--max-iterations", type=int, default=20000)
+    parser.add_argument("--iteration", default="auto", help="auto (default), newton or paper")
     parser.add_argument("--no-cgal", action="store_true")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
@@ -150,7 +156,8 @@ def main():
 
     use_cgal = not args.no_cgal and cgal_fair.available()
     print(
-        f"# geofair.fair: normal_weighting={args.normal_weighting}, inner_fairness={args.inner}, "
+        f"# geofair.fair: iteration={args.iteration}, normal_weighting={args.normal_weighting}, "
+        f"inner_fairness={args.inner}, "
         f"default tolerance and levels; {os.cpu_count()} cores, load average "
         f"{os.getloadavg()[0]:.1f}"
     )
@@ -176,7 +183,9 @@ def main():
         ours_t.append(r["seconds"] if r else None)
         cgal_t.append(c.seconds if c and c.success else None)
         if r:
-            its = "/".join(map(str, r["iterations"]))
+            its = r["iteration"] + " " + "/".join(map(str, r["iterations"]))
+            if r["iteration"] == "paper" and r["newton_iterations"]:
+                its = f"newton {r['newton_iterations']}, " + its
             mark = "" if r["converged"] else "*"
             ours = (
                 f"{r['seconds']:>9.3f} {its:>30} {r['residual']:>8.1e}{mark:1} {r['error']:>9.1e} "

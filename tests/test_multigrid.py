@@ -3,6 +3,7 @@ is nested, keeps the G1 boundary and grows about 4x per level; the construction 
 on its coarse levels; and multigrid reaches the single-level solution with far fewer
 iterations on the finest level."""
 
+import functools
 import time
 
 import numpy as np
@@ -10,6 +11,10 @@ import pytest
 
 import geofair
 import scenes
+
+# These tests are about the paper's iteration with progressive-mesh multigrid (section 7.4);
+# the default iteration="auto" solves these scenes by Newton's method (tests/test_newton.py).
+fair = functools.partial(geofair.fair, iteration="paper")
 
 PATCHES = {
     "sphere_cap": scenes.sphere_cap,
@@ -83,7 +88,7 @@ def test_construction_converges_on_the_base_mesh(inner, weighting):
     s = scenes.sphere_cap(n_free=2000, irregular=True, seed=1)
     T = geofair.progressive_mesh(s.vertices, s.faces, s.free, 3)[0]
     free = s.free & np.isin(np.arange(len(s.vertices)), T)
-    r = geofair.fair(
+    r = fair(
         s.vertices,
         T,
         free,
@@ -103,10 +108,10 @@ def test_construction_converges_on_the_base_mesh(inner, weighting):
 
 def test_default_levels_follow_the_region_size():
     small = scenes.sphere_cap(n_free=300, irregular=True, seed=3)
-    r = geofair.fair(small.disturbed(seed=1), small.faces, small.free, boundary_normals=small.normals)
+    r = fair(small.disturbed(seed=1), small.faces, small.free, boundary_normals=small.normals)
     assert len(r.iterations_per_level) == 1
     large = scenes.sphere_cap(n_free=2000, irregular=True, seed=3)
-    r = geofair.fair(large.disturbed(seed=1), large.faces, large.free, boundary_normals=large.normals, max_iterations=0)
+    r = fair(large.disturbed(seed=1), large.faces, large.free, boundary_normals=large.normals, max_iterations=0)
     assert len(r.vertices_per_level) == 3
     assert r.vertices_per_level == sorted(r.vertices_per_level)
 
@@ -114,9 +119,9 @@ def test_default_levels_follow_the_region_size():
 def single_and_multigrid(s, v, tolerance=1e-5, **kw):
     kw["tolerance"] = tolerance
     t0 = time.perf_counter()
-    single = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, levels=1, **kw)
+    single = fair(v, s.faces, s.free, boundary_normals=s.normals, levels=1, **kw)
     t1 = time.perf_counter()
-    multi = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, **kw)  # levels=0
+    multi = fair(v, s.faces, s.free, boundary_normals=s.normals, **kw)  # levels=0
     t2 = time.perf_counter()
     print(
         f"\n{s.name} {kw}: single level {single.iterations} iterations {t1 - t0:.2f} s, "
@@ -156,10 +161,10 @@ def test_multigrid_keeps_fixed_vertices_and_is_scale_invariant():
     s = scenes.catenoid_patch(n_free=600, irregular=True, seed=6)
     v = s.disturbed(seed=3)
     kw = dict(boundary_normals=s.normals, levels=2)
-    ref = geofair.fair(v, s.faces, s.free, **kw)
+    ref = fair(v, s.faces, s.free, **kw)
     assert ref.converged and len(ref.iterations_per_level) == 2
     assert np.array_equal(ref.vertices[~s.free], v[~s.free])
-    r = geofair.fair(1e3 * v, s.faces, s.free, **kw)
+    r = fair(1e3 * v, s.faces, s.free, **kw)
     assert r.iterations_per_level == ref.iterations_per_level
     assert np.allclose(r.vertices / 1e3, ref.vertices, rtol=0, atol=1e-9 * s.size)
 
@@ -168,10 +173,10 @@ def test_multigrid_reports_iteration_limit_and_cancellation():
     s = scenes.sphere_cap(n_free=1200, irregular=True, seed=7)
     v = s.disturbed(seed=4)
     kw = dict(boundary_normals=s.normals, levels=3)
-    r = geofair.fair(v, s.faces, s.free, max_iterations=7, **kw)
+    r = fair(v, s.faces, s.free, max_iterations=7, **kw)
     assert not r.converged and r.residual > 1e-4
     assert r.iterations_per_level[-1] <= 7
     assert r.iterations == sum(r.iterations_per_level)
     calls = []
-    r = geofair.fair(v, s.faces, s.free, progress=lambda k, res: calls.append(k) or False, **kw)
+    r = fair(v, s.faces, s.free, progress=lambda k, res: calls.append(k) or False, **kw)
     assert calls and not r.converged and r.iterations == 0

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <optional>
+#include <cstdlib>
 #include <string>
 
 namespace py = pybind11;
@@ -98,7 +99,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                       const py::object& boundary_normals, const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
-                      int levels, const py::object& progress) {
+                      int levels, const std::string& iteration, const py::object& progress) {
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces);
   const std::vector<bool> mask = to_mask(free, V.rows());
@@ -119,6 +120,9 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
       outer_fairness, "outer_fairness",
       {{"intrinsic", OuterFairness::Intrinsic}, {"bilaplacian", OuterFairness::Bilaplacian}});
   options.normal_weighting = parse_weighting(normal_weighting);
+  options.iteration = parse<Iteration>(
+      iteration, "iteration",
+      {{"auto", Iteration::Auto}, {"newton", Iteration::Newton}, {"paper", Iteration::Paper}});
   options.tolerance = tolerance;
   options.max_iterations = max_iterations;
   options.damping = damping;
@@ -200,6 +204,15 @@ PYBIND11_MODULE(geofair, m) {
                     "Region vertices (free and G1 boundary) on each level, coarsest first.")
       .def_readonly("residual", &FairingResult::residual,
                     "Normalized residual of the returned mesh (dimensionless, see fair).")
+      .def_property_readonly(
+          "iteration",
+          [](const FairingResult& r) {
+            return std::string(r.iteration == Iteration::Newton ? "newton" : "paper");
+          },
+          "The iteration that produced the result: \"newton\" or \"paper\".")
+      .def_readonly("newton_iterations", &FairingResult::newton_iterations,
+                    "Newton steps performed, including an attempt that iteration=\"auto\" "
+                    "abandoned for the paper's iteration.")
       .def("__repr__", [](const FairingResult& r) {
         return "FairingResult(converged=" + std::string(r.converged ? "True" : "False") +
                ", iterations=" + std::to_string(r.iterations) +
@@ -211,7 +224,7 @@ PYBIND11_MODULE(geofair, m) {
         py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "quadric",
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
         py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
-        py::arg("progress") = py::none(),
+        py::arg("iteration") = "auto", py::arg("progress") = py::none(),
         R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
 condition (fixed positions and unit normals) at the fixed vertices next to free ones.
@@ -254,7 +267,19 @@ tolerance : stop when the residual is at most this (dimensionless). The residual
     1e-6 (2000 free vertices) to 6e-6 (13000), below the discretization error of area
     normals there (1e-3 to 3e-4).
 max_iterations : upper bound on the iterations spent solving each level (iterations that
-    the multigrid cycles of a finer level run on a coarser one are not counted).
+    the multigrid cycles of a finer level run on a coarser one are not counted), and on
+    the Newton steps.
+iteration : how eq. (12) is solved; all choices solve the same discrete equations.
+    "newton" (beyond the paper): from the linear initial mesh, Newton's method on the
+    normal offsets of all free vertices at once, one sparse LU solve of the linearized
+    (fourth-order, 2-ring) system per step (Jacobian of the Moreton–Séquin H by finite
+    differences, normals held fixed, cotangent weights fixed), steps limited to 4 mean
+    neighbour distances per vertex, followed by the global tangential step of inner
+    fairness; single level. It stops when the residual has not halved in 20 steps.
+    "paper": the local/global iteration of section 7 with multigrid (levels).
+    "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
+    start. Measured in the README (Speed): the disturbed 2000- and 13000-vertex caps take
+    9-15 and 15-19 Newton steps against hundreds to thousands of paper iterations.
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
 levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6): 1 solves the
@@ -267,7 +292,8 @@ progress : callable(iteration, residual) -> bool or None, called at most every 0
 Returns
 -------
 FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
-.residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first).
+.residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
+.iteration ("newton" or "paper") and .newton_iterations.
 
 Raises
 ------

@@ -4,6 +4,7 @@
 #include "geofair/mean_curvature.h"
 #include "geofair/vertex_update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -19,7 +20,8 @@ Construction::Construction(const FairingRegion& region, InnerFairnessWeights lam
       H_(region.n),
       dirichlet_(region),
       solver_(options.cg_iterations),
-      tangential_solver_(region.rings, lambda_, region.n_free, kTangentialIterations) {
+      tangential_solver_(region.rings, lambda_, region.n_free, kTangentialIterations),
+      newton_(region) {
   N_.bottomRows(region.n - region.n_free) = region.g1_normals;
 }
 
@@ -87,6 +89,65 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
     if (!(step <= length_))
       throw SolverError("fair: the iteration diverged (a vertex moved by more than the region's "
                         "size in iteration " + std::to_string(iteration_offset + k) + ")");
+  }
+  return report;
+}
+
+}  // namespace geofair
+
+namespace geofair {
+
+IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
+                                         int iteration_offset) {
+  const int nf = region_.n_free;
+  const OneRings& rings = region_.rings;
+  IterationReport report;
+  double residual = evaluate(X), previous = HUGE_VAL;
+  const double first_residual = residual;
+  double best = residual;
+  int best_at = 0;
+  Eigen::VectorXd t;
+  int since_refresh = kNewtonRefresh;
+  bool full_step = false;
+  for (int k = 0;; ++k) {
+    if (!std::isfinite(residual))
+      throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
+                        std::to_string(iteration_offset + k) + ")");
+    if (residual > 1e6 * std::max(first_residual, 1.0))
+      throw SolverError("fair: the iteration diverged (residual grew from " +
+                        std::to_string(first_residual) + " to " + std::to_string(residual) +
+                        " by iteration " + std::to_string(iteration_offset + k) + ")");
+    report.iterations = k;
+    report.residual = residual;
+    report.converged = residual <= tolerance;
+    if (residual < 0.5 * best) best = residual, best_at = k;
+    report.stalled = k - best_at >= kNewtonPatience;
+    if (report.converged || report.stalled || k >= max_iterations) break;
+    if (options_.progress && !source_ && !options_.progress(iteration_offset + k, residual)) {
+      report.cancelled = true;
+      break;
+    }
+    // The last factorization is reused (a chord step) only while full steps contract fast.
+    const bool refresh =
+        !full_step || since_refresh >= kNewtonRefresh || !(residual < 0.5 * previous);
+    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), source_, refresh, t))
+      throw SolverError("fair: the Newton system is singular (degenerate triangles)");
+    since_refresh = refresh ? 1 : since_refresh + 1;
+    // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
+    double ratio = 0.0;
+    for (int i = 0; i < nf; ++i) {
+      double mean_distance = 0.0;
+      for (int s = rings.offset[i]; s < rings.offset[i + 1]; ++s)
+        mean_distance += (X.row(rings.ring[s]) - X.row(i)).norm();
+      ratio = std::max(ratio, std::abs(t(i)) * rings.valence(i) / mean_distance);
+    }
+    const double s = std::min(1.0, kNewtonStep / ratio);
+    full_step = s == 1.0;
+    for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
+    if (tangential_) tangential_solver_.step(lambda_, N_, options_.damping, X);
+    ++iterations_;
+    previous = residual;
+    residual = evaluate(X);
   }
   return report;
 }

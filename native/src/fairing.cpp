@@ -69,6 +69,44 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
   if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");
 
+  // The finest level is the region itself, with region-local ids as its "global" ids.
+  FairingRegion finest_level = region;
+  std::iota(finest_level.global.begin(), finest_level.global.end(), 0);
+  auto finish = [&](FairingResult& result, const Positions& X) {
+    result.vertices = V;
+    for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = X.row(i);
+    if (!result.vertices.allFinite())
+      throw SolverError("fair: the iteration produced non-finite positions");
+    return result;
+  };
+
+  int newton_iterations = 0;
+  if (options.outer_fairness == OuterFairness::Intrinsic && options.iteration != Iteration::Paper) {
+    InnerFairnessWeights lambda = inner_fairness_weights(finest_level, X0, options.inner_fairness);
+    Positions Y = bilaplacian_initial_mesh(finest_level, lambda, X0);
+    Construction construction(finest_level, std::move(lambda), options, L);
+    IterationReport report;
+    bool failed = false;
+    try {
+      report = construction.run_newton(Y, options.max_iterations, options.tolerance);
+    } catch (const SolverError&) {
+      if (options.iteration == Iteration::Newton) throw;
+      failed = true;
+    }
+    newton_iterations = int(construction.iterations());
+    if (!failed &&
+        (report.converged || report.cancelled || options.iteration == Iteration::Newton)) {
+      FairingResult result;
+      result.iteration = Iteration::Newton;
+      result.newton_iterations = result.iterations = newton_iterations;
+      result.iterations_per_level = {newton_iterations};
+      result.vertices_per_level = {region.n};
+      result.residual = report.residual;
+      result.converged = report.converged;
+      return finish(result, Y);
+    }
+  }
+
   const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
   ProgressiveMesh hierarchy;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
@@ -80,11 +118,9 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   if (hierarchy.triangles.empty())
     hierarchy.triangles.push_back(region.triangles), hierarchy.splits.emplace_back();
 
-  // The finest level is the region itself, with region-local ids as its "global" ids.
-  FairingRegion finest_level = region;
-  std::iota(finest_level.global.begin(), finest_level.global.end(), 0);
-
   FairingResult result;
+  result.iteration = Iteration::Paper;
+  result.newton_iterations = newton_iterations;
   Positions X = X0;                                  // region positions, level by level
   Eigen::VectorXd H = Eigen::VectorXd::Zero(region.n);  // mean curvatures of the last level
   Positions N = Positions::Zero(region.n, 3);        // and its unit normals
@@ -170,11 +206,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   for (const MultigridLevel& done : levels_built)
     result.iterations_per_level.push_back(int(done.construction->iterations()));
 
-  result.vertices = V;
-  for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = X.row(i);
-  if (!result.vertices.allFinite())
-    throw SolverError("fair: the iteration produced non-finite positions");
-  return result;
+  return finish(result, X);
 }
 
 }  // namespace geofair

@@ -60,6 +60,15 @@ enum class OuterFairness {
   Bilaplacian,  ///< the linear Δ²f = 0 solution alone (section 7.4's initial mesh)
 };
 
+/// How the discrete equations (12) are solved. Both solve the same equations with the
+/// same discretization; they differ in speed and in the meshes they converge on.
+enum class Iteration {
+  Auto,    ///< Newton; where it fails to converge, the paper's iteration from the start
+  Newton,  ///< Newton's method on the normal offsets of all free vertices at once, single
+           ///< level (Construction::run_newton, newton_step.h; beyond the paper)
+  Paper,   ///< the local/global iteration of section 7 with progressive-mesh multigrid (7.4)
+};
+
 /// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
 /// threads' start-up costs more than they save.
 constexpr int kParallelMin = 2000;
@@ -73,6 +82,7 @@ struct FairingOptions {
   InnerFairness inner_fairness = InnerFairness::Uniform;
   OuterFairness outer_fairness = OuterFairness::Intrinsic;
   NormalWeighting normal_weighting = NormalWeighting::Quadric;
+  Iteration iteration = Iteration::Auto;
   /// Stop when the residual L·max|H̄ − H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the

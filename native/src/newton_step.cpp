@@ -1,0 +1,99 @@
+// Newton's method for the normal offsets, see newton_step.h.
+#include "geofair/newton_step.h"
+
+#include "geofair/mean_curvature.h"
+
+#include <cmath>
+
+namespace geofair {
+
+NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
+  // Rows of J: region vertex k holds (m, ∂H_k/∂t_m) for m = k (if free) and for the free
+  // vertices m of its ring; the entry of column m at row k lives at slot k of m's ring.
+  const OneRings& r = region.rings;
+  const int nf = region.n_free, n = region.n;
+  row_offset_.assign(n + 1, 0);
+  for (int m = 0; m < nf; ++m) {
+    ++row_offset_[m + 1];
+    for (int k = r.offset[m]; k < r.offset[m + 1]; ++k) ++row_offset_[r.ring[k] + 1];
+  }
+  for (int k = 0; k < n; ++k) row_offset_[k + 1] += row_offset_[k];
+  std::vector<int> fill(row_offset_.begin(), row_offset_.end() - 1);
+  row_column_.resize(row_offset_.back());
+  row_source_.resize(row_offset_.back());
+  for (int m = 0; m < nf; ++m) {
+    row_column_[fill[m]] = m, row_source_[fill[m]++] = m;
+    for (int k = r.offset[m]; k < r.offset[m + 1]; ++k) {
+      const int j = r.ring[k];
+      row_column_[fill[j]] = m, row_source_[fill[j]++] = nf + k;
+    }
+  }
+}
+
+bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
+                       const std::vector<double>& w, const Eigen::VectorXd* tau, bool refresh,
+                       Eigen::VectorXd& t) {
+  const OneRings& r = region_.rings;
+  const int nf = region_.n_free;
+  Eigen::VectorXd b(nf);
+#pragma omp parallel for schedule(static) if (nf > kParallelMin)
+  for (int i = 0; i < nf; ++i) {
+    double defect = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) defect += w[k] * (H(i) - H(r.ring[k]));
+    b(i) = (tau ? (*tau)(i) : 0.0) - defect;
+  }
+  if (refresh || !factorized_) {
+    factorized_ = false;
+    // Columns of J by forward differences: move free vertex m by h along its normal and
+    // re-estimate H at m and its ring (normals held fixed). Each thread moves vertices in
+    // its own copy of X.
+    jacobian_.resize(std::size_t(nf) + r.offset[nf]);
+#pragma omp parallel if (nf > kParallelMin)
+    {
+      Positions Y = X;
+#pragma omp for schedule(static)
+      for (int m = 0; m < nf; ++m) {
+        const int begin = r.offset[m], end = r.offset[m + 1];
+        double mean_distance = 0.0;
+        for (int k = begin; k < end; ++k) mean_distance += (X.row(r.ring[k]) - X.row(m)).norm();
+        const double h = 1e-6 * mean_distance / (end - begin);
+        Y.row(m) = X.row(m) + h * N.row(m);
+        jacobian_[m] =
+            (moreton_sequin(r, Y, N, m, Y.row(m), N.row(m), needs_spiral_samples(r, m)).H - H(m)) /
+            h;
+        for (int k = begin; k < end; ++k) {
+          const int j = r.ring[k];
+          jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), N.row(j),
+                                              needs_spiral_samples(r, j)).H - H(j)) / h;
+        }
+        Y.row(m) = X.row(m);
+      }
+    }
+    // A = D J, row i: Σ_j w_ij (J(i, ·) − J(j, ·)) over the ring j of i.
+    entries_.clear();
+    for (int i = 0; i < nf; ++i) {
+      double sum_w = 0.0;
+      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+        const int j = r.ring[k];
+        sum_w += w[k];
+        for (int p = row_offset_[j]; p < row_offset_[j + 1]; ++p)
+          entries_.emplace_back(i, row_column_[p], -w[k] * jacobian_[row_source_[p]]);
+      }
+      for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p)
+        entries_.emplace_back(i, row_column_[p], sum_w * jacobian_[row_source_[p]]);
+    }
+    A_.resize(nf, nf);
+    A_.setFromTriplets(entries_.begin(), entries_.end());
+    if (!analyzed_) {
+      lu_.analyzePattern(A_);  // the pattern depends on the connectivity only
+      analyzed_ = true;
+    }
+    lu_.factorize(A_);
+    if (lu_.info() != Eigen::Success) return false;
+    factorized_ = true;
+  }
+  t = lu_.solve(b);
+  return t.allFinite();
+}
+
+}  // namespace geofair

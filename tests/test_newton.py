@@ -1,0 +1,88 @@
+"""Newton's method on eq. (12) (iteration="newton"; beyond the paper) against the paper's
+iteration with multigrid: the same discrete solution, in a number of steps that does not
+grow with the mesh, and the fallback of iteration="auto"."""
+
+import numpy as np
+import pytest
+
+import geofair
+import scenes
+
+PATCHES = {
+    "sphere_cap": scenes.sphere_cap,
+    "cylinder": scenes.cylinder_patch,
+    "catenoid": scenes.catenoid_patch,
+}
+
+
+def max_error(scene, result):
+    return np.abs(scene.distance(result.vertices[scene.free])).max() / scene.size
+
+
+@pytest.mark.parametrize("name", PATCHES)
+@pytest.mark.parametrize("inner", ["uniform", "conformal"])
+def test_newton_reaches_the_solution_of_the_paper_iteration(name, inner):
+    s = PATCHES[name](n_free=1200, irregular=True, seed=5)
+    v = s.disturbed(seed=2, amplitude=0.1, noise=0.3 if inner == "uniform" else 0.0)
+    kw = dict(boundary_normals=s.normals, inner_fairness=inner, tolerance=1e-5)
+    newton = geofair.fair(v, s.faces, s.free, iteration="newton", **kw)
+    paper = geofair.fair(v, s.faces, s.free, iteration="paper", **kw)
+    difference = np.linalg.norm(newton.vertices - paper.vertices, axis=1).max() / s.size
+    print(
+        f"\n{name} {inner}: newton {newton.iterations} steps, error {max_error(s, newton):.2e}; "
+        f"paper {paper.iterations_per_level}, error {max_error(s, paper):.2e}; difference {difference:.2e} · size"
+    )
+    assert newton.converged and paper.converged
+    assert newton.iteration == "newton" and paper.iteration == "paper"
+    assert newton.iterations == newton.newton_iterations == sum(newton.iterations_per_level)
+    # The same discrete solution up to the iteration error of the tolerance (the multigrid
+    # test allows tolerance · size between single level and multigrid).
+    assert difference <= 1e-5
+    assert np.array_equal(newton.vertices[~s.free], v[~s.free])
+
+
+def test_newton_steps_do_not_grow_with_the_mesh():
+    # The paper's iteration needs O((L/h)^2) iterations per level (hence multigrid); the
+    # linearized system couples all vertices, so its step count stays flat.
+    steps = {}
+    for n in (300, 1200, 4800):
+        s = scenes.sphere_cap(n_free=n, irregular=True, seed=3)
+        v = s.disturbed(seed=4, amplitude=0.1)
+        r = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, iteration="newton")
+        assert r.converged and max_error(s, r) < 1e-5
+        steps[n] = r.iterations
+    print("\nNewton steps per free vertices:", steps)
+    assert max(steps.values()) <= 30
+
+
+def test_auto_falls_back_to_the_paper_iteration():
+    s = scenes.sphere_cap(n_free=300, irregular=True, seed=3)
+    v = s.disturbed(seed=4, amplitude=0.1)
+    kw = dict(boundary_normals=s.normals, max_iterations=3)
+    # Three Newton steps do not converge: "newton" returns them, "auto" starts over with the
+    # paper's iteration (which does not converge in three iterations either).
+    newton = geofair.fair(v, s.faces, s.free, iteration="newton", **kw)
+    assert not newton.converged and newton.iterations == 3 and newton.iteration == "newton"
+    auto = geofair.fair(v, s.faces, s.free, **kw)
+    assert auto.iteration == "paper" and auto.newton_iterations == 3 and not auto.converged
+    assert auto.iterations <= 3
+    converged = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals)
+    assert converged.converged and converged.iteration == "newton" and converged.newton_iterations > 3
+
+
+def test_newton_is_scale_invariant_and_cancellable():
+    s = scenes.catenoid_patch(n_free=600, irregular=True, seed=6)
+    v = s.disturbed(seed=3)
+    kw = dict(boundary_normals=s.normals, iteration="newton")
+    ref = geofair.fair(v, s.faces, s.free, **kw)
+    r = geofair.fair(1e3 * v, s.faces, s.free, **kw)
+    assert ref.converged and r.iterations == ref.iterations
+    assert np.allclose(r.vertices / 1e3, ref.vertices, rtol=0, atol=1e-9 * s.size)
+    r = geofair.fair(v, s.faces, s.free, progress=lambda k, res: False, **kw)
+    assert not r.converged and r.iterations == 0
+
+
+def test_unknown_iteration_is_rejected():
+    s = scenes.sphere_cap(n_free=100, irregular=True, seed=3)
+    with pytest.raises(ValueError, match="iteration"):
+        geofair.fair(s.vertices, s.faces, s.free, iteration="multigrid")
