@@ -93,7 +93,16 @@ def accuracy(quick):
         cells = []
         for mode in MODES:
             t = time.perf_counter()
-            r = geofair.fair(x, f, free, boundary_normals=n, inner_fairness=mode, levels=levels, max_iterations=50000)
+            r = geofair.fair(
+                x,
+                f,
+                free,
+                boundary_normals=n,
+                inner_fairness=mode,
+                levels=levels,
+                max_iterations=50000,
+                iteration=ITERATION[0],
+            )
             t = time.perf_counter() - t
             q = r.vertices[free]
             error = np.abs(q[:, 2] if surface == "plane" else np.hypot(q[:, 0], q[:, 1]) - 1).max()
@@ -105,6 +114,9 @@ def accuracy(quick):
         print(head + f"| {clamped_off:.2f} | " + " | ".join(cells) + " |")
 
 
+ITERATION = ["paper"]  # the README's figures; --iteration changes it
+
+
 def stability():
     print("\n| rough cap (seed) | flips | " + " | ".join(f"{m}: residual, iterations, error" for m in MODES) + " |")
     print("|---|---:|" + "---|" * len(MODES))
@@ -114,7 +126,15 @@ def stability():
         flips = geofair.intrinsic_delaunay(x, harmonic.region_faces(s.faces, s.free))[2]
         cells = []
         for mode in MODES:
-            r = geofair.fair(x, s.faces, s.free, boundary_normals=s.normals, inner_fairness=mode, max_iterations=5000)
+            r = geofair.fair(
+                x,
+                s.faces,
+                s.free,
+                boundary_normals=s.normals,
+                inner_fairness=mode,
+                max_iterations=5000,
+                iteration=ITERATION[0],
+            )
             error = np.abs(s.distance(r.vertices[s.free])).max()
             cells.append(f"{'converged' if r.converged else f'{r.residual:.2g}'}, {r.iterations}, {error:.1e}")
         print(f"| {seed} | {flips} | " + " | ".join(cells) + " |")
@@ -123,7 +143,12 @@ def stability():
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
-    accuracy(parser.parse_args().quick)
+    parser.add_argument("--iteration", default="paper", help="paper (default), newton or auto")
+    parser.add_argument("--stability-only", action="store_true")
+    args = parser.parse_args()
+    ITERATION[0] = args.iteration
+    if not args.stability_only:
+        accuracy(args.quick)
     stability()
 
 

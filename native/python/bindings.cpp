@@ -277,8 +277,9 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     neighbour distances per vertex, followed by the global tangential step of inner
     fairness; single level. It stops when the residual has not halved in 20 steps.
     "paper": the local/global iteration of section 7 with multigrid (levels).
-    "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
-    start. Measured in the README (Speed): the disturbed 2000- and 13000-vertex caps take
+    "auto" (default): "newton" up to 50,000 free vertices, and where it stops unconverged
+    or fails, and above, "paper" from the start. The LU factors take memory: 236 MiB at
+    13,000 free vertices, growing faster than the vertex count. Measured in the README (Speed): the disturbed 2000- and 13000-vertex caps take
     9-15 and 15-19 Newton steps against hundreds to thousands of paper iterations.
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).

@@ -46,6 +46,10 @@ constexpr double kCoarseTolerance = 10;
 // the iterations went from 84381/20490/420/100 (66 s) to 7500/1060/480/100 (9 s), with
 // the same max radial error, 4e-6.
 constexpr int kCoarseIterations = 500;
+// Auto uses Newton's method up to this many free vertices. The sparse LU factors of its
+// 2-ring system grow faster than the mesh: 236 MiB at 13000 free vertices (bench/speed.py,
+// "solve MiB"), about 1 GiB expected at 50000.
+constexpr int kNewtonMaxFree = 50000;
 
 Positions gather(const Positions& X, const std::vector<int>& ids) {
   Positions Y(Eigen::Index(ids.size()), 3);
@@ -81,7 +85,10 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   };
 
   int newton_iterations = 0;
-  if (options.outer_fairness == OuterFairness::Intrinsic && options.iteration != Iteration::Paper) {
+  const bool newton =
+      options.iteration == Iteration::Newton ||
+      (options.iteration == Iteration::Auto && region.n_free <= kNewtonMaxFree);
+  if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
     InnerFairnessWeights lambda = inner_fairness_weights(finest_level, X0, options.inner_fairness);
     Positions Y = bilaplacian_initial_mesh(finest_level, lambda, X0);
     Construction construction(finest_level, std::move(lambda), options, L);

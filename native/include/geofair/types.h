@@ -63,7 +63,8 @@ enum class OuterFairness {
 /// How the discrete equations (12) are solved. Both solve the same equations with the
 /// same discretization; they differ in speed and in the meshes they converge on.
 enum class Iteration {
-  Auto,    ///< Newton; where it fails to converge, the paper's iteration from the start
+  Auto,    ///< Newton up to 50000 free vertices (the memory of its sparse LU factors);
+           ///< where it fails to converge, and above, the paper's iteration
   Newton,  ///< Newton's method on the normal offsets of all free vertices at once, single
            ///< level (Construction::run_newton, newton_step.h; beyond the paper)
   Paper,   ///< the local/global iteration of section 7 with progressive-mesh multigrid (7.4)
