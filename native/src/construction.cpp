@@ -93,10 +93,6 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
   return report;
 }
 
-}  // namespace geofair
-
-namespace geofair {
-
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
                                          int iteration_offset) {
   const int nf = region_.n_free;

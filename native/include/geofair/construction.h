@@ -46,9 +46,6 @@ class Construction {
   IterationReport run(Positions& X, int max_iterations, double tolerance,
                       int iteration_offset = 0);
 
-  /// Multigrid coarse-grid problems (multigrid.h): solve Σ_j w_ij (H_i − H_j) = τ_i
-  /// (#V_I, kept by pointer; nullptr: eq. (12) itself) instead of 0, and move along the
-  /// normals only (no inner fairness) if `tangential` is false.
   /// Newton's method on eq. (12) instead (newton_step.h; beyond the paper): per
   /// iteration the normal offsets of all free vertices from one sparse solve, scaled so
   /// that no vertex moves by more than kNewtonStep mean distances to its neighbours, then
@@ -59,6 +56,9 @@ class Construction {
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
                              int iteration_offset = 0);
 
+  /// Multigrid coarse-grid problems (multigrid.h): solve Σ_j w_ij (H_i − H_j) = τ_i
+  /// (#V_I, kept by pointer; nullptr: eq. (12) itself) instead of 0, and move along the
+  /// normals only (no inner fairness) if `tangential` is false.
   void set_source(const Eigen::VectorXd* tau, bool tangential) {
     source_ = tau;
     tangential_ = tangential;
@@ -69,14 +69,13 @@ class Construction {
   /// Mean curvatures (#region) and unit normals (#region×3) of the positions last evaluated.
   const Eigen::VectorXd& mean_curvatures() const { return H_; }
   const Positions& normals() const { return N_; }
-  /// Iterations performed by run() so far, all calls together.
+  /// Iterations performed by run() and run_newton() so far, all calls together.
   long iterations() const { return iterations_; }
 
   const InnerFairnessWeights& lambda() const { return lambda_; }
 
  private:
   void curvatures(const Positions& X);
-
 
   const FairingRegion& region_;
   InnerFairnessWeights lambda_;

@@ -20,7 +20,10 @@ namespace geofair {
 /// normal; it is measured by forward differences with the normals held fixed (column m
 /// touches H_m and H at the ring of m). The cotangent weights w_ij are held fixed.
 /// The system (D J) t = τ − D H (D: the Dirichlet operator, #V_I×#V) is a sparse
-/// 2-ring fourth-order system, factorized by Eigen's SparseLU.
+/// 2-ring fourth-order system, factorized by Eigen's SparseLU (13000 free vertices: 0.2 s
+/// and 236 MiB; SuiteSparse's UMFPACK took 0.28 s). Holding the normals fixed is measured:
+/// differentiating the quadric normals too took the disturbed 2000-vertex cap from 14 to 9
+/// steps but made the 13000-vertex cap diverge.
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
