@@ -7,16 +7,7 @@ import pytest
 
 import geofair
 import scenes
-
-PATCHES = {
-    "sphere_cap": scenes.sphere_cap,
-    "cylinder": scenes.cylinder_patch,
-    "catenoid": scenes.catenoid_patch,
-}
-
-
-def max_error(scene, result):
-    return np.abs(scene.distance(result.vertices[scene.free])).max() / scene.size
+from test_multigrid import PATCHES, max_error
 
 
 @pytest.mark.parametrize("name", PATCHES)

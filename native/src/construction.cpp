@@ -9,6 +9,20 @@
 #include <string>
 
 namespace geofair {
+namespace {
+
+// Throws if the residual of iteration k is not finite or has grown a millionfold.
+void check_divergence(double residual, double first_residual, int k) {
+  if (!std::isfinite(residual))
+    throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
+                      std::to_string(k) + ")");
+  if (residual > 1e6 * std::max(first_residual, 1.0))
+    throw SolverError("fair: the iteration diverged (residual grew from " +
+                      std::to_string(first_residual) + " to " + std::to_string(residual) +
+                      " by iteration " + std::to_string(k) + ")");
+}
+
+}  // namespace
 
 Construction::Construction(const FairingRegion& region, InnerFairnessWeights lambda,
                            const FairingOptions& options, double length)
@@ -52,14 +66,8 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
   double first_residual = 0.0;
   for (int k = 0;; ++k) {
     const double residual = evaluate(X);
-    if (!std::isfinite(residual))
-      throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
-                        std::to_string(iteration_offset + k) + ")");
     if (k == 0) first_residual = residual;
-    if (residual > 1e6 * std::max(first_residual, 1.0))
-      throw SolverError("fair: the iteration diverged (residual grew from " +
-                        std::to_string(first_residual) + " to " + std::to_string(residual) +
-                        " by iteration " + std::to_string(iteration_offset + k) + ")");
+    check_divergence(residual, first_residual, iteration_offset + k);
     report.iterations = k;
     report.residual = residual;
     report.converged = residual <= tolerance;
@@ -106,13 +114,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   int since_refresh = kNewtonRefresh;
   bool full_step = false;
   for (int k = 0;; ++k) {
-    if (!std::isfinite(residual))
-      throw SolverError("fair: the iteration diverged (non-finite mean curvature at iteration " +
-                        std::to_string(iteration_offset + k) + ")");
-    if (residual > 1e6 * std::max(first_residual, 1.0))
-      throw SolverError("fair: the iteration diverged (residual grew from " +
-                        std::to_string(first_residual) + " to " + std::to_string(residual) +
-                        " by iteration " + std::to_string(iteration_offset + k) + ")");
+    check_divergence(residual, first_residual, iteration_offset + k);
     report.iterations = k;
     report.residual = residual;
     report.converged = residual <= tolerance;
@@ -126,7 +128,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     // The last factorization is reused (a chord step) only while full steps contract fast.
     const bool refresh =
         !full_step || since_refresh >= kNewtonRefresh || !(residual < 0.5 * previous);
-    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), source_, refresh, t))
+    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), dirichlet_.defects(H_), source_, refresh,
+                       t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
     since_refresh = refresh ? 1 : since_refresh + 1;
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.

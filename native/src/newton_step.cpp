@@ -31,17 +31,12 @@ NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
 }
 
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
-                       const std::vector<double>& w, const Eigen::VectorXd* tau, bool refresh,
-                       Eigen::VectorXd& t) {
+                       const std::vector<double>& w, const Eigen::VectorXd& defects,
+                       const Eigen::VectorXd* tau, bool refresh, Eigen::VectorXd& t) {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
-  Eigen::VectorXd b(nf);
-#pragma omp parallel for schedule(static) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i) {
-    double defect = 0.0;
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) defect += w[k] * (H(i) - H(r.ring[k]));
-    b(i) = (tau ? (*tau)(i) : 0.0) - defect;
-  }
+  Eigen::VectorXd b = -defects;
+  if (tau) b += *tau;
   if (refresh || !factorized_) {
     factorized_ = false;
     // Columns of J by forward differences: move free vertex m by h along its normal and

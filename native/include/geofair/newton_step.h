@@ -32,14 +32,15 @@ class NewtonStep {
   /// \param N      #region×3 unit normals at X (G1 normals in the boundary rows)
   /// \param H      #region Moreton–Séquin mean curvatures at X, N
   /// \param w      cotangent weights per ring slot of the free vertices (DirichletMatrix)
+  /// \param defects #V_I defects D H = Σ_j w_ij (H_i − H_j) (DirichletMatrix::defects), 1/length
   /// \param tau    #V_I source, or nullptr
-  /// \param t      out: #V_I normal offsets
+  /// \param t      out: #V_I normal offsets, mesh units, positive along N
   /// \param refresh  measure J and factorize D J at X; otherwise reuse the last
   ///                  factorization (a chord step; the right-hand side is always current)
   /// \return false if the factorization failed (singular system)
   bool solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
-             const std::vector<double>& w, const Eigen::VectorXd* tau, bool refresh,
-             Eigen::VectorXd& t);
+             const std::vector<double>& w, const Eigen::VectorXd& defects,
+             const Eigen::VectorXd* tau, bool refresh, Eigen::VectorXd& t);
   bool factorized() const { return factorized_; }
 
  private:
