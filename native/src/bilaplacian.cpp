@@ -2,7 +2,7 @@
 #include "geofair/bilaplacian.h"
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
 
 namespace geofair {
 
@@ -45,11 +45,12 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   Eigen::SparseMatrix<double> K(3 * nf, 3 * nf);
   K.setFromTriplets(triplets.begin(), triplets.end());
   K.makeCompressed();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(K);
   if (lu.info() != Eigen::Success)
-    throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (" +
-                      lu.lastErrorMessage() + ")");
+    throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (singular "
+                      "system: degenerate triangles or a free vertex without a fixed path to "
+                      "the boundary)");
   const Eigen::VectorXd f = lu.solve(rhs);
   if (lu.info() != Eigen::Success || !f.allFinite())
     throw SolverError("fair: the bilaplacian system Δ²f = 0 has no finite solution");

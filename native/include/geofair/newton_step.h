@@ -5,7 +5,7 @@
 #include "geofair/region.h"
 #include "geofair/types.h"
 
-#include <Eigen/SparseLU>
+#include <Eigen/UmfPackSupport>
 
 #include <vector>
 
@@ -20,8 +20,9 @@ namespace geofair {
 /// normal; it is measured by forward differences with the normals held fixed (column m
 /// touches H_m and H at the ring of m). The cotangent weights w_ij are held fixed.
 /// The system (D J) t = τ − D H (D: the Dirichlet operator, #V_I×#V) is a sparse
-/// 2-ring fourth-order system, factorized by Eigen's SparseLU (13000 free vertices: 0.2 s
-/// and 236 MiB; SuiteSparse's UMFPACK took 0.28 s). Holding the normals fixed is measured:
+/// 2-ring fourth-order system, factorized by SuiteSparse's UMFPACK with OpenBLAS (13000
+/// free vertices: the whole solve 2.2 s with it, 3.96 s with Eigen's SparseLU; 100000: about
+/// 1.3 s per factorization, where SparseLU took 6-9 s). Holding the normals fixed is measured:
 /// differentiating the quadric normals too took the disturbed 2000-vertex cap from 14 to 9
 /// steps but kept the 13000-vertex cap from converging (residual 150-2000 after 30 steps).
 class NewtonStep {
@@ -49,7 +50,7 @@ class NewtonStep {
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J (see constructor)
   std::vector<Eigen::Triplet<double>> entries_;
   Eigen::SparseMatrix<double> A_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
   bool analyzed_ = false;
   bool factorized_ = false;
 };
