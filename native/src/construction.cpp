@@ -106,13 +106,11 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
-  double residual = evaluate(X), previous = HUGE_VAL;
+  double residual = evaluate(X);
   const double first_residual = residual;
   double best = residual;
   int best_at = 0;
   Eigen::VectorXd t;
-  int since_refresh = kNewtonRefresh;
-  bool full_step = false;
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, iteration_offset + k);
     report.iterations = k;
@@ -125,13 +123,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       report.cancelled = true;
       break;
     }
-    // The last factorization is reused (a chord step) only while full steps contract fast.
-    const bool refresh =
-        !full_step || since_refresh >= kNewtonRefresh || !(residual < 0.5 * previous);
-    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), dirichlet_.defects(H_), source_, refresh,
-                       t))
+    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), dirichlet_.defects(H_), source_, t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
-    since_refresh = refresh ? 1 : since_refresh + 1;
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
     double ratio = 0.0;
     for (int i = 0; i < nf; ++i) {
@@ -141,11 +134,9 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       ratio = std::max(ratio, std::abs(t(i)) * rings.valence(i) / mean_distance);
     }
     const double s = std::min(1.0, kNewtonStep / ratio);
-    full_step = s == 1.0;
     for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
     if (tangential_) tangential_solver_.step(lambda_, N_, options_.damping, X);
     ++iterations_;
-    previous = residual;
     residual = evaluate(X);
   }
   return report;

@@ -46,10 +46,11 @@ constexpr double kCoarseTolerance = 10;
 // the iterations went from 84381/20490/420/100 (66 s) to 7500/1060/480/100 (9 s), with
 // the same max radial error, 4e-6.
 constexpr int kCoarseIterations = 500;
-// Auto uses Newton's method up to this many free vertices. The sparse LU factors of its
-// 2-ring system grow faster than the mesh: 236 MiB at 13000 free vertices (bench/speed.py,
-// "solve MiB"), about 1 GiB expected at 50000.
-constexpr int kNewtonMaxFree = 50000;
+// Auto uses Newton's method up to this many free vertices. The sparse LU factors of the
+// linear initial mesh (3#V_I unknowns) and of its 2-ring system grow faster than the mesh:
+// peak memory 2.2 GiB at 100000 free vertices (bench/speed.py), where the paper's
+// iteration did not converge in 1500 s and Newton's method took 42 s.
+constexpr int kNewtonMaxFree = 150000;
 
 Positions gather(const Positions& X, const std::vector<int>& ids) {
   Positions Y(Eigen::Index(ids.size()), 3);

@@ -3,6 +3,7 @@
 
 #include "geofair/mean_curvature.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace geofair {
@@ -28,67 +29,110 @@ NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
       row_column_[fill[j]] = m, row_source_[fill[j]++] = nf + k;
     }
   }
+  // The pattern of A = D J (2-ring) and, per term of the assembly in solve(), the index of
+  // its entry in A's values.
+  std::vector<Eigen::Triplet<double>> pattern;
+  auto for_each_term = [&](auto&& term) {
+    for (int i = 0; i < nf; ++i) {
+      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+        for (int p = row_offset_[r.ring[k]]; p < row_offset_[r.ring[k] + 1]; ++p)
+          term(i, row_column_[p]);
+      for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p) term(i, row_column_[p]);
+    }
+  };
+  for_each_term([&](int i, int c) { pattern.emplace_back(i, c, 0.0); });
+  A_.resize(nf, nf);
+  A_.setFromTriplets(pattern.begin(), pattern.end());
+  A_.makeCompressed();
+  term_entry_.reserve(pattern.size());
+  for_each_term([&](int i, int c) {
+    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
+    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
+    term_entry_.push_back(int(std::lower_bound(begin, end, i) - A_.innerIndexPtr()));
+  });
 }
 
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                        const std::vector<double>& w, const Eigen::VectorXd& defects,
-                       const Eigen::VectorXd* tau, bool refresh, Eigen::VectorXd& t) {
+                       const Eigen::VectorXd* tau, Eigen::VectorXd& t) {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   Eigen::VectorXd b = -defects;
   if (tau) b += *tau;
-  if (refresh || !factorized_) {
-    factorized_ = false;
-    // Columns of J by forward differences: move free vertex m by h along its normal and
-    // re-estimate H at m and its ring (normals held fixed). Each thread moves vertices in
-    // its own copy of X.
-    jacobian_.resize(std::size_t(nf) + r.offset[nf]);
+  // Columns of J by forward differences: move free vertex m by h along its normal and
+  // re-estimate H at m and its ring (normals held fixed). Each thread moves vertices in
+  // its own copy of X.
+  jacobian_.resize(std::size_t(nf) + r.offset[nf]);
 #pragma omp parallel if (nf > kParallelMin)
-    {
-      Positions Y = X;
+  {
+    Positions Y = X;
 #pragma omp for schedule(static)
-      for (int m = 0; m < nf; ++m) {
-        const int begin = r.offset[m], end = r.offset[m + 1];
-        double mean_distance = 0.0;
-        for (int k = begin; k < end; ++k) mean_distance += (X.row(r.ring[k]) - X.row(m)).norm();
-        const double h = 1e-6 * mean_distance / (end - begin);
-        Y.row(m) = X.row(m) + h * N.row(m);
-        jacobian_[m] =
-            (moreton_sequin(r, Y, N, m, Y.row(m), N.row(m), needs_spiral_samples(r, m)).H - H(m)) /
-            h;
-        for (int k = begin; k < end; ++k) {
-          const int j = r.ring[k];
-          jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), N.row(j),
-                                              needs_spiral_samples(r, j)).H - H(j)) / h;
-        }
-        Y.row(m) = X.row(m);
-      }
-    }
-    // A = D J, row i: Σ_j w_ij (J(i, ·) − J(j, ·)) over the ring j of i.
-    entries_.clear();
-    for (int i = 0; i < nf; ++i) {
-      double sum_w = 0.0;
-      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+    for (int m = 0; m < nf; ++m) {
+      const int begin = r.offset[m], end = r.offset[m + 1];
+      double mean_distance = 0.0;
+      for (int k = begin; k < end; ++k) mean_distance += (X.row(r.ring[k]) - X.row(m)).norm();
+      const double h = 1e-6 * mean_distance / (end - begin);
+      Y.row(m) = X.row(m) + h * N.row(m);
+      jacobian_[m] =
+          (moreton_sequin(r, Y, N, m, Y.row(m), N.row(m), needs_spiral_samples(r, m)).H - H(m)) /
+          h;
+      for (int k = begin; k < end; ++k) {
         const int j = r.ring[k];
-        sum_w += w[k];
-        for (int p = row_offset_[j]; p < row_offset_[j + 1]; ++p)
-          entries_.emplace_back(i, row_column_[p], -w[k] * jacobian_[row_source_[p]]);
+        jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), N.row(j),
+                                            needs_spiral_samples(r, j)).H - H(j)) / h;
       }
-      for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p)
-        entries_.emplace_back(i, row_column_[p], sum_w * jacobian_[row_source_[p]]);
+      Y.row(m) = X.row(m);
     }
-    A_.resize(nf, nf);
-    A_.setFromTriplets(entries_.begin(), entries_.end());
-    if (!analyzed_) {
-      lu_.analyzePattern(A_);  // the pattern depends on the connectivity only
-      analyzed_ = true;
-    }
-    lu_.factorize(A_);
-    if (lu_.info() != Eigen::Success) return false;
-    factorized_ = true;
   }
+  // A = D J, row i: Σ_j w_ij (J(i, ·) − J(j, ·)) over the ring j of i (terms in the
+  // constructor's order).
+  double* value = A_.valuePtr();
+  std::fill(value, value + A_.nonZeros(), 0.0);
+  const int* entry = term_entry_.data();
+  for (int i = 0; i < nf; ++i) {
+    double sum_w = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+      const int j = r.ring[k];
+      sum_w += w[k];
+      for (int p = row_offset_[j]; p < row_offset_[j + 1]; ++p)
+        value[*entry++] -= w[k] * jacobian_[row_source_[p]];
+    }
+    for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p)
+      value[*entry++] += sum_w * jacobian_[row_source_[p]];
+  }
+  krylov_iterations_ = 0;
+  if (factorized_) {
+    // GMRES on the current D J, preconditioned by the factorization of an earlier one.
+    gmres_.preconditioner().lu = &lu_;
+    gmres_.setMaxIterations(kNewtonKrylovIterations);
+    gmres_.set_restart(kNewtonKrylovIterations);
+    gmres_.setTolerance(kNewtonKrylovTolerance);
+    gmres_.compute(A_);
+    t = gmres_.solve(b);
+    krylov_iterations_ = int(gmres_.iterations());
+    if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
+  }
+  if (!factorize()) return false;
   t = lu_.solve(b);
   return t.allFinite();
+}
+
+bool NewtonStep::factorize() {
+  factorized_ = false;
+  // UMFPACK's solves read the factorized matrix itself: keep it while A_ moves on.
+  factorized_matrix_ = A_;
+  if (!analyzed_) {
+    // No iterative refinement in the solves: a Newton step needs no more accuracy than
+    // GMRES gives it, and refinement doubled the cost of a solve.
+    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+    lu_.analyzePattern(factorized_matrix_);  // the pattern depends on the connectivity only
+    analyzed_ = true;
+  }
+  lu_.factorize(factorized_matrix_);
+  ++factorizations_;
+  if (lu_.info() != Eigen::Success) return false;
+  factorized_ = true;
+  return true;
 }
 
 }  // namespace geofair

@@ -100,10 +100,6 @@ constexpr int kCouplingRefresh = 16;
 /// neighbours. Measured on the disturbed 13000-vertex cap (steps to residual 1e-4, fresh
 /// Jacobian every step): 1: 24, 2: 16, 4: 15.
 constexpr double kNewtonStep = 4.0;
-/// Newton steps between refreshes of the Jacobian and its factorization, at most (chord
-/// steps reuse it while the residual halves per step). 13000-vertex cap: 1: 15 steps in
-/// 5.8 s, 8: 19 steps in 4.7 s.
-constexpr int kNewtonRefresh = 8;
 /// run_newton gives up when the residual has not halved in this many steps.
 constexpr int kNewtonPatience = 20;
 /// BiCGSTAB iterations of a global tangential step.

@@ -6,6 +6,7 @@
 #include "geofair/types.h"
 
 #include <Eigen/UmfPackSupport>
+#include <unsupported/Eigen/IterativeSolvers>
 
 #include <vector>
 
@@ -20,11 +21,25 @@ namespace geofair {
 /// normal; it is measured by forward differences with the normals held fixed (column m
 /// touches H_m and H at the ring of m). The cotangent weights w_ij are held fixed.
 /// The system (D J) t = τ − D H (D: the Dirichlet operator, #V_I×#V) is a sparse
-/// 2-ring fourth-order system, factorized by SuiteSparse's UMFPACK with OpenBLAS (13000
-/// free vertices: the whole solve 2.2 s with it, 3.96 s with Eigen's SparseLU; 100000: about
-/// 1.3 s per factorization, where SparseLU took 6-9 s). Holding the normals fixed is measured:
+/// 2-ring fourth-order system. J is measured afresh at every step; the system is solved by
+/// GMRES (relative residual kNewtonKrylovTolerance) preconditioned by the sparse LU
+/// factorization of the D J of an earlier step, by SuiteSparse's UMFPACK with OpenBLAS, and
+/// refactorized only where GMRES does not converge in kNewtonKrylovIterations iterations
+/// (then the step is the direct solve). The first step factorizes.
+///
+/// Measured (bench/speed.py's disturbed caps, 2-core machine under load): 13000 free
+/// vertices, a factorization 0.1 s (Eigen's SparseLU: 0.2 s), a GMRES iteration 7 ms;
+/// 100000 free vertices: one factorization for all 58 steps, 60 s, where refactorizing
+/// whenever the residual did not halve took 101 s. Holding the normals fixed is measured:
 /// differentiating the quadric normals too took the disturbed 2000-vertex cap from 14 to 9
 /// steps but kept the 13000-vertex cap from converging (residual 150-2000 after 30 steps).
+/// GMRES iterations (also its restart length) before a Newton step refactorizes D J.
+/// 13000-vertex cap: 40 gave 16 steps and 1 factorization; 10: 18 steps and 3.
+constexpr int kNewtonKrylovIterations = 40;
+/// GMRES's relative residual ‖P⁻¹(b − A t)‖/‖P⁻¹ b‖ (P: the lagged factorization): an
+/// inexact Newton step.
+constexpr double kNewtonKrylovTolerance = 1e-3;
+
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
@@ -36,23 +51,38 @@ class NewtonStep {
   /// \param defects #V_I defects D H = Σ_j w_ij (H_i − H_j) (DirichletMatrix::defects), 1/length
   /// \param tau    #V_I source, or nullptr
   /// \param t      out: #V_I normal offsets, mesh units, positive along N
-  /// \param refresh  measure J and factorize D J at X; otherwise reuse the last
-  ///                  factorization (a chord step; the right-hand side is always current)
   /// \return false if the factorization failed (singular system)
   bool solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
              const std::vector<double>& w, const Eigen::VectorXd& defects,
-             const Eigen::VectorXd* tau, bool refresh, Eigen::VectorXd& t);
+             const Eigen::VectorXd* tau, Eigen::VectorXd& t);
   bool factorized() const { return factorized_; }
+  /// Factorizations of D J so far, and GMRES iterations of the last solve (0: direct).
+  int factorizations() const { return factorizations_; }
+  int krylov_iterations() const { return krylov_iterations_; }
 
  private:
+  // GMRES preconditioner: the last factorization of D J, of an earlier iterate.
+  struct LaggedFactorization {
+    const Eigen::UmfPackLU<Eigen::SparseMatrix<double>>* lu = nullptr;
+    template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
+    template <class M> LaggedFactorization& factorize(const M&) { return *this; }
+    template <class M> LaggedFactorization& compute(const M&) { return *this; }
+    template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+  };
+  bool factorize();
+
   const FairingRegion& region_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J (see constructor)
-  std::vector<Eigen::Triplet<double>> entries_;
-  Eigen::SparseMatrix<double> A_;
+  std::vector<int> term_entry_;  // per term of the assembly of A: its index in A's values
+  Eigen::SparseMatrix<double> A_, factorized_matrix_;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
+  Eigen::GMRES<Eigen::SparseMatrix<double>, LaggedFactorization> gmres_;
   bool analyzed_ = false;
   bool factorized_ = false;
+  int factorizations_ = 0;
+  int krylov_iterations_ = 0;
 };
 
 }  // namespace geofair

@@ -63,7 +63,7 @@ enum class OuterFairness {
 /// How the discrete equations (12) are solved. Both solve the same equations with the
 /// same discretization; they differ in speed and in the meshes they converge on.
 enum class Iteration {
-  Auto,    ///< Newton up to 50000 free vertices (the memory of its sparse LU factors);
+  Auto,    ///< Newton up to 150000 free vertices (the memory of its sparse LU factors);
            ///< where it fails to converge, and above, the paper's iteration
   Newton,  ///< Newton's method on the normal offsets of all free vertices at once, single
            ///< level (Construction::run_newton, newton_step.h; beyond the paper)
