@@ -100,7 +100,6 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p)
       value[*entry++] += sum_w * jacobian_[row_source_[p]];
   }
-  krylov_iterations_ = 0;
   if (factorized_) {
     // GMRES on the current D J, preconditioned by the factorization of an earlier one.
     gmres_.preconditioner().lu = &lu_;
@@ -109,7 +108,6 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     gmres_.setTolerance(kNewtonKrylovTolerance);
     gmres_.compute(A_);
     t = gmres_.solve(b);
-    krylov_iterations_ = int(gmres_.iterations());
     if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
   }
   if (!factorize()) return false;
@@ -129,7 +127,6 @@ bool NewtonStep::factorize() {
     analyzed_ = true;
   }
   lu_.factorize(factorized_matrix_);
-  ++factorizations_;
   if (lu_.info() != Eigen::Success) return false;
   factorized_ = true;
   return true;

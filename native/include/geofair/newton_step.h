@@ -12,6 +12,13 @@
 
 namespace geofair {
 
+/// GMRES iterations (also its restart length) before a Newton step refactorizes D J.
+/// 13000-vertex cap: 40 gave 16 steps and 1 factorization; 10: 18 steps and 3.
+constexpr int kNewtonKrylovIterations = 40;
+/// GMRES's relative residual ‖P⁻¹(b − A t)‖/‖P⁻¹ b‖ (P: the lagged factorization): an
+/// inexact Newton step.
+constexpr double kNewtonKrylovTolerance = 1e-3;
+
 /// Normal offsets t (#V_I) of all free vertices at once that solve the linearized
 /// discrete fairness equation
 ///   Σ_j w_ij (H_i(t) − H_j(t)) = τ_i,   H_k(t) ≈ H_k + Σ_m J_km t_m,
@@ -28,18 +35,16 @@ namespace geofair {
 /// (then the step is the direct solve). The first step factorizes.
 ///
 /// Measured (bench/speed.py's disturbed caps, 2-core machine under load): 13000 free
-/// vertices, a factorization 0.1 s (Eigen's SparseLU: 0.2 s), a GMRES iteration 7 ms;
-/// 100000 free vertices: one factorization for all 58 steps, 60 s, where refactorizing
-/// whenever the residual did not halve took 101 s. Holding the normals fixed is measured:
+/// vertices, a factorization 0.1 s (Eigen's SparseLU: 0.2 s), a GMRES iteration 7 ms, one
+/// factorization for all 16 steps; 100000 free vertices: one factorization for all 58
+/// steps, 44 s in all, where refactorizing whenever the residual did not halve (chord steps
+/// in between) took 101 s. Holding the normals fixed is measured:
 /// differentiating the quadric normals too took the disturbed 2000-vertex cap from 14 to 9
 /// steps but kept the 13000-vertex cap from converging (residual 150-2000 after 30 steps).
-/// GMRES iterations (also its restart length) before a Newton step refactorizes D J.
-/// 13000-vertex cap: 40 gave 16 steps and 1 factorization; 10: 18 steps and 3.
-constexpr int kNewtonKrylovIterations = 40;
-/// GMRES's relative residual ‖P⁻¹(b − A t)‖/‖P⁻¹ b‖ (P: the lagged factorization): an
-/// inexact Newton step.
-constexpr double kNewtonKrylovTolerance = 1e-3;
-
+/// The largest defects during the steps sit at vertices of valence 3 and 4, whose spiral
+/// samples (section 6.2) read the neighbours' normals that J holds fixed: on the
+/// 100000-vertex cap the residual jumps back by about 100x a few times in the last 30
+/// steps, each time at such a vertex right after a tangential step.
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
@@ -55,10 +60,6 @@ class NewtonStep {
   bool solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
              const std::vector<double>& w, const Eigen::VectorXd& defects,
              const Eigen::VectorXd* tau, Eigen::VectorXd& t);
-  bool factorized() const { return factorized_; }
-  /// Factorizations of D J so far, and GMRES iterations of the last solve (0: direct).
-  int factorizations() const { return factorizations_; }
-  int krylov_iterations() const { return krylov_iterations_; }
 
  private:
   // GMRES preconditioner: the last factorization of D J, of an earlier iterate.
@@ -81,8 +82,6 @@ class NewtonStep {
   Eigen::GMRES<Eigen::SparseMatrix<double>, LaggedFactorization> gmres_;
   bool analyzed_ = false;
   bool factorized_ = false;
-  int factorizations_ = 0;
-  int krylov_iterations_ = 0;
 };
 
 }  // namespace geofair
