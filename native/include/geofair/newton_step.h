@@ -38,9 +38,12 @@ constexpr double kNewtonKrylovTolerance = 1e-3;
 /// vertices, a factorization 0.1 s (Eigen's SparseLU: 0.2 s), a GMRES iteration 7 ms, one
 /// factorization for all 16 steps; 100000 free vertices: one factorization for all 58
 /// steps, 44 s in all, where refactorizing whenever the residual did not halve (chord steps
-/// in between) took 101 s. Holding the normals fixed is measured:
-/// differentiating the quadric normals too took the disturbed 2000-vertex cap from 14 to 9
-/// steps but kept the 13000-vertex cap from converging (residual 150-2000 after 30 steps).
+/// in between) took 101 s. Holding the normals fixed is measured: differentiating the
+/// quadric normals too (the normals of m and its ring follow the move; column m then
+/// touches the 2-ring of m) took the 2000-, 13000- and 100000-vertex caps from 11, 16 and
+/// 58 steps to 7, 15 and 50, but the costlier Jacobian made the 100000-vertex cap slower,
+/// 51 s instead of 44 s (with chord steps instead of GMRES it had kept the 13000-vertex
+/// cap from converging).
 /// The largest defects during the steps sit at vertices of valence 3 and 4, whose spiral
 /// samples (section 6.2) read the neighbours' normals that J holds fixed: on the
 /// 100000-vertex cap the residual jumps back by about 100x a few times in the last 30
