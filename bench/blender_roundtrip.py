@@ -1,4 +1,4 @@
-"""The add-on's own cost around the native solve (the Blender round trip), on sphere caps of about 100,000 free vertices.
+"""The add-on's own cost around the native solve (the Blender round trip) on sphere caps of 100,000 free vertices.
 
     blender --background --factory-startup --python-exit-code 1 \\
         --python bench/blender_roundtrip.py -- [n_free ...] [--addon build/addon]

@@ -79,6 +79,14 @@ def check_regions(addon, obj):
     assert report.free_vertices > 50 and np.any(positions(obj) != before)
     print(f"ok: selected faces: {report.summary()}")
 
+    # The solver option reaches geofair.fair: the result says which iteration produced it.
+    for chosen, used in (("PAPER", "paper"), ("newton", "newton"), ("AUTO", "newton")):  # auto: Newton up to 50k
+        report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3, iteration=chosen)
+        assert report.converged and report.iteration == used, (chosen, report)
+        assert bpy.context.window_manager.geometric_fairing.last_run.iteration == used
+        print(f"ok: iteration={chosen}: solved by {report.iteration}, {report.iterations} iterations")
+    expect_error(ValueError, "iteration must be one of", lambda: addon.fair_object(obj, iteration="multigrid"))
+
     expect_error(ValueError, "has no vertex group 'Missing'", lambda: addon.fair_object(obj, region="Missing"))
     expect_error(ValueError, "one entry per face", lambda: addon.fair_object(obj, region=np.ones(3, dtype=bool)))
     expect_error(ValueError, "No face is selected", lambda: addon.fair_object(obj, region=np.zeros(len(mask), bool)))
