@@ -19,6 +19,7 @@ writing positions in Edit Mode go through the BMesh element by element, since
 a BMesh has no ``foreach_get``/``foreach_set``.
 """
 
+import itertools
 from dataclasses import dataclass
 
 import bmesh
@@ -114,17 +115,21 @@ def read_uvs(obj, data, faces=None):
         return None
     uvs = np.full((len(data.corner_verts), 2), np.nan)
     if faces is None:  # corners in face order: the order of mesh.loops after update_from_editmode
-        values = [loop[layer].uv[:] for face in bm.faces for loop in face.loops]
-        uvs[:] = np.asarray(values, dtype=np.float32).reshape(-1, 2)
+        uvs[:] = _bmesh_uvs(bm.faces, layer, len(data.corner_verts))
         return uvs
     faces = np.asarray(faces, dtype=np.int64)
     bm.faces.ensure_lookup_table()
-    bm_faces = bm.faces
-    values = [loop[layer].uv[:] for face in map(bm_faces.__getitem__, faces.tolist()) for loop in face.loops]
     start, total = data.loop_start[faces].astype(np.int64), data.loop_total[faces].astype(np.int64)
     corners = np.repeat(start, total) + np.arange(total.sum()) - np.repeat(np.cumsum(total) - total, total)
-    uvs[corners] = np.asarray(values, dtype=np.float32).reshape(-1, 2)
+    uvs[corners] = _bmesh_uvs(map(bm.faces.__getitem__, faces.tolist()), layer, len(corners))
     return uvs
+
+
+def _bmesh_uvs(faces, layer, corners):
+    """``(corners, 2)`` float32 UVs of the BMesh ``faces``' corners in order (the ``corners`` they have in all)."""
+    # Flat floats through np.fromiter: about half the time of an array made from a list of pairs.
+    values = itertools.chain.from_iterable(loop[layer].uv[:] for face in faces for loop in face.loops)
+    return np.fromiter(values, dtype=np.float32, count=2 * corners).reshape(-1, 2)
 
 
 def vertex_group_weights(obj, name):
