@@ -3,7 +3,7 @@
     blender --background --factory-startup --python-exit-code 1 \\
         --python bench/blender_roundtrip.py -- [n_free ...] [--addon build/addon]
         [--max-iterations 100] [--tolerance 1e-4] [--iteration auto|newton|paper]
-        [--no-uv] [--profile] [--cache /tmp/geofair_bench_scenes] [--suzanne]
+        [--no-uv] [--profile] [--cache /tmp/geofair_bench_scenes]
 
 or the same arguments with the ``bpy`` module from PyPI: ``python3 bench/blender_roundtrip.py
 [n_free ...] [...]``.
@@ -42,7 +42,6 @@ figure matters.
 
 import argparse
 import cProfile
-import importlib
 import os
 import pathlib
 import pstats
@@ -279,7 +278,6 @@ def print_breakdown(title, wall, clock, edit):
 def main():
     args = parse_args()
     addon = helpers.enable_addon(args.addon.resolve())
-    importlib.import_module("geometric_fairing.native")
     print(
         f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {args.addon}; "
         f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}"
