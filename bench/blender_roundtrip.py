@@ -63,10 +63,10 @@ import speed  # noqa: E402 (the scene cache of bench/speed.py)
 def parse_args():
     if "--" in sys.argv:
         argv = sys.argv[sys.argv.index("--") + 1 :]
-    elif pathlib.Path(sys.argv[0]).name.startswith("blender"):
-        argv = []
-    else:
+    elif sys.argv and pathlib.Path(sys.argv[0]).resolve() == pathlib.Path(__file__).resolve():  # python3 this.py
         argv = sys.argv[1:]
+    else:  # Blender's own arguments
+        argv = []
     parser = argparse.ArgumentParser(prog="blender_roundtrip.py", description=__doc__.splitlines()[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[100000], help="free vertices of the caps")
     parser.add_argument("--addon", type=pathlib.Path, default=REPO / "build" / "addon")
@@ -185,7 +185,7 @@ def remove(obj):
 def options(args):
     given = {"max_iterations": args.max_iterations, "tolerance": args.tolerance}
     if args.iteration is not None:
-        given["iteration"] = args.iteration
+        given["iteration"] = args.iteration.upper()
     return given
 
 
@@ -284,8 +284,8 @@ def main():
     )
     print(
         f"solve bounded by max_iterations={args.max_iterations} per level, tolerance {args.tolerance:g}, "
-        f"iteration {args.iteration or 'auto (the default)'}: the overhead's share of a converged solve "
-        f"is smaller than the share printed"
+        f"iteration {args.iteration or 'auto (the default)'}: where the solve stops unconverged, the overhead's "
+        f"share of a converged solve is smaller than the share printed"
     )
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
