@@ -206,8 +206,7 @@ class FairingRun(_WorkerThread):
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
-        changed_faces = np.unique(mesh.triangle_face[self.changed_triangles])
-        mesh.corner_uvs = mesh_io.read_uvs(obj, mesh, faces=changed_faces)
+        mesh.corner_uvs = mesh_io.read_uvs(obj, mesh)
         self.timings["uv_read"] = time.perf_counter() - clock
         self.uv_before = self._uv_distortion(mesh.vertices)
         self.timings["uv"] = time.perf_counter() - clock

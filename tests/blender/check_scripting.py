@@ -20,6 +20,7 @@ import time
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
 # isort: split
+import bmesh
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
@@ -206,6 +207,19 @@ def check_uv_distortion(addon):
         run = addon.fairing.FairingRun(grid, addon.FairingOptions(), faces=inner)
         assert abs(run.uv_before.mean - 2.0) < 1e-5 and run.uv_before.triangles > 0, run.uv_before
         print(f"ok: {mode.title()} Mode: UV distortion of a 2:1 stretched grid = {distortion.mean:.6f}")
+    # Edit Mode: UVs edited in the BMesh and not yet stored in the mesh, on a second UV map made active.
+    bpy.ops.object.mode_set(mode="OBJECT")
+    mesh.uv_layers.active = mesh.uv_layers.new(name="Second")
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(mesh)
+    layer = bm.loops.layers.uv["Second"]
+    for face in bm.faces:
+        for loop in face.loops:
+            loop[layer].uv = (3.0 * loop.vert.co.x, loop.vert.co.y)
+    bmesh.update_edit_mesh(mesh, loop_triangles=False, destructive=False)
+    run = addon.fairing.FairingRun(grid, addon.FairingOptions(), faces=inner)
+    assert abs(run.uv_before.mean - 3.0) < 1e-5 and abs(run.uv_before.max - 3.0) < 1e-5, run.uv_before
+    print(f"ok: Edit Mode: UVs edited in the BMesh, active second map: distortion {run.uv_before.mean:.6f}")
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(grid)
 
