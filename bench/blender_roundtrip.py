@@ -254,7 +254,7 @@ def print_breakdown(title, wall, clock, edit):
     rows = [
         ("read mesh (foreach_get)" + (" after update_from_editmode" if edit else ""), t["read"]),
         ("region (selection -> free, boundary normals)", t["region"]),
-        ("UVs read" + (" (BMesh, region's corners)" if edit else " (foreach_get)"), t["uv_read"]),
+        ("UVs read (foreach_get" + (" of a to_mesh copy)" if edit else ")"), t["uv_read"]),
         ("UV distortion before and after", uv_figures),
         ("write positions" + (" (BMesh, normals, update_edit_mesh)" if edit else " (foreach_set)"), t["write"]),
         ("panel figures, curvature colours", clock.get("last runs" if edit else "last run") + clock.get("curvature")),
