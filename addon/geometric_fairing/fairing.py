@@ -35,6 +35,7 @@ class FairingOptions:
     tolerance: float = properties.DEFAULTS["tolerance"]
     max_iterations: int = properties.DEFAULTS["max_iterations"]
     levels: int = properties.DEFAULTS["levels"]
+    iteration: str = "AUTO"
     region_group: str = ""
     pin_group: str = ""
     use_hidden: bool = False
@@ -42,9 +43,11 @@ class FairingOptions:
     def __post_init__(self):
         self.inner_fairness = self.inner_fairness.upper()
         self.outer_fairness = self.outer_fairness.upper()
+        self.iteration = self.iteration.upper()
         for name, items in (
             ("inner_fairness", properties.INNER_FAIRNESS_ITEMS),
             ("outer_fairness", properties.OUTER_FAIRNESS_ITEMS),
+            ("iteration", properties.ITERATION_ITEMS),
         ):
             allowed = [item[0] for item in items]
             if getattr(self, name) not in allowed:
@@ -64,13 +67,15 @@ class FairingReport:
             hidden face too (without ``use_hidden``).
         converged: the residual fell below the tolerance.
         cancelled: stopped by Esc or by a progress callback; the mesh is unchanged.
-        iterations: fairing iterations (all levels).
+        iterations: fairing iterations (all levels), or Newton steps.
         residual: the last normalized residual of Δ_B H = 0 (dimensionless).
         seconds: wall time of the solve.
         uv_before, uv_after: :class:`metrics.Distortion` of the active UV map over the
             triangles with a free vertex, before and after (None without a UV map;
             ``uv_after`` is None when the mesh was not changed).
         iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
+        iteration: the solver that produced the result, "newton" or "paper" (``iteration="AUTO"``
+            picks one; "" when nothing was solved).
         timings: wall time in seconds of the steps of the run: ``read`` (mesh to numpy),
             ``region``, ``uv`` (UV distortion before and after, with ``uv_read``, reading
             the UVs), ``solve``, ``write``.
@@ -90,6 +95,7 @@ class FairingReport:
     iterations_per_level: list = field(default_factory=list)
     vertices_per_level: list = field(default_factory=list)
     hidden_fixed_vertices: int = 0
+    iteration: str = ""
     timings: dict = field(default_factory=dict)
 
     @property
@@ -118,7 +124,7 @@ class FairingReport:
 
 # The result of a run that never got to solve (cancelled first): nothing to write.
 _NOT_SOLVED = types.SimpleNamespace(
-    converged=False, iterations=0, residual=float("nan"), iterations_per_level=[], vertices_per_level=[]
+    converged=False, iterations=0, residual=float("nan"), iterations_per_level=[], vertices_per_level=[], iteration=""
 )
 
 
@@ -200,8 +206,7 @@ class FairingRun(_WorkerThread):
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
-        changed_faces = np.unique(mesh.triangle_face[self.changed_triangles])
-        mesh.corner_uvs = mesh_io.read_uvs(obj, mesh, faces=changed_faces)
+        mesh.corner_uvs = mesh_io.read_uvs(obj, mesh)
         self.timings["uv_read"] = time.perf_counter() - clock
         self.uv_before = self._uv_distortion(mesh.vertices)
         self.timings["uv"] = time.perf_counter() - clock
@@ -232,6 +237,7 @@ class FairingRun(_WorkerThread):
                 tolerance=options.tolerance,
                 max_iterations=options.max_iterations,
                 levels=options.levels,
+                iteration=options.iteration.lower(),
                 progress=self._progress,
             )
         except Exception as error:  # kept for finish(), which runs in Blender's thread
@@ -308,6 +314,7 @@ class FairingRun(_WorkerThread):
             uv_after=uv_after,
             iterations_per_level=list(result.iterations_per_level),
             vertices_per_level=list(result.vertices_per_level),
+            iteration=str(result.iteration),
             timings=dict(self.timings),
         )
 
@@ -448,7 +455,8 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             defaults of options not given.
         **options: ``inner_fairness`` ("UNIFORM" or "CONFORMAL"),
             ``outer_fairness`` ("INTRINSIC" or "BILAPLACIAN"), ``tolerance``,
-            ``max_iterations``, ``levels``, ``pin_group`` (vertex group name),
+            ``max_iterations``, ``levels``, ``iteration`` ("AUTO", "NEWTON" or "PAPER":
+            the solver, see ``geofair.fair``), ``pin_group`` (vertex group name),
             ``use_hidden`` (False: hidden faces take no part, their vertices never move).
             Not given: the Fairing panel's settings, which follow the add-on
             preferences.
@@ -496,6 +504,7 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last.outer_fairness = options.outer_fairness
     last.tolerance = options.tolerance
     last.not_faired = ""
+    last.iteration = ""
     if error is not None:
         last.status, last.message, last.object_name = "ERROR", error_text(error), object_name
         return
@@ -507,6 +516,7 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last.iterations = report.iterations
     last.residual = report.residual
     last.seconds = report.seconds
+    last.iteration = report.iteration
     last.has_uv = report.uv_before is not None
     if last.has_uv:
         last.uv_triangles = report.uv_before.triangles
@@ -545,5 +555,6 @@ def store_last_runs(window_manager, options, reports, errors, message):
     last.iterations = sum(report.iterations for report in reports)
     last.residual = max(report.residual for report in reports)
     last.seconds = sum(report.seconds for report in reports)
+    last.iteration = ", ".join(sorted({report.iteration for report in reports if report.iteration}))
     last.has_uv = False  # one object's UV figures; they do not add up
     last.not_faired = "; ".join(f"{name}: {error_text(error)}" for name, error in errors)

@@ -36,6 +36,26 @@ OUTER_FAIRNESS_ITEMS = (
     ),
 )
 
+ITERATION_ITEMS = (
+    (
+        "AUTO",
+        "Auto",
+        "Newton's method up to 50,000 free vertices, falling back to the paper's iteration where it stalls; "
+        "the paper's iteration above",
+    ),
+    (
+        "NEWTON",
+        "Newton",
+        "Newton's method on all free vertices at once (one sparse LU solve per step, single level): few steps, "
+        "but its memory grows faster than the region",
+    ),
+    (
+        "PAPER",
+        "Paper",
+        "The paper's local/global iteration with progressive-mesh multigrid (Levels): little memory, many iterations",
+    ),
+)
+
 # Defaults when the add-on's preferences are not available (imported by a script without enabling it).
 DEFAULTS = {"tolerance": 1e-4, "max_iterations": 20000, "levels": 0}
 OPTION_NAMES = (
@@ -44,6 +64,7 @@ OPTION_NAMES = (
     "tolerance",
     "max_iterations",
     "levels",
+    "iteration",
     "region_group",
     "pin_group",
     "use_hidden",
@@ -101,6 +122,16 @@ def _levels(**options):
         default=DEFAULTS["levels"],
         min=0,
         max=12,
+        **options,
+    )
+
+
+def _iteration(**options):
+    return EnumProperty(
+        name="Solver",
+        description="How the fairing equations are solved (advanced; every choice solves the same equations)",
+        items=ITERATION_ITEMS,
+        default="AUTO",
         **options,
     )
 
@@ -189,6 +220,7 @@ class FairingProperties:
     tolerance: _tolerance(options={"SKIP_SAVE"})
     max_iterations: _max_iterations(options={"SKIP_SAVE"})
     levels: _levels(options={"SKIP_SAVE"})
+    iteration: _iteration(options={"SKIP_SAVE"})
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})
     use_hidden: _use_hidden(options={"SKIP_SAVE"})
@@ -202,6 +234,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     tolerance: _tolerance(**_follows_preference("tolerance"))
     max_iterations: _max_iterations(**_follows_preference("max_iterations"))
     levels: _levels(**_follows_preference("levels"))
+    iteration: _iteration()
     region_group: _region_group()
     pin_group: _pin_group()
     use_hidden: _use_hidden()
@@ -225,6 +258,7 @@ class FairingLastRun(bpy.types.PropertyGroup):
     not_faired: StringProperty(description="Objects in Edit Mode that could not be faired, with the reason")
     inner_fairness: StringProperty()
     outer_fairness: StringProperty()
+    iteration: StringProperty(description="The solver that produced the result: newton or paper (empty: none)")
     free_vertices: IntProperty()
     pinned_vertices: IntProperty()
     iterations: IntProperty()

@@ -10,7 +10,8 @@ product ``(b - a) × (c - a)`` of a triangle points outwards and its length is
 twice the triangle area.
 """
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -62,7 +63,8 @@ class Region:
             fixed because they are pinned (not on the border); those next to a
             free vertex are G1 boundary vertices with their own current normal.
         loops: boundary loops, each an int array of vertex indices, oriented
-            like the triangles of the region (the outer loop counter-clockwise).
+            like the triangles of the region (the outer loop counter-clockwise);
+            computed when first read (fairing does not need them).
     """
 
     free: np.ndarray
@@ -71,7 +73,11 @@ class Region:
     border_fixed: np.ndarray
     hidden_fixed: np.ndarray
     pinned: np.ndarray
-    loops: list
+    region_triangles: np.ndarray = field(repr=False)  # (R, 3) the triangles with a free vertex
+
+    @functools.cached_property
+    def loops(self):
+        return boundary_loops(self.region_triangles, self.free)
 
 
 def triangulate_polygons(loop_start, loop_total, corner_verts):
@@ -229,7 +235,7 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
         border_fixed=border_fixed,
         hidden_fixed=hidden_fixed,
         pinned=pinned,
-        loops=boundary_loops(triangles[in_region], free),
+        region_triangles=triangles[in_region],
     )
 
 

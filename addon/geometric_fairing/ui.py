@@ -41,6 +41,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         column.prop(settings, "tolerance")
         column.prop(settings, "max_iterations", text="Iterations")
         column.prop(settings, "levels")
+        column.prop(settings, "iteration")
         column = layout.column()
         column.prop_search(settings, "region_group", obj, "vertex_groups", text="Region", icon="GROUP_VERTEX")
         if not settings.region_group:
@@ -95,6 +96,8 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
             ("Inner", last.inner_fairness.title()),
             ("Outer", last.outer_fairness.title()),
         ]
+        if last.iteration:
+            figures.append(("Solver", last.iteration.title()))
         if last.has_uv:
             after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.3f} / {last.uv_after_max:.2f}"
             figures += [

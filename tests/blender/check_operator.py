@@ -210,6 +210,34 @@ def check_preferences(obj, addon):
     print("ok: preferences -> panel -> operator defaults; the operator's own values win")
 
 
+def check_iteration(obj, addon):
+    """The Solver option (iteration) reaches geofair.fair from the operator and from the panel; default auto.
+
+    Conformal inner fairness: with uniform, Newton's method stalls on the brow and auto falls back to the paper's.
+    """
+    settings = bpy.context.scene.geometric_fairing
+    rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties["iteration"]
+    assert settings.iteration == "AUTO" and rna.default == "AUTO" and "solved" in rna.description, rna.description
+    assert [item.identifier for item in rna.enum_items] == ["AUTO", "NEWTON", "PAPER"]
+    for given, used in (("PAPER", "paper"), ("NEWTON", "newton")):
+        result, error = fair(iteration=given, inner_fairness="CONFORMAL")
+        assert result == {"FINISHED"}, error
+        last = check_last_run("CONVERGED", iteration=used)
+        print(f"ok: iteration={given}: solved by {last.iteration} in {last.iterations} iterations")
+        bpy.ops.ed.undo()
+    settings.iteration = "PAPER"  # from the panel
+    result, error = fair(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"}, error
+    check_last_run("CONVERGED", iteration="paper")
+    assert "Solver" in draw_panels(addon) and "Paper" in draw_panels(addon)
+    bpy.ops.ed.undo()
+    settings.iteration = "AUTO"
+    result, error = fair(inner_fairness="CONFORMAL")
+    check_last_run("CONVERGED", iteration="newton")  # auto: Newton's method on a region this small
+    bpy.ops.ed.undo()
+    print("ok: the Solver option from the operator and the panel reaches the solver")
+
+
 def check_pins_and_region_group(obj):
     """A pin group keeps vertices inside the region fixed; a region group replaces the selection."""
     settings = bpy.context.scene.geometric_fairing
@@ -296,6 +324,7 @@ def main():
     print(f"ok: last run in the panel: {last.message}")
     check_fairing(obj, inner_fairness="CONFORMAL")
     check_fairing(obj, outer_fairness="BILAPLACIAN", tolerance=1e-5, max_iterations=500)
+    check_iteration(obj, addon)
     check_preferences(obj, addon)
     # Brow and eye socket: reaches the open border around the eye, whose vertices stay fixed.
     # Conformal inner fairness: uniform may diverge on this region (a known limitation of the solver).

@@ -20,6 +20,7 @@ import time
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
 # isort: split
+import bmesh
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
@@ -78,6 +79,14 @@ def check_regions(addon, obj):
     report = addon.fair_object(obj, outer_fairness="BILAPLACIAN")
     assert report.free_vertices > 50 and np.any(positions(obj) != before)
     print(f"ok: selected faces: {report.summary()}")
+
+    # The solver option reaches geofair.fair: the result says which iteration produced it.
+    for chosen, used in (("PAPER", "paper"), ("newton", "newton"), ("AUTO", "newton")):  # auto: Newton up to 50k
+        report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3, iteration=chosen)
+        assert report.converged and report.iteration == used, (chosen, report)
+        assert bpy.context.window_manager.geometric_fairing.last_run.iteration == used
+        print(f"ok: iteration={chosen}: solved by {report.iteration}, {report.iterations} iterations")
+    expect_error(ValueError, "iteration must be one of", lambda: addon.fair_object(obj, iteration="multigrid"))
 
     expect_error(ValueError, "has no vertex group 'Missing'", lambda: addon.fair_object(obj, region="Missing"))
     expect_error(ValueError, "one entry per face", lambda: addon.fair_object(obj, region=np.ones(3, dtype=bool)))
@@ -198,6 +207,19 @@ def check_uv_distortion(addon):
         run = addon.fairing.FairingRun(grid, addon.FairingOptions(), faces=inner)
         assert abs(run.uv_before.mean - 2.0) < 1e-5 and run.uv_before.triangles > 0, run.uv_before
         print(f"ok: {mode.title()} Mode: UV distortion of a 2:1 stretched grid = {distortion.mean:.6f}")
+    # Edit Mode: UVs edited in the BMesh and not yet stored in the mesh, on a second UV map made active.
+    bpy.ops.object.mode_set(mode="OBJECT")
+    mesh.uv_layers.active = mesh.uv_layers.new(name="Second")
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(mesh)
+    layer = bm.loops.layers.uv["Second"]
+    for face in bm.faces:
+        for loop in face.loops:
+            loop[layer].uv = (3.0 * loop.vert.co.x, loop.vert.co.y)
+    bmesh.update_edit_mesh(mesh, loop_triangles=False, destructive=False)
+    run = addon.fairing.FairingRun(grid, addon.FairingOptions(), faces=inner)
+    assert abs(run.uv_before.mean - 3.0) < 1e-5 and abs(run.uv_before.max - 3.0) < 1e-5, run.uv_before
+    print(f"ok: Edit Mode: UVs edited in the BMesh, active second map: distortion {run.uv_before.mean:.6f}")
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(grid)
 
