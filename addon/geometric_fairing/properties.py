@@ -40,14 +40,14 @@ ITERATION_ITEMS = (
     (
         "AUTO",
         "Auto",
-        "Newton's method up to 50,000 free vertices, falling back to the paper's iteration where it stalls; "
+        "Newton's method up to 150,000 free vertices, falling back to the paper's iteration where it stalls; "
         "the paper's iteration above",
     ),
     (
         "NEWTON",
         "Newton",
-        "Newton's method on all free vertices at once (one sparse LU solve per step, single level): few steps, "
-        "but its memory grows faster than the region",
+        "Newton's method on all free vertices at once (one sparse solve per step, single level): few steps, "
+        "but the memory of its sparse LU factors grows faster than the region",
     ),
     (
         "PAPER",
