@@ -81,7 +81,7 @@ def check_regions(addon, obj):
     print(f"ok: selected faces: {report.summary()}")
 
     # The solver option reaches geofair.fair: the result says which iteration produced it.
-    for chosen, used in (("PAPER", "paper"), ("newton", "newton"), ("AUTO", "newton")):  # auto: Newton up to 50k
+    for chosen, used in (("PAPER", "paper"), ("newton", "newton"), ("AUTO", "newton")):  # auto: Newton up to 150k
         report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3, iteration=chosen)
         assert report.converged and report.iteration == used, (chosen, report)
         assert bpy.context.window_manager.geometric_fairing.last_run.iteration == used
