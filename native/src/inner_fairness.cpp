@@ -108,15 +108,15 @@ TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWei
   solver_.setTolerance(1e-12);
 }
 
-void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions& N, double damping,
-                            Positions& X) {
+Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, const Positions& N,
+                                           const Positions& X) {
   const int nf = n_free_;
-  std::vector<Vec3> t1(nf), t2(nf);
+  t1_.resize(nf), t2_.resize(nf);
   for (int i = 0; i < nf; ++i) {
     const Vec3 n = N.row(i);
     const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-    t1[i] = n.cross(helper).normalized();
-    t2[i] = n.cross(t1[i]);
+    t1_[i] = n.cross(helper).normalized();
+    t2_[i] = n.cross(t1_[i]);
   }
   double* values = A_.valuePtr();
   const int* outer = A_.outerIndexPtr();
@@ -130,31 +130,68 @@ void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions&
     entry(i, p, 0, 0) = entry(i, p, 1, 1) = 1.0;
     entry(i, p, 0, 1) = entry(i, p, 1, 0) = 0.0;
     const Vec3 residual = weighted_centroid(lambda, X, i) - X.row(i).transpose();
-    rhs(2 * i) = residual.dot(t1[i]);
-    rhs(2 * i + 1) = residual.dot(t2[i]);
+    rhs(2 * i) = residual.dot(t1_[i]);
+    rhs(2 * i + 1) = residual.dot(t2_[i]);
     for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k) {
       if (slot_value_[k] < 0) continue;
       const int j = lambda.neighbour[k], q = slot_value_[k];
       const double w = lambda.weight[k];
-      entry(i, q, 0, 0) = -w * t1[i].dot(t1[j]);
-      entry(i, q, 0, 1) = -w * t1[i].dot(t2[j]);
-      entry(i, q, 1, 0) = -w * t2[i].dot(t1[j]);
-      entry(i, q, 1, 1) = -w * t2[i].dot(t2[j]);
+      entry(i, q, 0, 0) = -w * t1_[i].dot(t1_[j]);
+      entry(i, q, 0, 1) = -w * t1_[i].dot(t2_[j]);
+      entry(i, q, 1, 0) = -w * t2_[i].dot(t1_[j]);
+      entry(i, q, 1, 1) = -w * t2_[i].dot(t2_[j]);
     }
   }
+  return rhs;
+}
+
+void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions& N, double damping,
+                            Positions& X) {
+  const Eigen::VectorXd rhs = assemble(lambda, N, X);
   solver_.compute(A_);
   const Eigen::VectorXd u = solver_.solve(rhs);
   if (!u.allFinite()) return;  // a breakdown: leave the tangential positions to the local steps
-  for (int i = 0; i < nf; ++i) {
+  for (int i = 0; i < n_free_; ++i) {
     double mean_distance = 0.0;
     for (int k = rings_.offset[i]; k < rings_.offset[i + 1]; ++k)
       mean_distance += (X.row(rings_.ring[k]) - X.row(i)).norm();
     mean_distance /= rings_.valence(i);
-    Vec3 d = u(2 * i) * t1[i] + u(2 * i + 1) * t2[i];
+    Vec3 d = u(2 * i) * t1_[i] + u(2 * i + 1) * t2_[i];
     const double len = d.norm();
     if (len > 0.5 * mean_distance) d *= 0.5 * mean_distance / len;
     X.row(i) += damping * d.transpose();
   }
+}
+
+double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positions& N,
+                               Positions& X) {
+  const int nf = n_free_;
+  const Eigen::VectorXd rhs = assemble(lambda, N, X);
+  direct_matrix_ = A_;  // UMFPACK's solve reads the factorized matrix
+  if (!direct_analyzed_) {
+    direct_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+    direct_.analyzePattern(direct_matrix_);
+    direct_analyzed_ = true;
+  }
+  direct_.factorize(direct_matrix_);
+  if (direct_.info() != Eigen::Success) return 0.0;
+  const Eigen::VectorXd u = direct_.solve(rhs);
+  if (!u.allFinite()) return 0.0;
+  // One scale for the whole step: no edge stretches or shrinks by more than kMaxStretch of
+  // its length (the offsets of boundary vertices are 0).
+  auto offset = [&](int i) {
+    return i < nf ? Vec3(u(2 * i) * t1_[i] + u(2 * i + 1) * t2_[i]) : Vec3(Vec3::Zero());
+  };
+  double stretch = 0.0;
+  for (int i = 0; i < nf; ++i)
+    for (int k = rings_.offset[i]; k < rings_.offset[i + 1]; ++k) {
+      const int j = rings_.ring[k];
+      stretch = std::max(stretch, (offset(i) - offset(j)).norm() / (X.row(j) - X.row(i)).norm());
+    }
+  if (!std::isfinite(stretch)) return 0.0;
+  const double scale = stretch > kMaxStretch ? kMaxStretch / stretch : 1.0;
+  for (int i = 0; i < nf; ++i) X.row(i) += scale * offset(i).transpose();
+  return scale;
 }
 
 }  // namespace geofair

@@ -7,6 +7,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <Eigen/UmfPackSupport>
 
 #include <vector>
 
@@ -90,6 +91,9 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
   return c;
 }
 
+/// TangentialSolver::relax: the largest relative stretch or shrinkage of an edge per step.
+constexpr double kMaxStretch = 0.5;
+
 /// The global step of inner fairness (beyond the paper, measured below): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
 /// vanishes at all free vertices at once, instead of one vertex at a time.
@@ -121,12 +125,28 @@ class TangentialSolver {
   /// \param damping s in (0, 1]
   void step(const InnerFairnessWeights& lambda, const Positions& N, double damping, Positions& X);
 
+  /// The same linearized system solved directly (sparse LU, SuiteSparse's UMFPACK), and the
+  /// whole step scaled by one factor so that no edge of the ring stretches or shrinks by more
+  /// than kMaxStretch of its length (instead of limiting each vertex's move): for bringing
+  /// a mesh to inner fairness from afar, where the distribution that satisfies it lies many
+  /// edge lengths away (construction.h, run_newton).
+  /// \return the scale applied, in (0, 1]; 0 if the system was singular (X unchanged)
+  double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X);
+
  private:
+  // Fills A_ at the tangent planes of N and returns the right-hand side.
+  Eigen::VectorXd assemble(const InnerFairnessWeights& lambda, const Positions& N,
+                           const Positions& X);
+
   const OneRings& rings_;
   int n_free_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> A_;
   std::vector<int> slot_value_;  // per weight of a free vertex: index of its 2×2 block, or -1
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block
+  std::vector<Vec3> t1_, t2_;    // tangent bases of the last assemble()
+  Eigen::SparseMatrix<double> direct_matrix_;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> direct_;
+  bool direct_analyzed_ = false;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;
 };
