@@ -270,8 +270,9 @@ max_iterations : upper bound on the iterations spent solving each level (iterati
     the multigrid cycles of a finer level run on a coarser one are not counted), and on
     the Newton steps.
 iteration : how eq. (12) is solved; all choices solve the same discrete equations.
-    "newton" (beyond the paper): from the linear initial mesh, Newton's method on the
-    normal offsets of all free vertices at once: per step the linearized (fourth-order,
+    "newton" (beyond the paper): from the linear initial mesh, brought to inner fairness
+    first by direct tangential solves, Newton's method on the normal offsets of all free
+    vertices at once: per step the linearized (fourth-order,
     2-ring) system, with the Jacobian of the Moreton–Séquin H by finite differences
     (normals and cotangent weights held fixed), solved by GMRES preconditioned by the
     sparse LU factorization of an earlier step's system (refactorized where GMRES does not
@@ -282,7 +283,7 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
     or fails, and above, "paper" from the start. The LU factors take memory: 2.2 GiB peak
     at 100,000 free vertices, growing faster than the vertex count. Measured in the README
-    (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 11, 16 and 58 Newton
+    (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 11, 13 and 28 Newton
     steps against thousands of paper iterations (which do not converge at 100000).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).

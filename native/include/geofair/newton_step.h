@@ -36,26 +36,23 @@ constexpr double kNewtonKrylovTolerance = 1e-3;
 ///
 /// Measured (bench/speed.py's disturbed caps, 2-core machine under load): 13000 free
 /// vertices, a factorization 0.1 s (Eigen's SparseLU: 0.2 s), a GMRES iteration 7 ms, one
-/// factorization for all 16 steps; 100000 free vertices: one factorization for all 58
-/// steps, 44 s in all, where refactorizing whenever the residual did not halve (chord steps
-/// in between) took 101 s. Holding the normals fixed is measured: differentiating the
+/// factorization for all steps; 100000 free vertices (before run_newton relaxed the
+/// tangential distribution first): one factorization for all 58 steps, 44 s in all, where
+/// refactorizing whenever the residual did not halve (chord steps in between) took 101 s. Holding the normals fixed is measured: differentiating the
 /// quadric normals too (the normals of m and its ring follow the move; column m then
 /// touches the 2-ring of m) took the 2000-, 13000- and 100000-vertex caps from 11, 16 and
 /// 58 steps to 7, 15 and 50, but the costlier Jacobian made the 100000-vertex cap slower,
 /// 51 s instead of 44 s (with chord steps instead of GMRES it had kept the 13000-vertex
 /// cap from converging).
 /// The largest defects during the steps sit at vertices of valence 3 and 4, whose spiral
-/// samples (section 6.2) read the neighbours' normals that J holds fixed: on the
-/// 100000-vertex cap the residual jumps back by about 100x a few times in the last 30
-/// steps, each time at such a vertex right after a tangential step. Those are the steps in
-/// which the tangential step (TangentialSolver: 10 BiCGSTAB iterations, each vertex's move
-/// clamped to half its mean neighbour distance) clamped thousands of vertices: the
-/// inner-fair vertex distribution lies up to 10 mean distances away from that of the linear
-/// initial mesh there. Measured, not kept: scaling the whole tangential step so that no
-/// edge stretches by more than half its length, instead of clamping each vertex, took the
-/// 100000-vertex cap to 27 steps and 32.8 s with 50 BiCGSTAB iterations, but it stalled with
-/// 10 or 25, and the 13000-vertex cap took longer (2.1 s); exact tangential solves (sparse
-/// LU) cost more than they saved at 13000.
+/// samples (section 6.2) read the neighbours' normals that J holds fixed. Without the
+/// tangential solves before the first step (construction.h, kNewtonRelaxations), the
+/// residual of the 100000-vertex cap jumped back by about 100x a few times in the last 30
+/// of 58 steps, each time at such a vertex right after a tangential step that had clamped
+/// thousands of vertices to half an edge. Also measured, not kept: the whole-step scaling
+/// of TangentialSolver::relax in every tangential step between Newton steps (100000: 27
+/// steps and 32.8 s with 50 BiCGSTAB iterations, a stall with 10 or 25; 13000: slower);
+/// direct tangential solves in every step (cost more than they saved at 13000).
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
