@@ -29,8 +29,8 @@ wall time − solve, in seconds and as a share of the solve, broken down from th
 own step timings (``FairingReport.timings``) and wrappers around its functions.
 
 The solve can be bounded by ``--max-iterations`` (per level; default 100). At 100k free
-vertices ``iteration="auto"`` runs Newton's method, which converges within it (61 steps,
-about 42 s on a 2-core machine); with ``--iteration paper`` the bound stops the paper's
+vertices ``iteration="auto"`` runs Newton's method, which converges within it (32 steps,
+about 27-29 s on a 2-core machine); with ``--iteration paper`` the bound stops the paper's
 iteration unconverged, and then the printed share of the solve is an upper bound on the
 share of a converged one. The overhead does not depend on the solver (it is the same work on
 the same mesh): the absolute seconds are the figure to compare. ``--profile`` adds a
