@@ -51,9 +51,9 @@ class Construction {
   /// (TangentialSolver::relax, kNewtonRelaxations); then per iteration the normal offsets
   /// of all free vertices from one sparse solve, scaled so that no vertex moves by more
   /// than kNewtonStep mean distances to its neighbours, then the global tangential step of
-  /// inner fairness. Stops like run(), and also when the
-  /// residual has not halved in kNewtonPatience iterations (report.stalled): far from a
-  /// solution on a badly shaped mesh the linearization can fail to contract.
+  /// inner fairness. Stops like run(), and also when the residual has not halved in
+  /// kNewtonPatience iterations (report.stalled): far from a solution on a badly shaped mesh
+  /// the linearization can fail to contract.
   /// \throw SolverError if the iteration diverges or the Newton system is singular.
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
                              int iteration_offset = 0);
