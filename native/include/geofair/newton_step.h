@@ -39,11 +39,12 @@ constexpr double kNewtonKrylovTolerance = 1e-3;
 /// factorization for all steps; 100000 free vertices (before run_newton relaxed the
 /// tangential distribution first): one factorization for all 58 steps, 44 s in all, where
 /// refactorizing whenever the residual did not halve (chord steps in between) took 101 s.
-/// Holding the normals fixed is measured: differentiating the quadric normals too (the normals of m and its ring follow the move; column m then
-/// touches the 2-ring of m) took the 2000-, 13000- and 100000-vertex caps from 11, 16 and
-/// 58 steps to 7, 15 and 50, but the costlier Jacobian made the 100000-vertex cap slower,
-/// 51 s instead of 44 s (with chord steps instead of GMRES it had kept the 13000-vertex
-/// cap from converging).
+/// Holding the normals fixed is measured (before the tangential relaxation too):
+/// differentiating the quadric normals as well (the normals of m and its ring follow the
+/// move; column m then touches the 2-ring of m) took the 2000-, 13000- and 100000-vertex
+/// caps from 11, 16 and 58 steps to 7, 15 and 50, but the costlier Jacobian made the
+/// 100000-vertex cap slower, 51 s instead of 44 s (with chord steps instead of GMRES it had
+/// kept the 13000-vertex cap from converging).
 /// The largest defects during the steps sit at vertices of valence 3 and 4, whose spiral
 /// samples (section 6.2) read the neighbours' normals that J holds fixed. Without the
 /// tangential solves before the first step (construction.h, kNewtonRelaxations), the
