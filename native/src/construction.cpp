@@ -139,12 +139,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
     double ratio = 0.0;
-    for (int i = 0; i < nf; ++i) {
-      double mean_distance = 0.0;
-      for (int s = rings.offset[i]; s < rings.offset[i + 1]; ++s)
-        mean_distance += (X.row(rings.ring[s]) - X.row(i)).norm();
-      ratio = std::max(ratio, std::abs(t(i)) * rings.valence(i) / mean_distance);
-    }
+    for (int i = 0; i < nf; ++i)
+      ratio = std::max(ratio, std::abs(t(i)) / rings.mean_neighbour_distance(X, i));
     const double s = std::min(1.0, kNewtonStep / ratio);
     for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
     if (tangential_) tangential_solver_.step(lambda_, N_, options_.damping, X);

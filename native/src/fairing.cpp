@@ -85,14 +85,18 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     return result;
   };
 
+  // Inner fairness weights of the finest level (the region, from the original mesh): for
+  // Newton's method, the hierarchy and the paper's finest level alike.
+  const InnerFairnessWeights lambda_finest =
+      inner_fairness_weights(finest_level, X0, options.inner_fairness);
+
   int newton_iterations = 0;
   const bool newton =
       options.iteration == Iteration::Newton ||
       (options.iteration == Iteration::Auto && region.n_free <= kNewtonMaxFree);
   if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
-    InnerFairnessWeights lambda = inner_fairness_weights(finest_level, X0, options.inner_fairness);
-    Positions Y = bilaplacian_initial_mesh(finest_level, lambda, X0);
-    Construction construction(finest_level, std::move(lambda), options, L);
+    Positions Y = bilaplacian_initial_mesh(finest_level, lambda_finest, X0);
+    Construction construction(finest_level, lambda_finest, options, L);
     IterationReport report;
     bool failed = false;
     try {
@@ -119,8 +123,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   ProgressiveMesh hierarchy;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
   if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic) {
-    const InnerFairnessWeights lambda = inner_fairness_weights(region, X0, options.inner_fairness);
-    Xs = hierarchy_positions(region, X0, &lambda);
+    Xs = hierarchy_positions(region, X0, &lambda_finest);
     hierarchy = build_progressive_mesh(region, Xs, levels);
   }
   if (hierarchy.triangles.empty())
@@ -152,10 +155,10 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     // Inner fairness of the finest level as asked, with conformal weights from the original
     // mesh. Coarse levels, whose vertex distribution does not reach the result, take the
     // conformal weights of the smoothed copy with their connectivity (see fairing.h).
-    const Positions X0_level = gather(finest ? X0 : Xs, lr.global);
-    const InnerFairness inner = finest ? options.inner_fairness : InnerFairness::Conformal;
-    InnerFairnessWeights lambda = finest ? inner_fairness_weights(lr, X0_level, inner)
-                                         : ring_inner_fairness_weights(lr.rings, X0_level, inner);
+    InnerFairnessWeights lambda =
+        finest ? lambda_finest
+               : ring_inner_fairness_weights(lr.rings, gather(Xs, lr.global),
+                                             InnerFairness::Conformal);
     Positions Y = gather(X, lr.global);
     if (l == 0) {
       Y = bilaplacian_initial_mesh(lr, lambda, Y);

@@ -152,10 +152,7 @@ void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions&
   const Eigen::VectorXd u = solver_.solve(rhs);
   if (!u.allFinite()) return;  // a breakdown: leave the tangential positions to the local steps
   for (int i = 0; i < n_free_; ++i) {
-    double mean_distance = 0.0;
-    for (int k = rings_.offset[i]; k < rings_.offset[i + 1]; ++k)
-      mean_distance += (X.row(rings_.ring[k]) - X.row(i)).norm();
-    mean_distance /= rings_.valence(i);
+    const double mean_distance = rings_.mean_neighbour_distance(X, i);
     Vec3 d = u(2 * i) * t1_[i] + u(2 * i + 1) * t2_[i];
     const double len = d.norm();
     if (len > 0.5 * mean_distance) d *= 0.5 * mean_distance / len;
@@ -167,14 +164,7 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
                                Positions& X) {
   const int nf = n_free_;
   const Eigen::VectorXd rhs = assemble(lambda, N, X);
-  direct_matrix_ = A_;  // UMFPACK's solve reads the factorized matrix
-  if (!direct_analyzed_) {
-    direct_.umfpackControl()(UMFPACK_IRSTEP) = 0;
-    direct_.analyzePattern(direct_matrix_);
-    direct_analyzed_ = true;
-  }
-  direct_.factorize(direct_matrix_);
-  if (direct_.info() != Eigen::Success) return 0.0;
+  if (!direct_.factorize(A_)) return 0.0;
   const Eigen::VectorXd u = direct_.solve(rhs);
   if (!u.allFinite()) return 0.0;
   // One scale for the whole step: no edge stretches or shrinks by more than kMaxStretch of

@@ -69,9 +69,7 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
 #pragma omp for schedule(static)
     for (int m = 0; m < nf; ++m) {
       const int begin = r.offset[m], end = r.offset[m + 1];
-      double mean_distance = 0.0;
-      for (int k = begin; k < end; ++k) mean_distance += (X.row(r.ring[k]) - X.row(m)).norm();
-      const double h = 1e-6 * mean_distance / (end - begin);
+      const double h = 1e-6 * r.mean_neighbour_distance(X, m);
       Y.row(m) = X.row(m) + h * N.row(m);
       jacobian_[m] =
           (moreton_sequin(r, Y, N, m, Y.row(m), N.row(m), needs_spiral_samples(r, m)).H - H(m)) /
@@ -100,7 +98,7 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p)
       value[*entry++] += sum_w * jacobian_[row_source_[p]];
   }
-  if (factorized_) {
+  if (lu_.factorized()) {
     // GMRES on the current D J, preconditioned by the factorization of an earlier one.
     gmres_.preconditioner().lu = &lu_;
     gmres_.setMaxIterations(kNewtonKrylovIterations);
@@ -110,26 +108,9 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     t = gmres_.solve(b);
     if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
   }
-  if (!factorize()) return false;
+  if (!lu_.factorize(A_)) return false;
   t = lu_.solve(b);
   return t.allFinite();
-}
-
-bool NewtonStep::factorize() {
-  factorized_ = false;
-  // UMFPACK's solves read the factorized matrix itself: keep it while A_ moves on.
-  factorized_matrix_ = A_;
-  if (!analyzed_) {
-    // No iterative refinement in the solves: a Newton step needs no more accuracy than
-    // GMRES gives it, and refinement doubled the cost of a solve.
-    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
-    lu_.analyzePattern(factorized_matrix_);  // the pattern depends on the connectivity only
-    analyzed_ = true;
-  }
-  lu_.factorize(factorized_matrix_);
-  if (lu_.info() != Eigen::Success) return false;
-  factorized_ = true;
-  return true;
 }
 
 }  // namespace geofair

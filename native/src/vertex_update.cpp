@@ -29,11 +29,7 @@ double update_free_vertices(const FairingRegion& region, const InnerFairnessWeig
         moreton_sequin(rings, X, N, i, q_tilde, n, needs_spiral_samples(rings, i));
     double t = 0.0;
     if (std::abs(est.dH_dt) > 0.0) t = (H_target(i) - est.H) / est.dH_dt;
-    double mean_distance = 0.0;
-    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-      mean_distance += (X.row(rings.ring[k]).transpose() - q_tilde).norm();
-    mean_distance /= rings.valence(i);
-    const double limit = 0.5 * mean_distance;
+    const double limit = 0.5 * rings.mean_neighbour_distance(X, i, q_tilde);
     t = std::clamp(t, -limit, limit);
     if (coupling) t /= std::max(1.0, (*coupling)[i]);
     const Vec3 q_new = q_tilde + damping * t * n;
@@ -59,14 +55,11 @@ void coupling_factors(const FairingRegion& region, const std::vector<double>& we
     const Vec3 q = X.row(i), n = N.row(i);
     const double dH_dt =
         moreton_sequin(rings, X, N, i, q, n, needs_spiral_samples(rings, i)).dH_dt;
-    double mean_distance = 0.0, sum_w = 0.0;
-    for (int k = begin; k < end; ++k) {
-      mean_distance += (X.row(rings.ring[k]).transpose() - q).norm();
-      sum_w += weights[k];
-    }
+    double sum_w = 0.0;
+    for (int k = begin; k < end; ++k) sum_w += weights[k];
     if (!(dH_dt > 0.0) || !(sum_w > 0.0)) continue;
     // A step small against the ring (H is smooth in t there) and large against round-off.
-    const double h = 1e-4 * mean_distance / (end - begin);
+    const double h = 1e-4 * rings.mean_neighbour_distance(X, i, q);
     saved.assign({N.row(i).transpose()});
     for (int k = begin; k < end; ++k) saved.push_back(N.row(rings.ring[k]));
     X.row(i) = q + h * n;

@@ -3,11 +3,11 @@
 #pragma once
 
 #include "geofair/region.h"
+#include "geofair/sparse_lu.h"
 #include "geofair/types.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
-#include <Eigen/UmfPackSupport>
 
 #include <vector>
 
@@ -129,8 +129,10 @@ class TangentialSolver {
   /// whole step scaled by one factor so that no edge of the ring stretches or shrinks by more
   /// than kMaxStretch of its length (instead of limiting each vertex's move): for bringing
   /// a mesh to inner fairness from afar, where the distribution that satisfies it lies many
-  /// edge lengths away (construction.h, run_newton).
-  /// \return the scale applied, in (0, 1]; 0 if the system was singular (X unchanged)
+  /// edge lengths away (construction.h, run_newton). Arguments as for step(): X #region×3,
+  /// free rows moved in place (mesh units), N #region×3 unit normals at X.
+  /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
+  ///         length (X unchanged)
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X);
 
  private:
@@ -144,9 +146,7 @@ class TangentialSolver {
   std::vector<int> slot_value_;  // per weight of a free vertex: index of its 2×2 block, or -1
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block
   std::vector<Vec3> t1_, t2_;    // tangent bases of the last assemble()
-  Eigen::SparseMatrix<double> direct_matrix_;
-  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> direct_;
-  bool direct_analyzed_ = false;
+  PatternLU direct_;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;
 };

@@ -3,9 +3,9 @@
 
 #include "geofair/laplace_beltrami.h"
 #include "geofair/region.h"
+#include "geofair/sparse_lu.h"
 #include "geofair/types.h"
 
-#include <Eigen/UmfPackSupport>
 #include <unsupported/Eigen/IterativeSolvers>
 
 #include <vector>
@@ -73,24 +73,20 @@ class NewtonStep {
  private:
   // GMRES preconditioner: the last factorization of D J, of an earlier iterate.
   struct LaggedFactorization {
-    const Eigen::UmfPackLU<Eigen::SparseMatrix<double>>* lu = nullptr;
+    const PatternLU* lu = nullptr;
     template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
     template <class M> LaggedFactorization& factorize(const M&) { return *this; }
     template <class M> LaggedFactorization& compute(const M&) { return *this; }
     template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
     Eigen::ComputationInfo info() const { return Eigen::Success; }
   };
-  bool factorize();
-
   const FairingRegion& region_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J (see constructor)
   std::vector<int> term_entry_;  // per term of the assembly of A: its index in A's values
-  Eigen::SparseMatrix<double> A_, factorized_matrix_;
-  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
+  Eigen::SparseMatrix<double> A_;
+  PatternLU lu_;
   Eigen::GMRES<Eigen::SparseMatrix<double>, LaggedFactorization> gmres_;
-  bool analyzed_ = false;
-  bool factorized_ = false;
 };
 
 }  // namespace geofair

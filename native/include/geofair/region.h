@@ -31,6 +31,17 @@ struct OneRings {
   int prev_slot(int i, int k) const { return k > offset[i] ? k - 1 : offset[i + 1] - 1; }
   /// True if the fan of i is closed (i is not on the mesh border).
   bool closed(int i) const;
+  /// Mean distance from vertex i, at q, to its ring neighbours in X (#V×3), mesh units: the
+  /// local mesh size h that step limits and finite-difference steps are measured in.
+  double mean_neighbour_distance(const Positions& X, int i, const Vec3& q) const {
+    double sum = 0.0;
+    for (int k = offset[i]; k < offset[i + 1]; ++k)
+      sum += (X.row(ring[k]).transpose() - q).norm();
+    return sum / valence(i);
+  }
+  double mean_neighbour_distance(const Positions& X, int i) const {
+    return mean_neighbour_distance(X, i, X.row(i).transpose());
+  }
 };
 
 /// Builds the one-rings of a triangle mesh with OpenMesh.

@@ -1,0 +1,42 @@
+// Sparse LU factorization of a sequence of matrices with one sparsity pattern.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <Eigen/UmfPackSupport>
+
+namespace geofair {
+
+/// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
+/// matrices that change values but not pattern from one factorization to the next: the
+/// symbolic analysis (ordering) runs at the first factorization only, the factorized matrix
+/// is kept (UMFPACK's solves read it, so the caller may change its own copy), and the solves
+/// do no iterative refinement (their accuracy is that of the factorization, about 1e-12
+/// relative here; refinement doubled the cost of a solve). Used by the Newton step
+/// (newton_step.h) and the direct tangential solve (inner_fairness.h).
+class PatternLU {
+ public:
+  /// Factorizes A; false if it is singular (then factorized() is false).
+  bool factorize(const Eigen::SparseMatrix<double>& A) {
+    factorized_ = false;
+    matrix_ = A;
+    if (!analyzed_) {
+      lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+      lu_.analyzePattern(matrix_);
+      analyzed_ = true;
+    }
+    lu_.factorize(matrix_);
+    factorized_ = lu_.info() == Eigen::Success;
+    return factorized_;
+  }
+  bool factorized() const { return factorized_; }
+  /// x with A x = b for the last factorized A (requires factorized()).
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return lu_.solve(b); }
+
+ private:
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
+  bool analyzed_ = false;
+  bool factorized_ = false;
+};
+
+}  // namespace geofair
