@@ -98,9 +98,10 @@ def test_scale_invariant():
 
 
 def test_not_converged_is_reported():
+    # Newton's method converges this cap in 4 steps; 2 are not enough for either iteration.
     s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
-    r = fair(s, max_iterations=5)
-    assert not r.converged and r.iterations == 5 and r.residual > 1e-4
+    r = fair(s, max_iterations=2)
+    assert not r.converged and r.iterations == 2 and r.residual > 1e-4
 
 
 def test_progress_callback_can_stop():

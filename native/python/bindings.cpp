@@ -270,27 +270,34 @@ max_iterations : upper bound on the iterations spent solving each level (iterati
     the multigrid cycles of a finer level run on a coarser one are not counted), and on
     the Newton steps.
 iteration : how eq. (12) is solved; all choices solve the same discrete equations.
-    "newton" (beyond the paper): from the linear initial mesh, brought to inner fairness
-    first by direct tangential solves, Newton's method on the normal offsets of all free
-    vertices at once: per step the linearized (fourth-order,
-    2-ring) system, with the Jacobian of the Moreton–Séquin H by finite differences
-    (normals and cotangent weights held fixed), solved by GMRES preconditioned by the
-    sparse LU factorization of an earlier step's system (refactorized where GMRES does not
-    converge); steps limited to 4 mean neighbour distances per vertex, then the global
-    tangential step of inner fairness; single level. It stops when the residual has not
-    halved in 20 steps.
-    "paper": the local/global iteration of section 7 with multigrid (levels).
+    "newton" (beyond the paper): Newton's method on the normal offsets of all free
+    vertices at once, level by level on the progressive mesh (section 7.4's nested
+    iteration; levels): the base level from the linear initial mesh, brought to inner
+    fairness first by direct tangential solves, each finer level from the prolongation of
+    the coarser solution. Per step one inexact Newton step: GMRES on the products of the
+    exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
+    recomputed; forward differences), preconditioned by the sparse LU factorization of a
+    fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
+    per vertex. At convergence of the finest level one direct tangential solve restores
+    inner fairness (the steps go on if it raised the residual). A level stops when the
+    residual has not halved in 20 steps; where a coarse level fails, the finest level is
+    solved alone.
+    "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
-    or fails, and above, "paper" from the start. The LU factors take memory: 2.2 GiB peak
-    at 100,000 free vertices, growing faster than the vertex count. Measured in the README
-    (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 11, 13 and 28 Newton
-    steps against thousands of paper iterations (which do not converge at 100000).
+    or fails, and above, "paper" from the start. The LU factors take memory (about 1.2 GiB
+    peak at 100,000 free vertices, growing faster than the vertex count). Measured in the
+    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+5 and 7+3
+    Newton steps (base + finest level) against thousands of paper iterations (which do not
+    converge at 100000).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
-levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6): 1 solves the
-    whole region as one level; 0 (default) picks one level up to 1000 free vertices and
-    about log4(free vertices / 250) + 1 above. Each finer level is solved by nonlinear multigrid
-    cycles on the coarser ones.
+levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
+    free vertices per level: 1 solves the whole region as one level; 0 (default) picks
+    them from the region. For "newton": as many as keep at least 1000 free vertices and 8
+    free vertices per G1 boundary vertex on the base level (the boundary is never
+    coarsened; coarser bases diverged); for "paper": one level up to 1000 free vertices and
+    about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
+    multigrid cycles on the coarser ones.
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).
 

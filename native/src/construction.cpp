@@ -35,21 +35,24 @@ Construction::Construction(const FairingRegion& region, InnerFairnessWeights lam
       dirichlet_(region),
       solver_(options.cg_iterations),
       tangential_solver_(region.rings, lambda_, region.n_free, kTangentialIterations),
-      newton_(region) {
+      newton_(region),
+      probe_dirichlet_(region) {
   N_.bottomRows(region.n - region.n_free) = region.g1_normals;
 }
 
-void Construction::curvatures(const Positions& X) {
+void Construction::curvatures(const Positions& X) { curvatures(X, N_, H_); }
+
+void Construction::curvatures(const Positions& X, Positions& N, Eigen::VectorXd& H) const {
   const OneRings& rings = region_.rings;
   const NormalWeighting w = options_.normal_weighting;
   const int nf = region_.n_free, n = region_.n;
 #pragma omp parallel if (n > kParallelMin)
   {
 #pragma omp for schedule(static)
-    for (int i = 0; i < nf; ++i) N_.row(i) = vertex_normal(rings, X, i, w);
+    for (int i = 0; i < nf; ++i) N.row(i) = vertex_normal(rings, X, i, w);
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i)
-      H_(i) = moreton_sequin(rings, X, N_, i, X.row(i), N_.row(i), needs_spiral_samples(rings, i)).H;
+      H(i) = moreton_sequin(rings, X, N, i, X.row(i), N.row(i), needs_spiral_samples(rings, i)).H;
   }
 }
 
@@ -102,17 +105,15 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
 }
 
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
-                                         int iteration_offset) {
+                                         int iteration_offset, bool relax, bool polish) {
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
-  // lengths from that of the initial mesh (up to 10 on the disturbed 100000-vertex cap), and
-  // the tangential steps between Newton steps, which limit each vertex's move to half an
-  // edge, then spend tens of steps getting there while H at the vertices they clamp jumps.
+  // lengths from that of the initial mesh (up to 10 on the disturbed 100000-vertex cap).
   // At least two direct solves (the second corrects the tangent planes of the first), more
   // while the stretch limit cuts a solve short.
-  if (tangential_)
+  if (tangential_ && relax)
     for (int p = 0; p < kNewtonRelaxations; ++p) {
       evaluate(X);  // the normals at X
       const double scale = tangential_solver_.relax(lambda_, N_, X);
@@ -121,10 +122,46 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   double residual = evaluate(X);
   const double first_residual = residual;
   double best = residual;
-  int best_at = 0;
-  Eigen::VectorXd t;
+  int best_at = 0, polishes = 0;
+  bool polished = false;
+  Eigen::VectorXd t, d0, Jv;
+  // J v by a forward difference of the defects, everything recomputed at X + ε v N.
+  auto product = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    const double v_max = v.cwiseAbs().maxCoeff();
+    if (!(v_max > 0.0)) {
+      out = Eigen::VectorXd::Zero(nf);
+      return;
+    }
+    const double eps = kProductStep * length_ / v_max;
+    probe_X_ = X;
+    for (int i = 0; i < nf; ++i) probe_X_.row(i) += (eps * v(i)) * N_.row(i);
+    curvatures(probe_X_, probe_N_, probe_H_);
+    probe_dirichlet_.assemble(probe_X_);
+    out = (probe_dirichlet_.defects(probe_H_) - d0) / eps;
+  };
+  probe_N_ = N_;
+  probe_H_.resize(region_.n);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, iteration_offset + k);
+    if (residual <= tolerance && tangential_ && polish && !polished) {
+      // Inner fairness at the converged shape; go on if it moved the residual up. The
+      // tangential solve moves the vertices in their tangent planes; each is lifted back
+      // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate).
+      evaluate(X);
+      const Positions before = X;
+      tangential_solver_.relax(lambda_, N_, X);
+      double move = 0.0;  // the largest move, in mean distances to the neighbours
+      for (int i = 0; i < nf; ++i) {
+        const Vec3 d = (X.row(i) - before.row(i)).transpose();
+        X.row(i) -= (0.5 * H_(i) * d.squaredNorm()) * N_.row(i);
+        move = std::max(move, d.norm() / rings.mean_neighbour_distance(before, i));
+      }
+      // Another polish (after the steps it needs) while this one still moved a vertex by
+      // more than kPolishedMove.
+      polished = move <= kPolishedMove || ++polishes >= kNewtonPolishes;
+      residual = evaluate(X);
+      best = residual, best_at = k;
+    }
     report.iterations = k;
     report.residual = residual;
     report.converged = residual <= tolerance;
@@ -135,7 +172,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       report.cancelled = true;
       break;
     }
-    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), dirichlet_.defects(H_), source_, t))
+    d0 = dirichlet_.defects(H_);
+    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
     double ratio = 0.0;
@@ -143,7 +181,6 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       ratio = std::max(ratio, std::abs(t(i)) / rings.mean_neighbour_distance(X, i));
     const double s = std::min(1.0, kNewtonStep / ratio);
     for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
-    if (tangential_) tangential_solver_.step(lambda_, N_, options_.damping, X);
     ++iterations_;
     residual = evaluate(X);
   }

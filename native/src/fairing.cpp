@@ -58,6 +58,122 @@ Positions gather(const Positions& X, const std::vector<int>& ids) {
   return Y;
 }
 
+// Newton's method on the levels of a progressive mesh (nested iteration): the smallest
+// number of free vertices a coarse level keeps per G1 boundary vertex, and in all. The
+// boundary is never coarsened, so coarser levels join a dense boundary to a sparse interior
+// by fans of long triangles; measured on the disturbed caps (uniform weights): a base level
+// with 8 free vertices per boundary vertex (3247 of the 13000-vertex cap) and with 22
+// (25000 of the 100000-vertex cap) converged, with 2 (812, and 125 of the 2000-vertex cap)
+// or 5.6 (6249 of the 100000-vertex cap) Newton's method diverged from the linear initial
+// mesh.
+constexpr double kNewtonMinFreePerBoundary = 8.0;
+constexpr int kNewtonMinBaseFree = 1000;
+// Coarse levels of the Newton hierarchy stop after this many steps, converged or not: they
+// only start the next level, whose own steps decide the result.
+constexpr int kCoarseNewtonSteps = 30;
+
+int newton_levels(const FairingRegion& region) {
+  const double floor = std::max<double>(kNewtonMinBaseFree,
+                                        kNewtonMinFreePerBoundary * (region.n - region.n_free));
+  int levels = 1;
+  for (double n = region.n_free / 4.0; n >= floor; n /= 4.0) ++levels;
+  return levels;
+}
+
+// The outcome of newton_multigrid: the result without its vertices, the region's positions.
+struct NewtonRun {
+  FairingResult result;
+  Positions X;
+  bool cancelled = false;
+};
+
+// Newton's method level by level on a progressive mesh of the region (section 7.4's
+// nested iteration with Newton steps as the solver of every level): the base level from
+// the linear Δ²f = 0 initial mesh with the tangential relaxation first, each finer level
+// from the prolongation of the coarser solution (multigrid.h, prolongate), whose new
+// vertices already sit at their inner-fairness positions. Every level uses the requested
+// inner fairness with the weights of the original mesh at that level's connectivity (the
+// collapses keep the vertices, so that is the original mesh replayed alongside). Coarse
+// levels stop at a looser tolerance or after kCoarseNewtonSteps. `newton_iterations`
+// accumulates the steps of all levels. With levels = 1 it is the single-level Newton
+// iteration from the linear initial mesh.
+// \throw SolverError if a level diverges or its Newton system is singular.
+NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
+                           const Positions& X0, const InnerFairnessWeights& lambda_finest,
+                           const FairingOptions& options, double L, int levels,
+                           int& newton_iterations) {
+  // The hierarchy and the split weights are measured on a smoothed copy of the input
+  // (progressive_mesh.h, hierarchy_positions: on a noisy input the raw positions fold
+  // coarse triangles, and the splits interpolate smooth corrections).
+  ProgressiveMesh hierarchy;
+  Positions Xs;
+  if (levels > 1) {
+    Xs = hierarchy_positions(region, X0, &lambda_finest);
+    hierarchy = build_progressive_mesh(region, Xs, levels);
+  }
+  if (hierarchy.triangles.size() < 2) {
+    hierarchy.triangles.assign(1, region.triangles);
+    hierarchy.splits.assign(1, VertexSplits{});
+  }
+  NewtonRun run;
+  FairingResult& result = run.result;
+  result.iteration = Iteration::Newton;
+  Positions X = X0;                                     // region positions, level by level
+  Eigen::VectorXd H = Eigen::VectorXd::Zero(region.n);  // mean curvatures of the last level
+  Positions N = Positions::Zero(region.n, 3);           // and its unit normals
+  std::deque<FairingRegion> regions;                    // the constructions refer to them
+  const int n_levels = int(hierarchy.triangles.size());
+  for (int l = 0; l < n_levels; ++l) {
+    const bool finest = l + 1 == n_levels;
+    const FairingRegion& lr =
+        regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
+    const Positions X0_level = gather(X0, lr.global);
+    InnerFairnessWeights lambda =
+        finest ? lambda_finest : inner_fairness_weights(lr, X0_level, options.inner_fairness);
+    Positions Y = gather(X, lr.global);
+    if (l == 0) {
+      Y = bilaplacian_initial_mesh(lr, lambda, Y);
+    } else {
+      std::vector<int> local(region.n, -1);
+      for (int i = 0; i < lr.n; ++i) local[lr.global[i]] = i;
+      VertexSplits splits = hierarchy.splits[l];
+      for (int& v : splits.vertex) v = local[v];
+      for (int& v : splits.ring) v = local[v];
+      const std::vector<double> weights =
+          split_weights(splits, InnerFairness::Conformal, gather(Xs, lr.global));
+      Eigen::VectorXd H_level(lr.n);
+      Positions N_level = gather(N, lr.global);
+      for (int i = 0; i < lr.n; ++i) H_level(i) = H(lr.global[i]);
+      prolongate(lr, splits, weights, lambda, Y, H_level, N_level);
+    }
+    Construction construction(lr, std::move(lambda), options, L);
+    const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
+    const int budget = finest ? options.max_iterations
+                              : std::min(options.max_iterations, kCoarseNewtonSteps);
+    const IterationReport report =
+        construction.run_newton(Y, budget, tolerance, newton_iterations, l == 0, finest);
+    newton_iterations += report.iterations;
+    for (int i = 0; i < lr.n; ++i) {
+      X.row(lr.global[i]) = Y.row(i);
+      H(lr.global[i]) = construction.mean_curvatures()(i);
+      N.row(lr.global[i]) = construction.normals().row(i);
+    }
+    result.iterations_per_level.push_back(report.iterations);
+    result.vertices_per_level.push_back(lr.n);
+    result.iterations += report.iterations;
+    result.residual = report.residual;
+    result.converged = finest && report.converged;
+    if (report.cancelled) {
+      // Cancelled on a coarse level: the input unchanged rather than a mix of levels.
+      run.cancelled = true;
+      if (!finest) X = X0;
+      break;
+    }
+  }
+  run.X = std::move(X);
+  return run;
+}
+
 }  // namespace
 
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
@@ -95,27 +211,26 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       options.iteration == Iteration::Newton ||
       (options.iteration == Iteration::Auto && region.n_free <= kNewtonMaxFree);
   if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
-    Positions Y = bilaplacian_initial_mesh(finest_level, lambda_finest, X0);
-    Construction construction(finest_level, lambda_finest, options, L);
-    IterationReport report;
-    bool failed = false;
-    try {
-      report = construction.run_newton(Y, options.max_iterations, options.tolerance);
-    } catch (const SolverError&) {
-      if (options.iteration == Iteration::Newton) throw;
-      failed = true;
-    }
-    newton_iterations = int(construction.iterations());
-    if (!failed &&
-        (report.converged || report.cancelled || options.iteration == Iteration::Newton)) {
-      FairingResult result;
-      result.iteration = Iteration::Newton;
-      result.newton_iterations = result.iterations = newton_iterations;
-      result.iterations_per_level = {newton_iterations};
-      result.vertices_per_level = {region.n};
-      result.residual = report.residual;
-      result.converged = report.converged;
-      return finish(result, Y);
+    const int levels = options.levels > 0 ? options.levels : newton_levels(region);
+    // The hierarchy first; if a level fails there, the finest level alone.
+    const std::vector<int> attempts =
+        levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
+    for (const int attempt : attempts) {
+      const bool last = attempt == attempts.back();
+      NewtonRun run;
+      bool failed = false;
+      try {
+        run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
+                               newton_iterations);
+      } catch (const SolverError&) {
+        if (options.iteration == Iteration::Newton && last) throw;
+        failed = true;
+      }
+      if (!failed && (run.result.converged || run.cancelled ||
+                      (options.iteration == Iteration::Newton && last))) {
+        run.result.newton_iterations = newton_iterations;
+        return finish(run.result, run.X);
+      }
     }
   }
 
