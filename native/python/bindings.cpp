@@ -284,8 +284,8 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
-    or fails, and above, "paper" from the start. The LU factors take memory (about 1.2 GiB
-    peak at 100,000 free vertices, growing faster than the vertex count). Measured in the
+    or fails, and above, "paper" from the start. The LU factors take memory (1.0 GiB peak
+    at 100,000 free vertices, growing faster than the vertex count). Measured in the
     README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+5 and 7+3
     Newton steps (base + finest level) against thousands of paper iterations (which do not
     converge at 100000).
