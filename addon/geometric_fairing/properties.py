@@ -46,7 +46,7 @@ ITERATION_ITEMS = (
     (
         "NEWTON",
         "Newton",
-        "Newton's method on all free vertices at once (one sparse solve per step, single level): few steps, "
+        "Newton's method on all free vertices at once, level by level on the progressive mesh: few steps, "
         "but the memory of its sparse LU factors grows faster than the region",
     ),
     (

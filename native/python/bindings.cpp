@@ -286,7 +286,7 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
     or fails, and above, "paper" from the start. The LU factors take memory (1.0 GiB peak
     at 100,000 free vertices, growing faster than the vertex count). Measured in the
-    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+5 and 7+3
+    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+4 and 8+3
     Newton steps (base + finest level) against thousands of paper iterations (which do not
     converge at 100000).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].

@@ -124,7 +124,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   double best = residual;
   int best_at = 0, polishes = 0;
   bool polished = false;
-  Eigen::VectorXd t, d0, Jv;
+  Eigen::VectorXd t, d0;
   // J v by a forward difference of the defects, everything recomputed at X + ε v N.
   auto product = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
     const double v_max = v.cwiseAbs().maxCoeff();
@@ -146,8 +146,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     if (residual <= tolerance && tangential_ && polish && !polished) {
       // Inner fairness at the converged shape; go on if it moved the residual up. The
       // tangential solve moves the vertices in their tangent planes; each is lifted back
-      // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate).
-      evaluate(X);
+      // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_
+      // and H_ are those of X: the residual was just evaluated there.
       const Positions before = X;
       tangential_solver_.relax(lambda_, N_, X);
       double move = 0.0;  // the largest move, in mean distances to the neighbours

@@ -58,6 +58,70 @@ Positions gather(const Positions& X, const std::vector<int>& ids) {
   return Y;
 }
 
+// The progressive mesh fair() solves on, coarsest first, measured on a smoothed copy Xs of
+// the input (progressive_mesh.h, hierarchy_positions: on a noisy input the raw positions
+// fold coarse triangles, and the splits interpolate smooth corrections); one level (the
+// region, Xs empty) if levels is 1 or the mesh cannot be decimated.
+ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& X0,
+                                const InnerFairnessWeights& lambda_finest, int levels,
+                                Positions& Xs) {
+  ProgressiveMesh hierarchy;
+  if (levels > 1) {
+    Xs = hierarchy_positions(region, X0, &lambda_finest);
+    hierarchy = build_progressive_mesh(region, Xs, levels);
+  }
+  if (hierarchy.triangles.size() < 2) {
+    hierarchy.triangles.assign(1, region.triangles);
+    hierarchy.splits.assign(1, VertexSplits{});
+  }
+  return hierarchy;
+}
+
+// The levels solved so far, in region-local ids: positions (the original where no level
+// has moved a vertex yet), and the mean curvatures and unit normals of the last level.
+struct LevelSolution {
+  Positions X;
+  Eigen::VectorXd H;
+  Positions N;
+
+  explicit LevelSolution(const Positions& X0)
+      : X(X0), H(Eigen::VectorXd::Zero(X0.rows())), N(Positions::Zero(X0.rows(), 3)) {}
+
+  // Keeps the solution Y (#level×3) of `level` and its construction's H and normals.
+  void store(const FairingRegion& level, const Positions& Y, const Construction& construction) {
+    for (int i = 0; i < level.n; ++i) {
+      X.row(level.global[i]) = Y.row(i);
+      H(level.global[i]) = construction.mean_curvatures()(i);
+      N.row(level.global[i]) = construction.normals().row(i);
+    }
+  }
+
+  // The positions of a finer `level` (#level×3): the stored solution, with the vertices the
+  // level adds prolongated (multigrid.h, prolongate) by its splits (`region_splits`, in
+  // region-local ids). Out: the splits in level-local ids, their weights (the conformal
+  // weights of the smoothed copy Xs on every level: splits and their transposes interpolate
+  // smooth corrections; those of a noisy original are not smooth, and the finest level's
+  // corrections got undone on the 1200-vertex cap with conformal inner fairness), and the
+  // level-local id of every region vertex (-1 where not in the level).
+  Positions prolongated(const FairingRegion& level, const VertexSplits& region_splits,
+                        const Positions& Xs, const InnerFairnessWeights& lambda,
+                        VertexSplits& splits, std::vector<double>& weights,
+                        std::vector<int>& local) const {
+    local.assign(X.rows(), -1);
+    for (int i = 0; i < level.n; ++i) local[level.global[i]] = i;
+    splits = region_splits;
+    for (int& v : splits.vertex) v = local[v];
+    for (int& v : splits.ring) v = local[v];
+    weights = split_weights(splits, InnerFairness::Conformal, gather(Xs, level.global));
+    Positions Y = gather(X, level.global);
+    Eigen::VectorXd H_level(level.n);
+    for (int i = 0; i < level.n; ++i) H_level(i) = H(level.global[i]);
+    Positions N_level = gather(N, level.global);
+    prolongate(level, splits, weights, lambda, Y, H_level, N_level);
+    return Y;
+  }
+};
+
 // Newton's method on the levels of a progressive mesh (nested iteration): the smallest
 // number of free vertices a coarse level keeps per G1 boundary vertex, and in all. The
 // boundary is never coarsened, so coarser levels join a dense boundary to a sparse interior
@@ -102,49 +166,29 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
                            int& newton_iterations) {
-  // The hierarchy and the split weights are measured on a smoothed copy of the input
-  // (progressive_mesh.h, hierarchy_positions: on a noisy input the raw positions fold
-  // coarse triangles, and the splits interpolate smooth corrections).
-  ProgressiveMesh hierarchy;
   Positions Xs;
-  if (levels > 1) {
-    Xs = hierarchy_positions(region, X0, &lambda_finest);
-    hierarchy = build_progressive_mesh(region, Xs, levels);
-  }
-  if (hierarchy.triangles.size() < 2) {
-    hierarchy.triangles.assign(1, region.triangles);
-    hierarchy.splits.assign(1, VertexSplits{});
-  }
+  const ProgressiveMesh hierarchy = build_hierarchy(region, X0, lambda_finest, levels, Xs);
   NewtonRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
-  Positions X = X0;                                     // region positions, level by level
-  Eigen::VectorXd H = Eigen::VectorXd::Zero(region.n);  // mean curvatures of the last level
-  Positions N = Positions::Zero(region.n, 3);           // and its unit normals
-  std::deque<FairingRegion> regions;                    // the constructions refer to them
+  LevelSolution solution(X0);
+  std::deque<FairingRegion> regions;  // the constructions refer to them
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
     const bool finest = l + 1 == n_levels;
     const FairingRegion& lr =
         regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
-    const Positions X0_level = gather(X0, lr.global);
     InnerFairnessWeights lambda =
-        finest ? lambda_finest : inner_fairness_weights(lr, X0_level, options.inner_fairness);
-    Positions Y = gather(X, lr.global);
+        finest ? lambda_finest
+               : inner_fairness_weights(lr, gather(X0, lr.global), options.inner_fairness);
+    Positions Y;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, Y);
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global));
     } else {
-      std::vector<int> local(region.n, -1);
-      for (int i = 0; i < lr.n; ++i) local[lr.global[i]] = i;
-      VertexSplits splits = hierarchy.splits[l];
-      for (int& v : splits.vertex) v = local[v];
-      for (int& v : splits.ring) v = local[v];
-      const std::vector<double> weights =
-          split_weights(splits, InnerFairness::Conformal, gather(Xs, lr.global));
-      Eigen::VectorXd H_level(lr.n);
-      Positions N_level = gather(N, lr.global);
-      for (int i = 0; i < lr.n; ++i) H_level(i) = H(lr.global[i]);
-      prolongate(lr, splits, weights, lambda, Y, H_level, N_level);
+      VertexSplits splits;
+      std::vector<double> weights;
+      std::vector<int> local;
+      Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, splits, weights, local);
     }
     Construction construction(lr, std::move(lambda), options, L);
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
@@ -153,11 +197,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, l == 0, finest);
     newton_iterations += report.iterations;
-    for (int i = 0; i < lr.n; ++i) {
-      X.row(lr.global[i]) = Y.row(i);
-      H(lr.global[i]) = construction.mean_curvatures()(i);
-      N.row(lr.global[i]) = construction.normals().row(i);
-    }
+    solution.store(lr, Y, construction);
     result.iterations_per_level.push_back(report.iterations);
     result.vertices_per_level.push_back(lr.n);
     result.iterations += report.iterations;
@@ -166,11 +206,11 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     if (report.cancelled) {
       // Cancelled on a coarse level: the input unchanged rather than a mix of levels.
       run.cancelled = true;
-      if (!finest) X = X0;
+      if (!finest) solution.X = X0;
       break;
     }
   }
-  run.X = std::move(X);
+  run.X = std::move(solution.X);
   return run;
 }
 
@@ -235,21 +275,15 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   }
 
   const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
-  ProgressiveMesh hierarchy;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
-  if (levels > 1 && options.outer_fairness == OuterFairness::Intrinsic) {
-    Xs = hierarchy_positions(region, X0, &lambda_finest);
-    hierarchy = build_progressive_mesh(region, Xs, levels);
-  }
-  if (hierarchy.triangles.empty())
-    hierarchy.triangles.push_back(region.triangles), hierarchy.splits.emplace_back();
+  const ProgressiveMesh hierarchy = build_hierarchy(
+      region, X0, lambda_finest,
+      options.outer_fairness == OuterFairness::Intrinsic ? levels : 1, Xs);
 
   FairingResult result;
   result.iteration = Iteration::Paper;
   result.newton_iterations = newton_iterations;
-  Positions X = X0;                                  // region positions, level by level
-  Eigen::VectorXd H = Eigen::VectorXd::Zero(region.n);  // mean curvatures of the last level
-  Positions N = Positions::Zero(region.n, 3);        // and its unit normals
+  LevelSolution solution(X0);
   // Coarse levels estimate normals with Max's weights where the fitted normal is asked for:
   // the fit, consistent on the finest mesh, is ill-conditioned on the decimated rings of
   // coarse levels (short and long edges, low valence): with it there, the 2000-vertex
@@ -274,28 +308,16 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
         finest ? lambda_finest
                : ring_inner_fairness_weights(lr.rings, gather(Xs, lr.global),
                                              InnerFairness::Conformal);
-    Positions Y = gather(X, lr.global);
+    Positions Y;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, Y);
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global));
     } else {
-      std::vector<int> local(region.n, -1);
-      for (int i = 0; i < lr.n; ++i) local[lr.global[i]] = i;
-      level.splits = hierarchy.splits[l];
-      for (int& v : level.splits.vertex) v = local[v];
-      for (int& v : level.splits.ring) v = local[v];
-      // Splits and their transposes interpolate smooth corrections: conformal weights of
-      // the smoothed copy on every level (those of a noisy original are not smooth, and the
-      // finest level's corrections got undone on the 1200-vertex cap with conformal inner
-      // fairness).
-      level.weights =
-          split_weights(level.splits, InnerFairness::Conformal, gather(Xs, lr.global));
+      std::vector<int> local;
+      Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level.splits, level.weights,
+                               local);
       const FairingRegion& coarser = levels_built[l - 1].region;
       level.from_coarser.resize(coarser.n);
       for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
-      Eigen::VectorXd H_level(lr.n);
-      Positions N_level = gather(N, lr.global);
-      for (int i = 0; i < lr.n; ++i) H_level(i) = H(lr.global[i]);
-      prolongate(lr, level.splits, level.weights, lambda, Y, H_level, N_level);
     }
     level.construction = std::make_unique<Construction>(lr, std::move(lambda),
                                                         finest ? options : coarse_options, L);
@@ -313,11 +335,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       report = l == 0 ? construction.run(Y, budget, tolerance, result.iterations)
                       : multigrid.solve(l, Y, tolerance, budget, result.iterations);
     }
-    for (int i = 0; i < lr.n; ++i) {
-      X.row(lr.global[i]) = Y.row(i);
-      H(lr.global[i]) = construction.mean_curvatures()(i);
-      N.row(lr.global[i]) = construction.normals().row(i);
-    }
+    solution.store(lr, Y, construction);
     result.iterations = 0;
     for (const MultigridLevel& done : levels_built)
       result.iterations += int(done.construction->iterations());
@@ -332,7 +350,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   for (const MultigridLevel& done : levels_built)
     result.iterations_per_level.push_back(int(done.construction->iterations()));
 
-  return finish(result, X);
+  return finish(result, solution.X);
 }
 
 }  // namespace geofair

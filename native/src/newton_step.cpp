@@ -97,56 +97,6 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
   }
 }
 
-bool NewtonStep::gmres(const JacobianProduct& product, const Eigen::VectorXd& b,
-                       Eigen::VectorXd& t) {
-  const int m = kNewtonKrylovIterations;
-  t = Eigen::VectorXd::Zero(b.size());
-  krylov_iterations_ = 0;
-  const double beta = b.norm();
-  if (!(beta > 0.0)) return std::isfinite(beta);
-  // Arnoldi with modified Gram–Schmidt on J P⁻¹, Givens rotations for the least-squares
-  // problem (Saad & Schultz 1986); t = P⁻¹ V y with the P⁻¹ v_j kept.
-  basis_.resize(m + 1);
-  preconditioned_.resize(m);
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m + 1, m);
-  Eigen::VectorXd cs(m), sn(m), g = Eigen::VectorXd::Zero(m + 1);
-  basis_[0] = b / beta;
-  g(0) = beta;
-  Eigen::VectorXd v;
-  int j = 0;
-  bool converged = false;
-  while (j < m && !converged) {
-    preconditioned_[j] = lu_.solve(basis_[j]);
-    product(preconditioned_[j], v);
-    for (int i = 0; i <= j; ++i) {
-      R(i, j) = basis_[i].dot(v);
-      v -= R(i, j) * basis_[i];
-    }
-    R(j + 1, j) = v.norm();
-    const bool breakdown = !(R(j + 1, j) > 0.0);
-    if (!breakdown) basis_[j + 1] = v / R(j + 1, j);
-    for (int i = 0; i < j; ++i) {
-      const double a = cs(i) * R(i, j) + sn(i) * R(i + 1, j);
-      R(i + 1, j) = -sn(i) * R(i, j) + cs(i) * R(i + 1, j);
-      R(i, j) = a;
-    }
-    const double h = std::hypot(R(j, j), R(j + 1, j));
-    if (!(h > 0.0)) break;  // J P⁻¹ singular on the Krylov space
-    cs(j) = R(j, j) / h, sn(j) = R(j + 1, j) / h;
-    R(j, j) = h, R(j + 1, j) = 0.0;
-    g(j + 1) = -sn(j) * g(j);
-    g(j) *= cs(j);
-    ++j;
-    converged = breakdown || std::abs(g(j)) <= kNewtonKrylovTolerance * beta;
-  }
-  krylov_iterations_ = j;
-  if (j == 0) return false;
-  const Eigen::VectorXd y =
-      R.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
-  for (int i = 0; i < j; ++i) t += y(i) * preconditioned_[i];
-  return converged && t.allFinite();
-}
-
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                        const std::vector<double>& w, const Eigen::VectorXd& defects,
                        const Eigen::VectorXd* tau, const JacobianProduct& product,
@@ -154,6 +104,12 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
   Eigen::VectorXd b = tau ? Eigen::VectorXd(*tau - defects) : Eigen::VectorXd(-defects);
   // With the factorization of an earlier step first; if GMRES does not converge on it,
   // refactorize at X and solve again.
+  const JacobianOperator J(b.size(), product);
+  gmres_.preconditioner().lu = &lu_;
+  gmres_.setMaxIterations(kNewtonKrylovIterations);
+  gmres_.set_restart(kNewtonKrylovIterations);
+  gmres_.setTolerance(kNewtonKrylovTolerance);
+  gmres_.compute(J);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const bool fresh = refactorize_ || !lu_.factorized();
     if (fresh) {
@@ -161,13 +117,13 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
       if (!lu_.factorize(A_)) return false;
       refactorize_ = false;
     }
-    const bool converged = gmres(product, b, t);
-    if (krylov_iterations_ > kNewtonKrylovIterations / 2) refactorize_ = true;
-    if (converged) return true;
+    t = gmres_.solve(b);
+    if (gmres_.iterations() > kNewtonKrylovIterations / 2) refactorize_ = true;
+    if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
     refactorize_ = true;
     if (fresh) break;
   }
-  return t.allFinite() && krylov_iterations_ > 0;
+  return t.allFinite() && gmres_.iterations() > 0;
 }
 
 }  // namespace geofair

@@ -53,9 +53,11 @@ class Construction {
   /// products of the exact Jacobian), scaled so that no vertex moves by more than
   /// kNewtonStep mean distances to its neighbours. The tangential (inner-fairness)
   /// relaxation is not interleaved with the steps: if `polish` is set, where the residual
-  /// reaches the tolerance one direct tangential solve restores inner fairness (it changes the discretization of
-  /// H, so the residual rises) and the steps go on, up to kNewtonPolishes times; the last
-  /// polish is accepted where the residual after it is still within the tolerance.
+  /// reaches the tolerance one direct tangential solve restores inner fairness, each vertex
+  /// lifted back by −H/2·|d|² along its normal over its tangential move d; that changes the
+  /// discretization of H, so the residual may rise and the steps go on. The polish repeats
+  /// (at the next convergence) while the last one moved a vertex by more than kPolishedMove
+  /// mean distances to its neighbours, at most kNewtonPolishes times.
   /// Stops like run(), and also when the residual has not halved in kNewtonPatience
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
   /// linearization can fail to contract.

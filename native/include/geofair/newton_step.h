@@ -6,18 +6,79 @@
 #include "geofair/sparse_lu.h"
 #include "geofair/types.h"
 
+#include <unsupported/Eigen/IterativeSolvers>
+
 #include <functional>
 #include <vector>
 
 namespace geofair {
+class JacobianOperator;
+}  // namespace geofair
 
-/// Krylov iterations of one Newton step at most (GMRES without restart). A step that needs
-/// more than half of them refactorizes its preconditioner at the next step.
+namespace Eigen::internal {
+// JacobianOperator is a matrix-free operator for Eigen's iterative solvers (Eigen's
+// "Matrix-free solvers" page): it borrows the traits of a sparse matrix.
+template <>
+struct traits<geofair::JacobianOperator> : traits<SparseMatrix<double>> {};
+}  // namespace Eigen::internal
+
+namespace geofair {
+
+/// A square operator v ↦ J v given by a function, for Eigen's GMRES.
+class JacobianOperator : public Eigen::EigenBase<JacobianOperator> {
+ public:
+  using Scalar = double;
+  using RealScalar = double;
+  using StorageIndex = int;
+  enum {
+    ColsAtCompileTime = Eigen::Dynamic,
+    MaxColsAtCompileTime = Eigen::Dynamic,
+    IsRowMajor = false
+  };
+  using Function = std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& Jv)>;
+
+  JacobianOperator(Eigen::Index n, const Function& product) : n_(n), product_(&product) {}
+  Eigen::Index rows() const { return n_; }
+  Eigen::Index cols() const { return n_; }
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& Jv) const { (*product_)(v, Jv); }
+  template <class Rhs>
+  Eigen::Product<JacobianOperator, Rhs, Eigen::AliasFreeProduct> operator*(
+      const Eigen::MatrixBase<Rhs>& x) const {
+    return {*this, x.derived()};
+  }
+
+ private:
+  Eigen::Index n_;
+  const Function* product_;
+};
+
+}  // namespace geofair
+
+namespace Eigen::internal {
+template <class Rhs>
+struct generic_product_impl<geofair::JacobianOperator, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<geofair::JacobianOperator, Rhs,
+                                generic_product_impl<geofair::JacobianOperator, Rhs>> {
+  template <class Dest>
+  static void scaleAndAddTo(Dest& dst, const geofair::JacobianOperator& J, const Rhs& v,
+                            const double& alpha) {
+    Eigen::VectorXd Jv;
+    J.apply(v, Jv);
+    dst.noalias() += alpha * Jv;
+  }
+};
+}  // namespace Eigen::internal
+
+namespace geofair {
+
+/// Krylov iterations of one Newton step at most (Eigen's GMRES without restart). A step that
+/// needs more than half of them refactorizes its preconditioner at the next step.
 constexpr int kNewtonKrylovIterations = 30;
-/// GMRES's relative residual ‖b − J t‖/‖b‖ of a step (an inexact Newton step). On the
-/// disturbed 13000-vertex cap (single level): 1e-2 took 8 steps and 1e-4 took 7, each step
-/// 4-5 GMRES iterations with 1e-2.
-constexpr double kNewtonKrylovTolerance = 1e-2;
+/// GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ of a step (P: the preconditioner
+/// below; an inexact Newton step). Disturbed caps, Newton steps (base + finest level): 1e-3
+/// gave 5 (2000), 4 + 4 (13000) and 6 on one level of the 13000-vertex cap; 1e-2 gave 6,
+/// 5 + 5 and 10.
+constexpr double kNewtonKrylovTolerance = 1e-3;
 
 /// Normal offsets t (#V_I) of all free vertices at once that solve the linearized
 /// discrete fairness equation at every free vertex i (eq. (12); τ = 0 except for
@@ -26,8 +87,8 @@ constexpr double kNewtonKrylovTolerance = 1e-2;
 /// J is the Jacobian of the defects with everything that depends on the positions
 /// recomputed: the normals (quadric fits), the Moreton–Séquin H of all region vertices
 /// (eq. (10), with the spiral samples of 6.2 that read the neighbours' normals) and the
-/// cotangent weights w_ij (eq. (6)). It is never assembled: GMRES (right-preconditioned,
-/// kNewtonKrylovIterations, relative residual kNewtonKrylovTolerance) reads only its
+/// cotangent weights w_ij (eq. (6)). It is never assembled: Eigen's GMRES
+/// (kNewtonKrylovIterations, relative residual kNewtonKrylovTolerance) reads only its
 /// products J v, which the caller computes by a forward difference of the defects (one
 /// evaluation of the whole mesh per product).
 ///
@@ -45,14 +106,15 @@ constexpr double kNewtonKrylovTolerance = 1e-2;
 /// that matrix ignores) and Newton's method converged only linearly, by 0.3–0.5 per step:
 /// 13 steps. With the exact products and the tangential relaxation moved out of the Newton
 /// steps (construction.h, run_newton) it converges quadratically (residual 0.57, 6e-3,
-/// 4e-7) with 4–5 GMRES iterations per step on the factorization of the first step.
+/// 4e-7) with 4–5 GMRES iterations per step on the factorization of the first step
+/// (measured with a GMRES that stopped at 1e-2 of the unpreconditioned residual).
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
 
   /// Products J v of the Jacobian of the defects (#V_I in, #V_I out, 1/length²: defects
   /// per unit of normal offset) at the current positions.
-  using JacobianProduct = std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& Jv)>;
+  using JacobianProduct = JacobianOperator::Function;
 
   /// \param X      #region×3 positions
   /// \param N      #region×3 unit normals at X (G1 normals in the boundary rows)
@@ -68,15 +130,19 @@ class NewtonStep {
              const std::vector<double>& w, const Eigen::VectorXd& defects,
              const Eigen::VectorXd* tau, const JacobianProduct& product, Eigen::VectorXd& t);
 
-  /// GMRES iterations of the last solve.
-  int krylov_iterations() const { return krylov_iterations_; }
-
  private:
   // Fills A_ = D J_N at X (the preconditioner's matrix, see the class comment).
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                 const std::vector<double>& w);
-  // Right-preconditioned GMRES from t = 0 on the products; true if it reached the tolerance.
-  bool gmres(const JacobianProduct& product, const Eigen::VectorXd& b, Eigen::VectorXd& t);
+  // GMRES preconditioner: the last factorization of D J_N, of an earlier iterate.
+  struct LaggedFactorization {
+    const PatternLU* lu = nullptr;
+    template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
+    template <class M> LaggedFactorization& factorize(const M&) { return *this; }
+    template <class M> LaggedFactorization& compute(const M&) { return *this; }
+    template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+  };
 
   const FairingRegion& region_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
@@ -85,8 +151,7 @@ class NewtonStep {
   Eigen::SparseMatrix<double> A_;
   PatternLU lu_;
   bool refactorize_ = true;
-  int krylov_iterations_ = 0;
-  std::vector<Eigen::VectorXd> basis_, preconditioned_;  // GMRES's Krylov vectors
+  Eigen::GMRES<JacobianOperator, LaggedFactorization> gmres_;
 };
 
 }  // namespace geofair
