@@ -116,7 +116,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   if (tangential_ && relax)
     for (int p = 0; p < kNewtonRelaxations; ++p) {
       evaluate(X);  // the normals at X
-      const double scale = tangential_solver_.relax(lambda_, N_, X);
+      const double scale = tangential_solver_.relax(lambda_, N_, X, /*lagged=*/p > 0);
       if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
     }
   double residual = evaluate(X);
@@ -149,7 +149,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_
       // and H_ are those of X: the residual was just evaluated there.
       const Positions before = X;
-      tangential_solver_.relax(lambda_, N_, X);
+      tangential_solver_.relax(lambda_, N_, X, /*lagged=*/polishes > 0);
       double move = 0.0;  // the largest move, in mean distances to the neighbours
       for (int i = 0; i < nf; ++i) {
         const Vec3 d = (X.row(i) - before.row(i)).transpose();

@@ -111,11 +111,17 @@ TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWei
 Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, const Positions& N,
                                            const Positions& X) {
   const int nf = n_free_;
+  // Tangent bases: the last ones carried over to the new tangent planes (projected), so
+  // that the system changes only as much as the normals do (a lagged factorization stays a
+  // good preconditioner, see relax); new ones where there are none or the projection is
+  // short. The solution, a tangential move, does not depend on the bases.
+  const bool carry = t1_.size() == std::size_t(nf);
   t1_.resize(nf), t2_.resize(nf);
   for (int i = 0; i < nf; ++i) {
     const Vec3 n = N.row(i);
-    const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-    t1_[i] = n.cross(helper).normalized();
+    Vec3 t = carry ? Vec3(t1_[i] - t1_[i].dot(n) * n) : Vec3(Vec3::Zero());
+    if (!(t.norm() > 0.5)) t = n.cross(std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY());
+    t1_[i] = t.normalized();
     t2_[i] = n.cross(t1_[i]);
   }
   double* values = A_.valuePtr();
@@ -161,11 +167,23 @@ void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions&
 }
 
 double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positions& N,
-                               Positions& X) {
+                               Positions& X, bool lagged) {
   const int nf = n_free_;
   const Eigen::VectorXd rhs = assemble(lambda, N, X);
-  if (!direct_.factorize(A_)) return 0.0;
-  const Eigen::VectorXd u = direct_.solve(rhs);
+  Eigen::VectorXd u;
+  if (lagged && direct_.factorized()) {
+    lagged_.preconditioner().lu = &direct_;
+    lagged_.setMaxIterations(kLaggedTangentialIterations);
+    lagged_.set_restart(kLaggedTangentialIterations);
+    lagged_.setTolerance(kLaggedTangentialTolerance);
+    lagged_.compute(A_);
+    u = lagged_.solve(rhs);
+    if (lagged_.info() != Eigen::Success) u.resize(0);
+  }
+  if (u.size() == 0) {
+    if (!direct_.factorize(A_)) return 0.0;
+    u = direct_.solve(rhs);
+  }
   if (!u.allFinite()) return 0.0;
   // One scale for the whole step: no edge stretches or shrinks by more than kMaxStretch of
   // its length (the offsets of boundary vertices are 0).

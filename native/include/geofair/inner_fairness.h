@@ -8,6 +8,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#include <unsupported/Eigen/IterativeSolvers>
 
 #include <vector>
 
@@ -93,6 +94,9 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
 
 /// TangentialSolver::relax: the largest relative stretch or shrinkage of an edge per step.
 constexpr double kMaxStretch = 0.5;
+/// TangentialSolver::relax with `lagged`: GMRES's relative residual and iteration limit.
+constexpr double kLaggedTangentialTolerance = 1e-8;
+constexpr int kLaggedTangentialIterations = 20;
 
 /// The global step of inner fairness (beyond the paper, measured below): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
@@ -131,9 +135,14 @@ class TangentialSolver {
   /// a mesh to inner fairness from afar, where the distribution that satisfies it lies many
   /// edge lengths away (construction.h, run_newton). Arguments as for step(): X #region×3,
   /// free rows moved in place (mesh units), N #region×3 unit normals at X.
+  /// With `lagged`, a factorization of an earlier call (at nearby normals, as in the
+  /// repeated polishes of a converged shape) preconditions GMRES on the new system to the
+  /// relative residual kLaggedTangentialTolerance instead of a new factorization; a fresh
+  /// one is taken if there is none or GMRES does not converge in kLaggedTangentialIterations.
   /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
   ///         length (X unchanged)
-  double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X);
+  double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
+               bool lagged = false);
 
  private:
   // Fills A_ at the tangent planes of N and returns the right-hand side.
@@ -147,6 +156,7 @@ class TangentialSolver {
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block
   std::vector<Vec3> t1_, t2_;    // tangent bases of the last assemble()
   PatternLU direct_;
+  Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, LaggedFactorization> lagged_;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;
 };

@@ -134,16 +134,6 @@ class NewtonStep {
   // Fills A_ = D J_N at X (the preconditioner's matrix, see the class comment).
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                 const std::vector<double>& w);
-  // GMRES preconditioner: the last factorization of D J_N, of an earlier iterate.
-  struct LaggedFactorization {
-    const PatternLU* lu = nullptr;
-    template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
-    template <class M> LaggedFactorization& factorize(const M&) { return *this; }
-    template <class M> LaggedFactorization& compute(const M&) { return *this; }
-    template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
-    Eigen::ComputationInfo info() const { return Eigen::Success; }
-  };
-
   const FairingRegion& region_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J_N (see constructor)
@@ -151,6 +141,7 @@ class NewtonStep {
   Eigen::SparseMatrix<double> A_;
   PatternLU lu_;
   bool refactorize_ = true;
+  // GMRES preconditioned by the last factorization of D J_N, of an earlier iterate.
   Eigen::GMRES<JacobianOperator, LaggedFactorization> gmres_;
 };
 

@@ -39,4 +39,17 @@ class PatternLU {
   bool factorized_ = false;
 };
 
+/// An Eigen iterative solver's preconditioner (the interface of Eigen's preconditioners)
+/// that applies a PatternLU factorized earlier, of a nearby matrix: an inexact Newton step
+/// or a repeated tangential solve keeps one factorization over several systems whose
+/// matrices change little, and the Krylov iterations make up for the change.
+struct LaggedFactorization {
+  const PatternLU* lu = nullptr;
+  template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
+  template <class M> LaggedFactorization& factorize(const M&) { return *this; }
+  template <class M> LaggedFactorization& compute(const M&) { return *this; }
+  template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+};
+
 }  // namespace geofair
