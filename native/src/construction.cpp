@@ -143,7 +143,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   probe_H_.resize(region_.n);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, iteration_offset + k);
-    if (residual <= tolerance && tangential_ && polish && !polished) {
+    while (residual <= tolerance && tangential_ && polish && !polished) {
       // Inner fairness at the converged shape; go on if it moved the residual up. The
       // tangential solve moves the vertices in their tangent planes; each is lifted back
       // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_

@@ -182,15 +182,18 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
         finest ? lambda_finest
                : inner_fairness_weights(lr, gather(X0, lr.global), options.inner_fairness);
     Positions Y;
+    VertexSplits level_splits;
+    std::vector<double> level_weights;
     if (l == 0) {
       Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global));
     } else {
-      VertexSplits splits;
-      std::vector<double> weights;
       std::vector<int> local;
-      Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, splits, weights, local);
+      Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
+                               local);
     }
     Construction construction(lr, std::move(lambda), options, L);
+    if (finest && l > 0)
+      construction.set_coarse_space(split_interpolation(lr, level_splits));
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);

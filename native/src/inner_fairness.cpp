@@ -171,7 +171,8 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
   const int nf = n_free_;
   const Eigen::VectorXd rhs = assemble(lambda, N, X);
   Eigen::VectorXd u;
-  if (lagged && direct_.factorized()) {
+  if (!coarse_.vertex.empty() && !solve_two_grid(rhs, lagged, u)) u.resize(0);
+  if (u.size() == 0 && lagged && direct_.factorized()) {
     lagged_.preconditioner().lu = &direct_;
     lagged_.setMaxIterations(kLaggedTangentialIterations);
     lagged_.set_restart(kLaggedTangentialIterations);
@@ -200,6 +201,63 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
   const double scale = stretch > kMaxStretch ? kMaxStretch / stretch : 1.0;
   for (int i = 0; i < nf; ++i) X.row(i) += scale * offset(i).transpose();
   return scale;
+}
+
+bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
+                                      Eigen::VectorXd& u) {
+  const int nf = n_free_, nc = int(coarse_.vertex.size());
+  if (!lagged || !coarse_lu_.factorized()) {
+    // P̃: block (i, c) = P_ic T_iᵀ T_c, the coarse tangential move of column c's vertex
+    // carried over into the tangent plane of i.
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(4 * std::size_t(coarse_.P.nonZeros()));
+    for (int i = 0; i < nf; ++i)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(coarse_.P, i); it; ++it) {
+        const int c = int(it.col()), v = coarse_.vertex[c];
+        const double w = it.value();
+        entries.emplace_back(2 * i, 2 * c, w * t1_[i].dot(t1_[v]));
+        entries.emplace_back(2 * i, 2 * c + 1, w * t1_[i].dot(t2_[v]));
+        entries.emplace_back(2 * i + 1, 2 * c, w * t2_[i].dot(t1_[v]));
+        entries.emplace_back(2 * i + 1, 2 * c + 1, w * t2_[i].dot(t2_[v]));
+      }
+    coarse_P_.resize(2 * nf, 2 * nc);
+    coarse_P_.setFromTriplets(entries.begin(), entries.end());
+    const Eigen::SparseMatrix<double> AP = A_ * coarse_P_;
+    coarse_A_ = coarse_P_.transpose() * AP;
+    coarse_A_.makeCompressed();
+    if (!coarse_lu_.factorize(coarse_A_)) return false;
+  }
+  two_grid_.preconditioner().solver = this;
+  two_grid_.setMaxIterations(kTwoGridIterations);
+  two_grid_.set_restart(kTwoGridIterations);
+  two_grid_.setTolerance(kLaggedTangentialTolerance);
+  two_grid_.compute(A_);
+  u = two_grid_.solve(rhs);
+  return two_grid_.info() == Eigen::Success && u.allFinite();
+}
+
+Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const {
+  const auto& A = solver->A_;
+  const int n = int(A.rows());
+  const double* value = A.valuePtr();
+  const int* column = A.innerIndexPtr();
+  const int* outer = A.outerIndexPtr();
+  // Gauss–Seidel on A x = b: the diagonal entries are 1.
+  auto sweep = [&](Eigen::VectorXd& x, int r) {
+    double sum = b(r);
+    for (int p = outer[r]; p < outer[r + 1]; ++p)
+      if (column[p] != r) sum -= value[p] * x(column[p]);
+    x(r) = sum;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int s = 0; s < kTwoGridSweeps; ++s)
+    for (int r = 0; r < n; ++r) sweep(x, r);
+  const Eigen::VectorXd residual = b - A * x;
+  const Eigen::VectorXd coarse = solver->coarse_P_.transpose() * residual;
+  x += solver->coarse_P_ * solver->coarse_lu_.solve(coarse);
+  for (int s = 0; s < kTwoGridSweeps; ++s)
+    for (int r = n; r-- > 0;) sweep(x, r);
+  return x;
 }
 
 }  // namespace geofair

@@ -4,6 +4,7 @@
 #include "geofair/inner_fairness.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 namespace geofair {
@@ -36,6 +37,74 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
       for (int k = 0; k < m; ++k) w[k] = c[k] / sum;
   }
   return weights;
+}
+
+CoarseSpace split_interpolation(const FairingRegion& level, const VertexSplits& splits) {
+  const int nf = level.n_free;
+  const OneRings& r = level.rings;
+  std::vector<int> column(nf, -1);
+  std::vector<std::uint8_t> is_new(nf, 0);
+  for (const int v : splits.vertex) is_new[v] = 1;
+  CoarseSpace coarse;
+  for (int i = 0; i < nf; ++i)
+    if (!is_new[i]) {
+      column[i] = int(coarse.vertex.size());
+      coarse.vertex.push_back(i);
+    }
+  // A new vertex: the mean over its ring of the coarse vertices' values and the boundary's
+  // zeros; with none of those in its ring, the mean of its ring's rows, in rounds outwards.
+  std::vector<std::vector<std::pair<int, double>>> rows(nf);
+  for (int i = 0; i < nf; ++i)
+    if (!is_new[i]) rows[i].emplace_back(column[i], 1.0);
+  std::vector<int> pending;
+  for (int i = 0; i < nf; ++i) {
+    if (!is_new[i]) continue;
+    int m = 0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      if (r.ring[k] >= nf || !is_new[r.ring[k]]) ++m;
+    if (m == 0) {
+      pending.push_back(i);
+      continue;
+    }
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
+      if (r.ring[k] < nf && !is_new[r.ring[k]]) rows[i].emplace_back(column[r.ring[k]], 1.0 / m);
+  }
+  std::vector<double> sum(coarse.vertex.size(), 0.0);
+  std::vector<int> touched;
+  while (!pending.empty()) {
+    std::vector<int> next, done;
+    std::vector<std::vector<std::pair<int, double>>> fresh;
+    for (const int i : pending) {
+      int m = 0;
+      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+        const int j = r.ring[k];
+        if (j < nf && rows[j].empty()) continue;
+        ++m;
+        if (j >= nf) continue;
+        for (const auto& [c, w] : rows[j]) {
+          if (sum[c] == 0.0) touched.push_back(c);
+          sum[c] += w;
+        }
+      }
+      if (m == 0) {
+        next.push_back(i);
+        continue;
+      }
+      auto& row = fresh.emplace_back();
+      for (const int c : touched) row.emplace_back(c, sum[c] / m), sum[c] = 0.0;
+      touched.clear();
+      done.push_back(i);
+    }
+    if (done.empty()) break;  // cannot happen: every free vertex reaches the boundary
+    for (std::size_t d = 0; d < done.size(); ++d) rows[done[d]] = std::move(fresh[d]);
+    pending.swap(next);
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < nf; ++i)
+    for (const auto& [c, w] : rows[i]) entries.emplace_back(i, c, w);
+  coarse.P.resize(nf, Eigen::Index(coarse.vertex.size()));
+  coarse.P.setFromTriplets(entries.begin(), entries.end());
+  return coarse;
 }
 
 void prolongate(const FairingRegion& level, const VertexSplits& splits,

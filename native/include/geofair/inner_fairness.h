@@ -98,6 +98,19 @@ constexpr double kMaxStretch = 0.5;
 constexpr double kLaggedTangentialTolerance = 1e-8;
 constexpr int kLaggedTangentialIterations = 20;
 
+/// Interpolation of corrections from a coarser level (multigrid.h, split_interpolation):
+/// row i, free vertex i of the level, holds the weights of the coarser level's free vertices
+/// (columns) in the value at i; `vertex[c]` is the level-local id of column c's vertex.
+struct CoarseSpace {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> P;
+  std::vector<int> vertex;
+};
+
+/// TangentialSolver::relax with a coarse space: Gauss–Seidel sweeps before and after the
+/// coarse-grid correction of the two-grid preconditioner, and GMRES's iteration limit.
+constexpr int kTwoGridSweeps = 2;
+constexpr int kTwoGridIterations = 40;
+
 /// The global step of inner fairness (beyond the paper, measured below): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
 /// vanishes at all free vertices at once, instead of one vertex at a time.
@@ -144,6 +157,15 @@ class TangentialSolver {
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
                bool lagged = false);
 
+  /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
+  /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a
+  /// two-grid cycle instead of factorizing the system, kTwoGridSweeps symmetric Gauss–Seidel
+  /// sweeps (the diagonal blocks are the identity) around a coarse-grid correction with the
+  /// Galerkin operator P̃ᵀ A P̃ (P̃: the interpolation carried into the tangent bases,
+  /// P_ic T_iᵀ T_c), factorized at the first relax and, with `lagged`, kept for the next
+  /// ones. If GMRES does not converge in kTwoGridIterations, the system is factorized.
+  void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
+
  private:
   // Fills A_ at the tangent planes of N and returns the right-hand side.
   Eigen::VectorXd assemble(const InnerFairnessWeights& lambda, const Positions& N,
@@ -155,8 +177,27 @@ class TangentialSolver {
   std::vector<int> slot_value_;  // per weight of a free vertex: index of its 2×2 block, or -1
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block
   std::vector<Vec3> t1_, t2_;    // tangent bases of the last assemble()
+  // The tangential move u (2 per free vertex) of the system assembled last, by GMRES with
+  // the two-grid preconditioner; false if it did not converge.
+  bool solve_two_grid(const Eigen::VectorXd& rhs, bool lagged, Eigen::VectorXd& u);
+
+  // Two-grid cycle on A_ (see set_coarse_space), as an Eigen preconditioner.
+  struct TwoGrid {
+    const TangentialSolver* solver = nullptr;
+    template <class M> TwoGrid& analyzePattern(const M&) { return *this; }
+    template <class M> TwoGrid& factorize(const M&) { return *this; }
+    template <class M> TwoGrid& compute(const M&) { return *this; }
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+  };
+
   PatternLU direct_;
   Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, LaggedFactorization> lagged_;
+  CoarseSpace coarse_;
+  Eigen::SparseMatrix<double> coarse_P_;  // P̃ of the last coarse factorization
+  Eigen::SparseMatrix<double> coarse_A_;  // its Galerkin operator P̃ᵀ A P̃
+  PatternLU coarse_lu_;
+  Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, TwoGrid> two_grid_;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;
 };

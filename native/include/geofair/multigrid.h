@@ -50,6 +50,18 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
                 const std::vector<double>& weights, const InnerFairnessWeights& lambda,
                 Positions& X, Eigen::VectorXd& H, Positions& N);
 
+/// The interpolation of corrections that vanish on the G1 boundary from the next coarser
+/// level to `level` (whose vertex splits, in level-local ids, are `splits`), as a sparse
+/// matrix: a vertex of the coarser level keeps its value; a new vertex takes the mean over
+/// its ring of the coarser level's vertices (the boundary counting as zeros), or, with
+/// none of those in its ring, the mean of its ring's rows. Columns: the coarser level's free
+/// vertices, in increasing level-local id. The coarse space of the finest level's tangential
+/// solves (TangentialSolver::set_coarse_space); the replayed splits of prolongate
+/// interpolate too, but their rows fill up (on the 13000-vertex cap 10.7 coarse vertices
+/// per row, and 26 2×2 blocks per row in the tangential Galerkin operator; these rows: 1.7
+/// and 5).
+CoarseSpace split_interpolation(const FairingRegion& level, const VertexSplits& splits);
+
 /// Gauss–Seidel sweeps of the relaxation, step 2 of prolongate.
 constexpr int kProlongationSweeps = 2;
 

@@ -4,6 +4,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 
+#include <algorithm>
+
 namespace geofair {
 
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
@@ -18,6 +20,8 @@ class PatternLU {
   /// Factorizes A; false if it is singular (then factorized() is false).
   bool factorize(const Eigen::SparseMatrix<double>& A) {
     factorized_ = false;
+    // A new pattern (or the first) is analyzed anew.
+    if (analyzed_ && !same_pattern(A)) analyzed_ = false;
     matrix_ = A;
     if (!analyzed_) {
       lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
@@ -33,6 +37,15 @@ class PatternLU {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return lu_.solve(b); }
 
  private:
+  bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
+    return A.rows() == matrix_.rows() && A.cols() == matrix_.cols() &&
+           A.nonZeros() == matrix_.nonZeros() && A.isCompressed() &&
+           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1,
+                      matrix_.outerIndexPtr()) &&
+           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(),
+                      matrix_.innerIndexPtr());
+  }
+
   Eigen::SparseMatrix<double> matrix_;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
   bool analyzed_ = false;
