@@ -278,8 +278,11 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
     recomputed; forward differences), preconditioned by the sparse LU factorization of a
     fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
-    per vertex. At convergence of the finest level one direct tangential solve restores
-    inner fairness (the steps go on if it raised the residual). A level stops when the
+    per vertex. At convergence of the finest level tangential solves restore inner
+    fairness (on the finest of several levels by GMRES on a two-grid preconditioner with
+    the next coarser level, without a factorization at the finest size), repeated while
+    one moves a vertex by more than 1e-3 mean neighbour distances, at most 8 times (the
+    steps go on where one raised the residual). A level stops when the
     residual has not halved in 20 steps; where a coarse level fails, the finest level is
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
