@@ -94,7 +94,8 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
 
 /// TangentialSolver::relax: the largest relative stretch or shrinkage of an edge per step.
 constexpr double kMaxStretch = 0.5;
-/// TangentialSolver::relax with `lagged`: GMRES's relative residual and iteration limit.
+/// TangentialSolver::relax with `lagged` (and with a coarse space): GMRES's relative
+/// residual, and its iteration limit on a lagged factorization.
 constexpr double kLaggedTangentialTolerance = 1e-8;
 constexpr int kLaggedTangentialIterations = 20;
 

@@ -10,7 +10,8 @@ namespace geofair {
 
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
 /// matrices that change values but not pattern from one factorization to the next: the
-/// symbolic analysis (ordering) runs at the first factorization only, the factorized matrix
+/// symbolic analysis (ordering) runs at the first factorization only (and again if the
+/// pattern changes), the factorized matrix
 /// is kept (UMFPACK's solves read it, so the caller may change its own copy), and the solves
 /// do no iterative refinement (their accuracy is that of the factorization, about 1e-12
 /// relative here; refinement doubled the cost of a solve). Used by the Newton step
