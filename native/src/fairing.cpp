@@ -193,7 +193,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     }
     Construction construction(lr, std::move(lambda), options, L);
     if (finest && l > 0)
-      construction.set_coarse_space(split_interpolation(lr, level_splits));
+      construction.set_coarse_space(coarse_space(lr, level_splits));
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);

@@ -174,10 +174,7 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
   if (!coarse_.vertex.empty() && !solve_two_grid(rhs, lagged, u)) u.resize(0);
   if (u.size() == 0 && lagged && direct_.factorized()) {
     lagged_.preconditioner().lu = &direct_;
-    lagged_.setMaxIterations(kLaggedTangentialIterations);
-    lagged_.set_restart(kLaggedTangentialIterations);
-    lagged_.setTolerance(kLaggedTangentialTolerance);
-    lagged_.compute(A_);
+    set_up_gmres(lagged_, A_, kLaggedTangentialIterations, kLaggedTangentialTolerance);
     u = lagged_.solve(rhs);
     if (lagged_.info() != Eigen::Success) u.resize(0);
   }
@@ -223,15 +220,12 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
     coarse_P_.resize(2 * nf, 2 * nc);
     coarse_P_.setFromTriplets(entries.begin(), entries.end());
     const Eigen::SparseMatrix<double> AP = A_ * coarse_P_;
-    coarse_A_ = coarse_P_.transpose() * AP;
-    coarse_A_.makeCompressed();
-    if (!coarse_lu_.factorize(coarse_A_)) return false;
+    Eigen::SparseMatrix<double> galerkin = coarse_P_.transpose() * AP;
+    galerkin.makeCompressed();
+    if (!coarse_lu_.factorize(galerkin)) return false;
   }
   two_grid_.preconditioner().solver = this;
-  two_grid_.setMaxIterations(kTwoGridIterations);
-  two_grid_.set_restart(kTwoGridIterations);
-  two_grid_.setTolerance(kLaggedTangentialTolerance);
-  two_grid_.compute(A_);
+  set_up_gmres(two_grid_, A_, kTwoGridIterations, kLaggedTangentialTolerance);
   u = two_grid_.solve(rhs);
   return two_grid_.info() == Eigen::Success && u.allFinite();
 }

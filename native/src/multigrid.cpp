@@ -39,7 +39,7 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
   return weights;
 }
 
-CoarseSpace split_interpolation(const FairingRegion& level, const VertexSplits& splits) {
+CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits) {
   const int nf = level.n_free;
   const OneRings& r = level.rings;
   std::vector<int> column(nf, -1);

@@ -106,10 +106,7 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
   // refactorize at X and solve again.
   const JacobianOperator J(b.size(), product);
   gmres_.preconditioner().lu = &lu_;
-  gmres_.setMaxIterations(kNewtonKrylovIterations);
-  gmres_.set_restart(kNewtonKrylovIterations);
-  gmres_.setTolerance(kNewtonKrylovTolerance);
-  gmres_.compute(J);
+  set_up_gmres(gmres_, J, kNewtonKrylovIterations, kNewtonKrylovTolerance);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const bool fresh = refactorize_ || !lu_.factorized();
     if (fresh) {

@@ -99,7 +99,7 @@ constexpr double kMaxStretch = 0.5;
 constexpr double kLaggedTangentialTolerance = 1e-8;
 constexpr int kLaggedTangentialIterations = 20;
 
-/// Interpolation of corrections from a coarser level (multigrid.h, split_interpolation):
+/// Interpolation of corrections from a coarser level (multigrid.h, coarse_space):
 /// row i, free vertex i of the level, holds the weights of the coarser level's free vertices
 /// (columns) in the value at i; `vertex[c]` is the level-local id of column c's vertex.
 struct CoarseSpace {
@@ -196,7 +196,6 @@ class TangentialSolver {
   Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, LaggedFactorization> lagged_;
   CoarseSpace coarse_;
   Eigen::SparseMatrix<double> coarse_P_;  // P̃ of the last coarse factorization
-  Eigen::SparseMatrix<double> coarse_A_;  // its Galerkin operator P̃ᵀ A P̃
   PatternLU coarse_lu_;
   Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, TwoGrid> two_grid_;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>

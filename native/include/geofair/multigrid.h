@@ -59,8 +59,11 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
 /// solves (TangentialSolver::set_coarse_space); the replayed splits of prolongate
 /// interpolate too, but their rows fill up (on the 13000-vertex cap 10.7 coarse vertices
 /// per row, and 26 2×2 blocks per row in the tangential Galerkin operator; these rows: 1.7
-/// and 5).
-CoarseSpace split_interpolation(const FairingRegion& level, const VertexSplits& splits);
+/// and 5). The levels are those of the progressive mesh of section 7.4.
+/// \return P: #V_I(level) × #V_I(coarser level), dimensionless weights in [0, 1] whose row
+///         sums are 1 away from the boundary and less next to it; `vertex`: the coarser
+///         level's free vertices (level-local ids), one per column. Throws nothing.
+CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits);
 
 /// Gauss–Seidel sweeps of the relaxation, step 2 of prolongate.
 constexpr int kProlongationSweeps = 2;

@@ -58,6 +58,7 @@ class PatternLU {
 /// or a repeated tangential solve keeps one factorization over several systems whose
 /// matrices change little, and the Krylov iterations make up for the change.
 struct LaggedFactorization {
+
   const PatternLU* lu = nullptr;
   template <class M> LaggedFactorization& analyzePattern(const M&) { return *this; }
   template <class M> LaggedFactorization& factorize(const M&) { return *this; }
@@ -65,5 +66,15 @@ struct LaggedFactorization {
   template <class V> Eigen::VectorXd solve(const V& b) const { return lu->solve(b); }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 };
+
+/// Sets an Eigen::GMRES (its preconditioner already set) to the operator A without restart:
+/// at most `iterations` iterations to the relative residual `tolerance`.
+template <class Gmres, class Operator>
+void set_up_gmres(Gmres& gmres, const Operator& A, int iterations, double tolerance) {
+  gmres.setMaxIterations(iterations);
+  gmres.set_restart(iterations);
+  gmres.setTolerance(tolerance);
+  gmres.compute(A);
+}
 
 }  // namespace geofair
