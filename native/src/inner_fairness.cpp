@@ -109,7 +109,7 @@ TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWei
 }
 
 Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, const Positions& N,
-                                           const Positions& X) {
+                                           const Positions& X, TangentPlanes planes) {
   const int nf = n_free_;
   // Tangent bases: the last ones carried over to the new tangent planes (projected), so
   // that the system changes only as much as the normals do (a lagged factorization stays a
@@ -138,6 +138,15 @@ Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, c
     const Vec3 residual = weighted_centroid(lambda, X, i) - X.row(i).transpose();
     rhs(2 * i) = residual.dot(t1_[i]);
     rhs(2 * i + 1) = residual.dot(t2_[i]);
+    // With turning planes: the tangent plane turns as the vertex moves along the surface, by
+    // the normal's derivative D_i (2×2 in the basis, fitted to the ring's normals), and the
+    // normal part ℓ_i of the residual tilts into it: diagonal block I + ℓ_i D_i.
+    if (planes == TangentPlanes::Turning) {
+      const Eigen::Matrix2d turn = residual.dot(N.row(i)) * normal_derivative(N, X, i);
+      if (turn.allFinite() && turn.norm() < kMaxTurn)
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) entry(i, p, a, b) += turn(a, b);
+    }
     for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k) {
       if (slot_value_[k] < 0) continue;
       const int j = lambda.neighbour[k], q = slot_value_[k];
@@ -151,9 +160,25 @@ Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, c
   return rhs;
 }
 
+Eigen::Matrix2d TangentialSolver::normal_derivative(const Positions& N, const Positions& X,
+                                                    int i) const {
+  // Least squares over the ring: T_iᵀ(n_j − n_i) ≈ D T_iᵀ(q_j − q_i), symmetrized.
+  Eigen::Matrix2d M = Eigen::Matrix2d::Zero(), B = Eigen::Matrix2d::Zero();
+  for (int k = rings_.offset[i]; k < rings_.offset[i + 1]; ++k) {
+    const int j = rings_.ring[k];
+    const Vec3 dq = (X.row(j) - X.row(i)).transpose(), dn = (N.row(j) - N.row(i)).transpose();
+    const Eigen::Vector2d a(dq.dot(t1_[i]), dq.dot(t2_[i])), b(dn.dot(t1_[i]), dn.dot(t2_[i]));
+    M += a * a.transpose();
+    B += b * a.transpose();
+  }
+  if (!(M.determinant() > 1e-12 * M.trace() * M.trace())) return Eigen::Matrix2d::Zero();
+  const Eigen::Matrix2d D = B * M.inverse();
+  return 0.5 * (D + D.transpose());
+}
+
 void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions& N, double damping,
                             Positions& X) {
-  const Eigen::VectorXd rhs = assemble(lambda, N, X);
+  const Eigen::VectorXd rhs = assemble(lambda, N, X, TangentPlanes::Fixed);
   solver_.compute(A_);
   const Eigen::VectorXd u = solver_.solve(rhs);
   if (!u.allFinite()) return;  // a breakdown: leave the tangential positions to the local steps
@@ -167,9 +192,9 @@ void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions&
 }
 
 double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positions& N,
-                               Positions& X, bool lagged) {
+                               Positions& X, bool lagged, TangentPlanes planes) {
   const int nf = n_free_;
-  const Eigen::VectorXd rhs = assemble(lambda, N, X);
+  const Eigen::VectorXd rhs = assemble(lambda, N, X, planes);
   Eigen::VectorXd u;
   if (!coarse_.vertex.empty() && !solve_two_grid(rhs, lagged, u)) u.resize(0);
   if (u.size() == 0 && lagged && direct_.factorized()) {
@@ -236,12 +261,15 @@ Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const
   const double* value = A.valuePtr();
   const int* column = A.innerIndexPtr();
   const int* outer = A.outerIndexPtr();
-  // Gauss–Seidel on A x = b: the diagonal entries are 1.
+  // Gauss–Seidel on A x = b.
   auto sweep = [&](Eigen::VectorXd& x, int r) {
-    double sum = b(r);
+    double sum = b(r), diagonal = 1.0;
     for (int p = outer[r]; p < outer[r + 1]; ++p)
-      if (column[p] != r) sum -= value[p] * x(column[p]);
-    x(r) = sum;
+      if (column[p] != r)
+        sum -= value[p] * x(column[p]);
+      else
+        diagonal = value[p];
+    x(r) = sum / diagonal;
   };
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
   for (int s = 0; s < kTwoGridSweeps; ++s)

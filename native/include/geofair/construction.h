@@ -48,13 +48,15 @@ class Construction {
 
   /// Newton's method on eq. (12) instead (newton_step.h; beyond the paper). If `relax` is
   /// set, the vertex distribution is first brought to inner fairness by direct tangential
-  /// solves (TangentialSolver::relax, at most kNewtonRelaxations). Then per iteration the
+  /// solves (TangentialSolver::relax, at most kNewtonRelaxations; the first with fixed
+  /// tangent planes, the next with turning ones). Then per iteration the
   /// normal offsets of all free vertices from one inexact Newton step (NewtonStep, with the
   /// products of the exact Jacobian), scaled so that no vertex moves by more than
   /// kNewtonStep mean distances to its neighbours. The tangential (inner-fairness)
   /// relaxation is not interleaved with the steps: if `polish` is set, where the residual
-  /// reaches the tolerance one tangential solve restores inner fairness (direct, or on the
-  /// two-grid preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|²
+  /// reaches the tolerance one tangential solve with turning tangent planes restores inner
+  /// fairness (direct, or on the two-grid preconditioner of set_coarse_space), each vertex
+  /// lifted back by −H/2·|d|²
   /// along its normal over its tangential move d; that changes the discretization of H, so
   /// the residual may rise and the steps go on. The polish repeats (at once if the residual
   /// is still within the tolerance, else at the next convergence) while the last one moved
@@ -129,13 +131,14 @@ constexpr double kNewtonStep = 4.0;
 constexpr int kNewtonRelaxations = 8;
 /// run_newton gives up when the residual has not halved in this many steps.
 constexpr int kNewtonPatience = 20;
-/// Tangential solves of run_newton at convergence, at most (see run_newton) ... Each
-/// removes about two thirds of the distance to inner fairness; after the prolongation to
-/// the finest level a vertex starts up to 1-3 mean distances from it (4800-vertex cap on
-/// two levels; 13000; 100000). Measured on the disturbed 4800-vertex cap on two levels: with
-/// 4 the last moved 5e-2 mean distances and the tangential part of the uniform Laplacian
-/// stayed at 1.30e-4 mean distances against 1.15e-4 on one level and for the paper's
-/// iteration; 8 reach 1.15e-4.
+/// Tangential solves of run_newton at convergence, at most (see run_newton) ... After the
+/// prolongation to the finest level a vertex starts up to 3-8 mean distances from inner
+/// fairness (disturbed caps of 13000 and 100000 free vertices), so the first solve or two
+/// are cut short by the stretch limit; then they converge quadratically with turning
+/// tangent planes: 4 solves on the 13000- and 100000-vertex caps (the last moving < 1e-4
+/// mean distances). With fixed planes each removed only about two thirds of the distance,
+/// and the 4800-vertex cap on two levels needed 8 (with 4 the tangential part of the
+/// uniform Laplacian stayed at 1.30e-4 mean distances against 1.15e-4 on one level).
 constexpr int kNewtonPolishes = 8;
 /// ... repeated while the last one moved a vertex by more than this many mean distances to
 /// its neighbours. Measured on the disturbed 1200-vertex cap (uniform inner fairness,

@@ -94,6 +94,20 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
 
 /// TangentialSolver::relax: the largest relative stretch or shrinkage of an edge per step.
 constexpr double kMaxStretch = 0.5;
+/// The linearization of inner fairness in TangentialSolver::relax. Fixed: the tangent
+/// planes held fixed (section 7.3's update, all vertices at once). Turning: with the first-
+/// order turn of each tangent plane as its vertex moves along the surface (the normal's
+/// derivative D_i times the normal part ℓ_i of the Laplacian vector: diagonal blocks
+/// I + ℓ_i D_i), Newton's linearization. ℓ_i D_i is of order (h·κ)²/2, as small as the
+/// smallest eigenvalues of the fixed-plane system on a smooth surface: without it repeated
+/// solves reduce the distance to inner fairness only by a constant factor (about 1/3 per
+/// solve on the disturbed caps), with it quadratically.
+enum class TangentPlanes { Fixed, Turning };
+
+/// TangentialSolver's systems: the turn of the tangent plane ℓ_i D_i is left out of a
+/// diagonal block where its norm reaches this (it is about (h·κ)²/2 for edge length h and
+/// curvature κ: larger only on a noisy mesh, where the linearization means nothing).
+constexpr double kMaxTurn = 0.5;
 /// TangentialSolver::relax with `lagged` (and with a coarse space): GMRES's relative
 /// residual, and its iteration limit on a lagged factorization.
 constexpr double kLaggedTangentialTolerance = 1e-8;
@@ -153,24 +167,29 @@ class TangentialSolver {
   /// repeated polishes of a converged shape) preconditions GMRES on the new system to the
   /// relative residual kLaggedTangentialTolerance instead of a new factorization; a fresh
   /// one is taken if there is none or GMRES does not converge in kLaggedTangentialIterations.
+  /// `planes`: the linearization (TangentPlanes): Turning near inner fairness, where it
+  /// converges quadratically.
   /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
   ///         length (X unchanged)
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
-               bool lagged = false);
+               bool lagged = false, TangentPlanes planes = TangentPlanes::Fixed);
 
   /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
   /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a
   /// two-grid cycle instead of factorizing the system, kTwoGridSweeps symmetric Gauss–Seidel
-  /// sweeps (the diagonal blocks are the identity) around a coarse-grid correction with the
-  /// Galerkin operator P̃ᵀ A P̃ (P̃: the interpolation carried into the tangent bases,
-  /// P_ic T_iᵀ T_c), factorized at the first relax and, with `lagged`, kept for the next
+  /// sweeps around a coarse-grid correction with the Galerkin operator P̃ᵀ A P̃ (P̃: the
+  /// interpolation carried into the tangent bases, P_ic T_iᵀ T_c), factorized at the first relax and, with `lagged`, kept for the next
   /// ones. If GMRES does not converge in kTwoGridIterations, the system is factorized.
   void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
 
  private:
   // Fills A_ at the tangent planes of N and returns the right-hand side.
   Eigen::VectorXd assemble(const InnerFairnessWeights& lambda, const Positions& N,
-                           const Positions& X);
+                           const Positions& X, TangentPlanes planes);
+  // The derivative of the unit normal along the surface at free vertex i, in the basis
+  // (t1_[i], t2_[i]) of the last assemble(): 2×2, symmetric, 1/mesh units (the shape
+  // operator up to the normal's sign); zero if the ring spans no plane.
+  Eigen::Matrix2d normal_derivative(const Positions& N, const Positions& X, int i) const;
 
   const OneRings& rings_;
   int n_free_;
