@@ -153,9 +153,9 @@ struct NewtonRun {
 
 // Newton's method level by level on a progressive mesh of the region (section 7.4's
 // nested iteration with Newton steps as the solver of every level): the base level from
-// the linear Δ²f = 0 initial mesh with the tangential relaxation first, each finer level
-// from the prolongation of the coarser solution (multigrid.h, prolongate), whose new
-// vertices already sit at their inner-fairness positions. Every level uses the requested
+// the linear Δ²f = 0 initial mesh, each finer level from the prolongation of the coarser
+// solution (multigrid.h, prolongate), each with the tangential relaxation first
+// (Construction::run_newton). Every level uses the requested
 // inner fairness with the weights of the original mesh at that level's connectivity (the
 // collapses keep the vertices, so that is the original mesh replayed alongside). Coarse
 // levels stop at a looser tolerance or after kCoarseNewtonSteps. `newton_iterations`
@@ -198,7 +198,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);
     const IterationReport report =
-        construction.run_newton(Y, budget, tolerance, newton_iterations, l == 0, finest);
+        construction.run_newton(Y, budget, tolerance, newton_iterations, finest);
     newton_iterations += report.iterations;
     solution.store(lr, Y, construction);
     result.iterations_per_level.push_back(report.iterations);
