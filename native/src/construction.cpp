@@ -155,9 +155,11 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       // Inner fairness at the converged shape; go on if it moved the residual up. The
       // tangential solve moves the vertices in their tangent planes; each is lifted back
       // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_
-      // and H_ are those of X: the residual was just evaluated there.
+      // and H_ are those of X: the residual was just evaluated there. The solve is
+      // preconditioned by the factorization of the relaxation before the steps (100000-vertex
+      // cap: 0.59 s instead of 0.87 s with a new one).
       const Positions before = X;
-      tangential_solver_.relax(lambda_, N_, X, /*lagged=*/polishes > 0, TangentPlanes::Turning);
+      tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning);
       double move = 0.0;  // the largest move, in mean distances to the neighbours
       for (int i = 0; i < nf; ++i) {
         const Vec3 d = (X.row(i) - before.row(i)).transpose();
