@@ -250,7 +250,7 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
     if (!coarse_lu_.factorize(galerkin)) return false;
   }
   two_grid_.preconditioner().solver = this;
-  set_up_gmres(two_grid_, A_, kTwoGridIterations, kLaggedTangentialTolerance);
+  set_up_gmres(two_grid_, A_, kTwoGridIterations, kTwoGridTolerance);
   u = two_grid_.solve(rhs);
   return two_grid_.info() == Eigen::Success && u.allFinite();
 }
