@@ -117,13 +117,16 @@ class Construction {
 /// changes slowly; one refresh costs about three iterations.
 constexpr int kCouplingRefresh = 16;
 /// Newton steps (run_newton) move no vertex by more than this many mean distances to its
-/// neighbours. Measured on the disturbed 13000-vertex cap (steps to residual 1e-4, fresh
-/// Jacobian every step): 1: 24, 2: 16, 4: 15.
+/// neighbours. Measured on the disturbed 13000-vertex cap with an early Newton iteration
+/// (one level, fixed-normal Jacobian refactorized every step; steps to residual 1e-4): 1:
+/// 24, 2: 16, 4: 15. With the exact Jacobian's products on two levels the limit cuts only
+/// the base level's first steps (100000-vertex cap: 5 of its 8).
 constexpr double kNewtonStep = 4.0;
-/// run_newton's direct tangential solves (TangentialSolver::relax) before the first Newton
-/// step, at most. Disturbed caps of 13000 and 100000 free vertices: two each, the stretch
-/// limit never reached; 13000: 13 Newton steps instead of 16; 100000: 28 steps and 25 s
-/// instead of 58 steps and 42 s.
+/// run_newton's tangential solves (TangentialSolver::relax) before the first Newton step, at
+/// most. Disturbed caps of 13000 and 100000 free vertices: two on the base levels (the
+/// stretch limit not reached), three on the finest (the first two cut by it). Measured with
+/// an early single-level Newton iteration: 13000: 13 Newton steps instead of 16 without
+/// them; 100000: 28 steps and 25 s instead of 58 steps and 42 s.
 constexpr int kNewtonRelaxations = 8;
 /// run_newton gives up when the residual has not halved in this many steps.
 constexpr int kNewtonPatience = 20;
