@@ -46,19 +46,21 @@ class Construction {
   IterationReport run(Positions& X, int max_iterations, double tolerance,
                       int iteration_offset = 0);
 
-  /// Newton's method on eq. (12) instead (newton_step.h; beyond the paper). The vertex distribution
-  /// is first brought to inner fairness by tangential solves (TangentialSolver::relax, at most
-  /// kNewtonRelaxations; the first with fixed tangent planes, the next with turning ones). Then per
-  /// iteration the normal offsets of all free vertices from one inexact Newton step (NewtonStep,
-  /// with the products of the exact Jacobian), scaled so that no vertex moves by more than
-  /// kNewtonStep mean distances to its neighbours. The tangential (inner-fairness) relaxation is
-  /// not interleaved with the steps: if `polish` is set, where the residual reaches the tolerance
-  /// one tangential solve with turning tangent planes restores inner fairness (direct, or on the
-  /// two-grid preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
-  /// normal over its tangential move d; that changes the discretization of H, so the residual may
-  /// rise and the steps go on. The polish repeats (at once if the residual is still within the
-  /// tolerance, else at the next convergence) while the last one moved a vertex by more than
-  /// kPolishedMove mean distances to its neighbours, at most kNewtonPolishes times.
+  /// Newton's method on eq. (12) instead (newton_step.h; beyond the paper). The vertex
+  /// distribution is first brought to inner fairness by tangential solves
+  /// (TangentialSolver::relax, at most kNewtonRelaxations; the first with fixed tangent
+  /// planes, the next with turning ones). Then per iteration the normal offsets of all free
+  /// vertices from one inexact Newton step (NewtonStep, with the products of the exact
+  /// Jacobian), scaled so that no vertex moves by more than kNewtonStep mean distances to
+  /// its neighbours. The tangential (inner-fairness) relaxation is not interleaved with the
+  /// steps: if `polish` is set, where the residual reaches the tolerance one tangential
+  /// solve with turning tangent planes restores inner fairness (direct, or on the two-grid
+  /// preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
+  /// normal over its tangential move d; that changes the discretization of H, so the
+  /// residual may rise and the steps go on. The polish repeats (at once if the residual is
+  /// still within the tolerance, else at the next convergence) while the last one moved a
+  /// vertex by more than kPolishedMove mean distances to its neighbours, at most
+  /// kNewtonPolishes times.
   /// Stops like run(), and also when the residual has not halved in kNewtonPatience
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
   /// linearization can fail to contract.
@@ -77,7 +79,9 @@ class Construction {
   /// The next coarser level of a progressive mesh as the coarse space of the tangential
   /// solves (TangentialSolver::set_coarse_space): the polishes of run_newton then need no
   /// factorization at this level's size.
-  void set_coarse_space(CoarseSpace coarse) { tangential_solver_.set_coarse_space(std::move(coarse)); }
+  void set_coarse_space(CoarseSpace coarse) {
+    tangential_solver_.set_coarse_space(std::move(coarse));
+  }
 
   /// The defects d_i = Σ_j w_ij (H_i − H_j) (#V_I, 1/length) of the positions last evaluated.
   Eigen::VectorXd defects() const { return dirichlet_.defects(H_); }

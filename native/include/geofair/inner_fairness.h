@@ -184,7 +184,8 @@ class TangentialSolver {
   /// two-grid cycle instead of factorizing the system, kTwoGridSweeps symmetric Gauss–Seidel
   /// sweeps around a coarse-grid correction with the Galerkin operator P̃ᵀ A P̃ (P̃: the
   /// interpolation carried into the tangent bases, P_ic T_iᵀ T_c), factorized at the first
-  /// relax and, with `lagged`, kept for the next ones. If GMRES does not converge in kTwoGridIterations, the system is factorized.
+  /// relax and, with `lagged`, kept for the next ones. If GMRES does not converge in
+  /// kTwoGridIterations, the system is factorized.
   void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
 
  private:
