@@ -272,24 +272,25 @@ max_iterations : upper bound on the iterations spent solving each level (iterati
 iteration : how eq. (12) is solved; all choices solve the same discrete equations.
     "newton" (beyond the paper): Newton's method on the normal offsets of all free
     vertices at once, level by level on the progressive mesh (section 7.4's nested
-    iteration; levels): the base level from the linear initial mesh, brought to inner
-    fairness first by direct tangential solves, each finer level from the prolongation of
-    the coarser solution. Per step one inexact Newton step: GMRES on the products of the
+    iteration; levels): the base level from the linear initial mesh, each finer level from
+    the prolongation of the coarser solution, each brought to inner fairness first by
+    tangential solves. Per step one inexact Newton step: GMRES on the products of the
     exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
     recomputed; forward differences), preconditioned by the sparse LU factorization of a
     fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
     per vertex. At convergence of the finest level tangential solves restore inner
-    fairness (on the finest of several levels by GMRES on a two-grid preconditioner with
-    the next coarser level, without a factorization at the finest size), repeated while
-    one moves a vertex by more than 1e-3 mean neighbour distances, at most 8 times (the
-    steps go on where one raised the residual). A level stops when the
+    fairness (linearized with the turn of the tangent planes, so that repeated solves
+    converge quadratically; on the finest of several levels by GMRES on a two-grid
+    preconditioner with the next coarser level, without a factorization at the finest
+    size), repeated while one moves a vertex by more than 1e-3 mean neighbour distances,
+    at most 8 times (the steps go on where one raised the residual). A level stops when the
     residual has not halved in 20 steps; where a coarse level fails, the finest level is
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
-    or fails, and above, "paper" from the start. The LU factors take memory (1.0 GiB peak
+    or fails, and above, "paper" from the start. The LU factors take memory (0.82 GiB peak
     at 100,000 free vertices, growing faster than the vertex count). Measured in the
-    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+4 and 8+3
+    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+2 and 8+3
     Newton steps (base + finest level) against thousands of paper iterations (which do not
     converge at 100000).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
