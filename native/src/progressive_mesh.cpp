@@ -22,8 +22,23 @@ struct DoubleTraits : OpenMesh::DefaultTraits {
 // library's TriConnectivity::is_collapse_ok is compiled into Debian's libOpenMeshCore with
 // its assertions on, and there every status access compares type names and allocates a
 // string: 70% of the decimation on the 13000-vertex cap. This type answers with the same
-// conditions, its status accesses inlined here.
+// conditions, its status accesses inlined here; so do valence and find_halfedge, which the
+// decimater and the priority module ask for every candidate too (each handle access inside
+// the library checks its validity through a call).
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
+  using TriMesh_ArrayKernelT::find_halfedge;
+  using TriMesh_ArrayKernelT::valence;
+  unsigned int valence(VertexHandle v) const {
+    unsigned int n = 0;
+    for (auto it = cvoh_iter(v); it.is_valid(); ++it) ++n;
+    return n;
+  }
+  HalfedgeHandle find_halfedge(VertexHandle from, VertexHandle to) const {
+    for (const HalfedgeHandle h : voh_range(from))
+      if (to_vertex_handle(h) == to) return h;
+    return HalfedgeHandle();
+  }
+
   // Collapsing v0 (from) into v1 (to) is refused if the edge or a vertex is deleted, if a
   // triangle of the edge has its other two edges on the border, if the edge has the same or
   // no apex on both sides, if v0 and v1 share a neighbour other than the apexes (the link
