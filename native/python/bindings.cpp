@@ -1,6 +1,8 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
+#include "geofair/construction.h"
 #include "geofair/fairing.h"
+#include "geofair/inner_fairness.h"
 #include "geofair/intrinsic_delaunay.h"
 #include "geofair/laplace_beltrami.h"
 #include "geofair/progressive_mesh.h"
@@ -364,6 +366,79 @@ the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_lapl
 where the mesh is already intrinsically Delaunay.
 
 Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "relax_inner_fairness",
+      [](const py::object& vertices, const py::object& faces, const py::object& free,
+         const py::object& normals, const std::string& inner_fairness,
+         const std::string& tangent_planes) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        const Positions N_all = to_positions(normals, "normals");
+        if (N_all.rows() != V.rows())
+          throw InvalidInputError("normals must have the shape of vertices " +
+                                  std::to_string(V.rows()) + "×3");
+        const InnerFairness inner = parse<InnerFairness>(
+            inner_fairness, "inner_fairness",
+            {{"uniform", InnerFairness::Uniform},
+             {"conformal", InnerFairness::Conformal},
+             {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
+        const TangentPlanes planes = parse<TangentPlanes>(
+            tangent_planes, "tangent_planes",
+            {{"fixed", TangentPlanes::Fixed}, {"turning", TangentPlanes::Turning}});
+        Positions out = V;
+        double scale = 0.0;
+        {
+          py::gil_scoped_release release;
+          const FairingRegion region = extract_region(V, F, mask, &N_all);
+          Positions X(region.n, 3), N(region.n, 3);
+          for (int i = 0; i < region.n; ++i) {
+            X.row(i) = V.row(region.global[i]);
+            N.row(i) = N_all.row(region.global[i]).normalized();
+          }
+          if (!N.allFinite()) throw InvalidInputError("normals must be nonzero and finite");
+          const InnerFairnessWeights lambda = inner_fairness_weights(region, X, inner);
+          TangentialSolver solver(region.rings, lambda, region.n_free, kTangentialIterations);
+          scale = solver.relax(lambda, N, X, /*lagged=*/false, planes);
+          for (int i = 0; i < region.n_free; ++i) out.row(region.global[i]) = X.row(i);
+        }
+        if (!(scale > 0.0))
+          throw SolverError("relax_inner_fairness: the tangential system is singular or an edge "
+                            "has zero length");
+        return py::make_tuple(out, scale);
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("normals"),
+      py::arg("inner_fairness") = "uniform", py::arg("tangent_planes") = "turning",
+      R"doc(One global tangential solve of inner fairness, the step fair()'s Newton iteration
+repeats (Schneider & Kobbelt 2001, section 7.3's condition, linearized for all free
+vertices at once; beyond the paper): every free vertex moves in its tangent plane so that
+the tangential part of the inner-fairness Laplacian Σ_j λ_ij q_j − q_i vanishes, the whole
+move scaled so that no edge stretches or shrinks by more than half its length. The
+vertices are not lifted back onto the surface.
+
+Parameters
+----------
+vertices : (n, 3) float64 array; faces : (m, 3) integer array; free : (n,) bool mask, as
+    for fair() (the region and its G1 boundary).
+normals : (n, 3) float64 normals of the tangent planes (rows of free vertices and their
+    ring neighbours are read; normalized here).
+inner_fairness : "uniform" (default), "conformal" or "conformal_intrinsic", the weights
+    of the mesh as given.
+tangent_planes : "turning" (default): Newton's linearization, with the first-order turn of
+    each tangent plane as its vertex moves along the surface (the normal part ℓ_i of the
+    Laplacian vector times the normal's derivative D_i, fitted to the ring's normals, on
+    the diagonal blocks); repeated solves converge quadratically. "fixed": the tangent
+    planes held fixed (section 7.3's update, all vertices at once); repeated solves
+    converge linearly.
+
+Returns
+-------
+(vertices, scale): (n, 3) float64 positions (free rows moved, mesh units) and the scale in
+(0, 1] applied to the solved move.
+
+Raises ValueError for invalid input, RuntimeError (geofair.SolverError) if the system is
+singular.)doc");
 
   m.def(
       "progressive_mesh",
