@@ -97,6 +97,13 @@ NormalWeighting parse_weighting(const std::string& s) {
                                  {"quadric", NormalWeighting::Quadric}});
 }
 
+InnerFairness parse_inner_fairness(const std::string& s) {
+  return parse<InnerFairness>(s, "inner_fairness",
+                              {{"uniform", InnerFairness::Uniform},
+                               {"conformal", InnerFairness::Conformal},
+                               {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
+}
+
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
                       const py::object& boundary_normals, const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
@@ -113,11 +120,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                               std::to_string(V.rows()) + "×3");
   }
   FairingOptions options;
-  options.inner_fairness = parse<InnerFairness>(
-      inner_fairness, "inner_fairness",
-      {{"uniform", InnerFairness::Uniform},
-       {"conformal", InnerFairness::Conformal},
-       {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
+  options.inner_fairness = parse_inner_fairness(inner_fairness);
   options.outer_fairness = parse<OuterFairness>(
       outer_fairness, "outer_fairness",
       {{"intrinsic", OuterFairness::Intrinsic}, {"bilaplacian", OuterFairness::Bilaplacian}});
@@ -379,11 +382,7 @@ Raises ValueError for invalid input.)doc");
         if (N_all.rows() != V.rows())
           throw InvalidInputError("normals must have the shape of vertices " +
                                   std::to_string(V.rows()) + "×3");
-        const InnerFairness inner = parse<InnerFairness>(
-            inner_fairness, "inner_fairness",
-            {{"uniform", InnerFairness::Uniform},
-             {"conformal", InnerFairness::Conformal},
-             {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
+        const InnerFairness inner = parse_inner_fairness(inner_fairness);
         const TangentPlanes planes = parse<TangentPlanes>(
             tangent_planes, "tangent_planes",
             {{"fixed", TangentPlanes::Fixed}, {"turning", TangentPlanes::Turning}});
