@@ -1,6 +1,8 @@
 // Linear Δ²f = 0 fairing with G1 boundary conditions (section 7.4).
 #include "geofair/bilaplacian.h"
 
+#include "geofair/sparse_lu.h"
+
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 
@@ -46,7 +48,10 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   K.setFromTriplets(triplets.begin(), triplets.end());
   K.makeCompressed();
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(K);
+  {
+    const BlasThreads threads(factorization_blas_threads(3 * nf));
+    lu.compute(K);
+  }
   if (lu.info() != Eigen::Success)
     throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (singular "
                       "system: degenerate triangles or a free vertex without a fixed path to "

@@ -8,13 +8,17 @@
 #include "geofair/multigrid.h"
 #include "geofair/progressive_mesh.h"
 #include "geofair/region.h"
+#include "geofair/sparse_lu.h"
 
 #include <algorithm>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <deque>
+#include <filesystem>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -51,6 +55,38 @@ constexpr int kCoarseIterations = 500;
 // peak memory 2.2 GiB at 100000 free vertices (bench/speed.py), where the paper's
 // iteration did not converge in 1500 s and Newton's method took 42 s.
 constexpr int kNewtonMaxFree = 150000;
+
+#ifdef _OPENMP
+// The threads of one solve: OpenMP's maximum (OMP_NUM_THREADS, else the cores) less the
+// cores that other processes keep busy now (the runnable tasks of /proc/loadavg, not
+// counting this process's own). On a busy machine the threads of a parallel loop wait for
+// each other at every barrier, so a core taken by another process is left to it: with one
+// core of the 2-core machine busy, the 100000-vertex cap took 16.8 s on one thread and
+// 19.5 s on two. libgomp's dynamic adjustment (cores minus the 15-minute load average) did
+// this before, but it also counted this process's own earlier solves: back-to-back solves
+// of the 100000-vertex cap ran on one thread, 10.2-10.4 s instead of 9.1-9.3 s.
+int solve_threads() {
+  static const int max_threads = omp_get_max_threads();  // before the first call sets it
+  int runnable = 0, own = 0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%*f %*f %*f %d", &runnable) != 1) runnable = 0;
+    std::fclose(f);
+  }
+  std::error_code error;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", error)) {
+    if (FILE* f = std::fopen((task.path() / "stat").c_str(), "r")) {
+      // pid (comm) state ...: the state follows the last ')'.
+      char line[512];
+      if (std::fgets(line, sizeof line, f))
+        if (const char* close = std::strrchr(line, ')'); close && close[1] && close[2] == 'R')
+          ++own;
+      std::fclose(f);
+    }
+  }
+  const int busy_elsewhere = std::max(0, runnable - std::max(own, 1));
+  return std::clamp(omp_get_num_procs() - busy_elsewhere, 1, max_threads);
+}
+#endif
 
 Positions gather(const Positions& X, const std::vector<int>& ids) {
   Positions Y(Eigen::Index(ids.size()), 3);
@@ -223,10 +259,10 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
                    const Positions* boundary_normals, const FairingOptions& options) {
   check_options(options);
 #ifdef _OPENMP
-  // Threads only as far as the machine is idle (libgomp: cores minus the load average):
-  // on a busy machine the threads of a parallel loop wait for each other at every barrier.
-  omp_set_dynamic(1);
+  omp_set_dynamic(0);
+  omp_set_num_threads(solve_threads());
 #endif
+  const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
   const FairingRegion region = extract_region(V, F, free, boundary_normals);
 
   const Positions X0 = gather(V, region.global);  // the original mesh

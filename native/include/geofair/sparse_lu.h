@@ -8,6 +8,35 @@
 
 namespace geofair {
 
+/// The threads of the BLAS that UMFPACK's dense kernels call, for the lifetime of this
+/// object; the earlier count is restored after. Only OpenBLAS can be told (looked up at run
+/// time); with another BLAS this does nothing.
+///
+/// fair() runs on one BLAS thread and gives OpenBLAS the solve's threads only for the
+/// factorizations of at least kThreadedBlasMin unknowns (PatternLU::factorize, the linear
+/// initial mesh). OpenBLAS's threads wait for work by spinning, which takes the cores from
+/// the OpenMP loops between the BLAS calls: median of 5 interleaved runs of
+/// bench/speed.py's caps, OpenBLAS's default (2 threads) against one thread: 2000 free
+/// vertices 0.225 against 0.117 s, 13000 0.795 against 0.646 s; at 100000, whose
+/// factorizations have large dense fronts, one thread was slower (9.71 against 9.42 s).
+class BlasThreads {
+ public:
+  explicit BlasThreads(int threads);
+  ~BlasThreads();
+  BlasThreads(const BlasThreads&) = delete;
+  BlasThreads& operator=(const BlasThreads&) = delete;
+
+ private:
+  int previous_ = 0;
+};
+
+/// Sparse factorizations of at least this many unknowns run their BLAS on the solve's
+/// threads (BlasThreads).
+constexpr int kThreadedBlasMin = 50000;
+
+/// The BLAS threads of a factorization of n unknowns (see BlasThreads).
+int factorization_blas_threads(int n);
+
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
 /// matrices that change values but not pattern from one factorization to the next: the
 /// symbolic analysis (ordering) runs at the first factorization only (and again if the
@@ -29,6 +58,7 @@ class PatternLU {
       lu_.analyzePattern(matrix_);
       analyzed_ = true;
     }
+    const BlasThreads threads(factorization_blas_threads(int(A.rows())));
     lu_.factorize(matrix_);
     factorized_ = lu_.info() == Eigen::Success;
     return factorized_;

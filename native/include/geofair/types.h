@@ -72,8 +72,11 @@ enum class Iteration {
 };
 
 /// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
-/// threads' start-up costs more than they save.
-constexpr int kParallelMin = 2000;
+/// threads' start-up costs more than they save. bench/speed.py's caps on two threads
+/// (median of 5 runs): with 2000, the 2000-vertex cap (2158 region vertices) took 0.154 s
+/// against 0.136 s on one thread; with 2500 it takes 0.129 s and the 13000-vertex cap,
+/// whose base level has 3627, 0.665 s (with 5000: 0.739 s).
+constexpr int kParallelMin = 2500;
 
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;

@@ -1,0 +1,56 @@
+// The BLAS threads under UMFPACK, see sparse_lu.h.
+#include "geofair/sparse_lu.h"
+
+#include <dlfcn.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace geofair {
+namespace {
+
+// OpenBLAS's own calls, looked up at run time: the BLAS behind Debian's libblas.so.3 is a
+// choice of the machine (update-alternatives), and another BLAS has no such calls.
+using SetThreads = void (*)(int);
+using GetThreads = int (*)();
+// OpenBLAS's call `name`: in the global scope, else in an OpenBLAS already loaded as a
+// dependency of UMFPACK (RTLD_NOLOAD: never loads one).
+void* openblas_symbol(const char* name) {
+  if (void* f = dlsym(RTLD_DEFAULT, name)) return f;
+  if (void* library = dlopen("libopenblas.so.0", RTLD_LAZY | RTLD_NOLOAD))
+    return dlsym(library, name);
+  return nullptr;
+}
+SetThreads set_threads() {
+  static const auto f =
+      reinterpret_cast<SetThreads>(openblas_symbol("openblas_set_num_threads"));
+  return f;
+}
+GetThreads get_threads() {
+  static const auto f =
+      reinterpret_cast<GetThreads>(openblas_symbol("openblas_get_num_threads"));
+  return f;
+}
+
+}  // namespace
+
+BlasThreads::BlasThreads(int threads) {
+  if (set_threads() && get_threads()) {
+    previous_ = get_threads()();
+    if (previous_ != threads) set_threads()(threads);
+  }
+}
+
+BlasThreads::~BlasThreads() {
+  if (previous_ > 0 && previous_ != get_threads()()) set_threads()(previous_);
+}
+
+int factorization_blas_threads(int n) {
+#ifdef _OPENMP
+  return n >= kThreadedBlasMin ? omp_get_max_threads() : 1;
+#else
+  return 1;
+#endif
+}
+
+}  // namespace geofair
