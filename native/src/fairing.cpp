@@ -19,6 +19,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -202,6 +203,13 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
                            int& newton_iterations) {
+  // The finest level's construction does not depend on the hierarchy: it is set up on
+  // another thread while this one decimates and solves the coarser levels (0.38 s of set-up
+  // against 0.7 s of decimation on the 100000-vertex cap).
+  std::future<std::unique_ptr<Construction>> finest_construction =
+      std::async(std::launch::async, [&finest_level, &lambda_finest, &options, L] {
+        return std::make_unique<Construction>(finest_level, lambda_finest, options, L);
+      });
   Positions Xs;
   const ProgressiveMesh hierarchy = build_hierarchy(region, X0, lambda_finest, levels, Xs);
   NewtonRun run;
@@ -214,9 +222,10 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const bool finest = l + 1 == n_levels;
     const FairingRegion& lr =
         regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
-    InnerFairnessWeights lambda =
-        finest ? lambda_finest
+    InnerFairnessWeights coarse_lambda =
+        finest ? InnerFairnessWeights{}
                : inner_fairness_weights(lr, gather(X0, lr.global), options.inner_fairness);
+    const InnerFairnessWeights& lambda = finest ? lambda_finest : coarse_lambda;
     Positions Y;
     VertexSplits level_splits;
     std::vector<double> level_weights;
@@ -227,7 +236,10 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
                                local);
     }
-    Construction construction(lr, std::move(lambda), options, L);
+    const std::unique_ptr<Construction> level_construction =
+        finest ? finest_construction.get()
+               : std::make_unique<Construction>(lr, std::move(coarse_lambda), options, L);
+    Construction& construction = *level_construction;
     if (finest && l > 0)
       construction.set_coarse_space(coarse_space(lr, level_splits));
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
