@@ -24,7 +24,8 @@ Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM,
 includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
 is its own; "solve MiB" is the part added by fair() itself. Times are
 wall times of the fair() call alone (not the scene I/O). The machine may be shared: rerun
-when a figure matters.
+when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
+"failed" row; one that exceeds --timeout a "timeout" row.
 """
 
 import argparse
@@ -123,7 +124,9 @@ def run_ours(args, n):
     except subprocess.TimeoutExpired:
         return None
     if run.returncode != 0:
-        raise RuntimeError(f"geofair run for {n} failed:\n{run.stderr}")
+        # A failed solve is a row of the table (the error's last line), not the end of it.
+        lines = run.stderr.strip().splitlines()
+        return {"failed": lines[-1] if lines else f"exit status {run.returncode}"}
     return json.loads(run.stdout.strip().splitlines()[-1])
 
 
@@ -170,6 +173,10 @@ def main():
     for n in args.sizes:
         load_scene(args.cache, n)  # generate outside the timed children
         r = run_ours(args, n)
+        failed = r.pop("failed", None) if r else None
+        if failed:
+            print(f"# {n}: {failed}", flush=True)
+            r = None
         c = None
         if use_cgal:
             v, f, free, _ = load_scene(args.cache, n)
@@ -192,7 +199,8 @@ def main():
                 f"{r['peak_mib']:>9.0f} {r['solve_mib']:>9.0f}"
             )
         else:
-            ours = f"{'timeout':>9} {'':>30} {'':>9} {'':>9} {'':>9} {'':>9}"
+            what = "failed" if failed else "timeout"
+            ours = f"{what:>9} {'':>30} {'':>9} {'':>9} {'':>9} {'':>9}"
         if c:
             ok = "" if c.success else " (failed)"
             ratio = f"{r['seconds'] / c.seconds:>9.2f}" if r and c.seconds > 0 else f"{'':>9}"
