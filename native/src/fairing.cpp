@@ -230,7 +230,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     VertexSplits level_splits;
     std::vector<double> level_weights;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global));
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kInitialMeshResidual);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
@@ -361,7 +361,10 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
                                              InnerFairness::Conformal);
     Positions Y;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global));
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global),
+                                   options.outer_fairness == OuterFairness::Bilaplacian
+                                       ? kExactResidual
+                                       : kInitialMeshResidual);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level.splits, level.weights,

@@ -13,8 +13,8 @@ namespace geofair {
 namespace {
 
 // λ_ij = w_ij / Σ_k w_ik over vertex i's weights [begin, end), w clamped at 0; uniform if
-// they all vanish (or are not finite).
-void normalize(double* w, int m) {
+// they all vanish (or are not finite). Returns the sum Σ_k w_ik (m for the uniform fallback).
+double normalize(double* w, int m) {
   double sum = 0.0;
   for (int k = 0; k < m; ++k) {
     w[k] = std::max(w[k], 0.0);
@@ -25,6 +25,7 @@ void normalize(double* w, int m) {
     sum = m;
   }
   for (int k = 0; k < m; ++k) w[k] /= sum;
+  return sum;
 }
 
 }  // namespace
@@ -36,11 +37,12 @@ InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Po
   lambda.offset = rings.offset;
   lambda.neighbour = rings.ring;
   lambda.weight.assign(rings.ring.size(), 1.0);
+  lambda.row_sum.assign(nv, 0.0);
   for (int i = 0; i < nv; ++i) {
     const int begin = rings.offset[i], m = rings.valence(i);
     if (m == 0) continue;
     if (type != InnerFairness::Uniform) cotangent_weights(rings, X0, i, lambda.weight.data() + begin);
-    normalize(lambda.weight.data() + begin, m);
+    lambda.row_sum[i] = normalize(lambda.weight.data() + begin, m);
   }
   return lambda;
 }
@@ -58,6 +60,7 @@ InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const P
   lambda.offset.assign(1, 0);
   lambda.neighbour.reserve(L.nonZeros());
   lambda.weight.reserve(L.nonZeros());
+  lambda.row_sum.assign(region.n, 0.0);
   for (int i = 0; i < region.n; ++i) {
     for (SparseRowMatrix::InnerIterator it(L, i); it; ++it) {
       if (it.col() == i) continue;
@@ -65,7 +68,8 @@ InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const P
       lambda.weight.push_back(it.value());
     }
     lambda.offset.push_back(int(lambda.neighbour.size()));
-    normalize(lambda.weight.data() + lambda.offset[i], lambda.offset[i + 1] - lambda.offset[i]);
+    lambda.row_sum[i] =
+        normalize(lambda.weight.data() + lambda.offset[i], lambda.offset[i + 1] - lambda.offset[i]);
   }
   return lambda;
 }

@@ -18,14 +18,34 @@ namespace geofair {
 /// Δf(q_b) = n_b n_bᵀ (Σ_j λ_bj f_j − f_b): a smooth surface's Laplacian is normal to it,
 /// and since the normal curvature is even in the direction, the one-sided average sees
 /// the same normal offset as the full ring would. This couples the three coordinates
-/// through n_b only next to the boundary; the 3#V_I×3#V_I system is solved by sparse LU.
+/// through n_b only next to the boundary. With symmetric weights (known row sums, see
+/// InnerFairnessWeights::row_sum) the 3#V_I×3#V_I system, its equations scaled by the row
+/// sums, is symmetric positive definite and is solved by conjugate gradients preconditioned
+/// by the Cholesky factorization of its scalar part (the coordinates decoupled away from
+/// the boundary), to the relative residual `relative_residual`; otherwise, or if that
+/// fails, by sparse LU (UMFPACK).
 ///
 /// \param X       #region×3 positions (boundary rows are the fixed data)
 /// \param lambda  inner fairness weights of every region vertex (inner_fairness_weights)
+/// \param relative_residual  ‖b − K f‖ / ‖b‖ at which conjugate gradients stop
+///                 (kInitialMeshResidual for an initial mesh that Newton's method or the
+///                 paper's iteration refines, kExactResidual where the linear solution is the
+///                 result)
 /// \return #region×3 positions with the free rows replaced.
 /// \throw SolverError if the sparse factorization fails.
 Positions bilaplacian_initial_mesh(const FairingRegion& region,
-                                   const InnerFairnessWeights& lambda,
-                                   const Positions& X);
+                                   const InnerFairnessWeights& lambda, const Positions& X,
+                                   double relative_residual);
+
+/// Conjugate-gradient iterations of bilaplacian_initial_mesh at most before it falls back
+/// to sparse LU (the preconditioned matrix is the identity plus a term of rank at most the
+/// number of boundary vertices next to free ones; 32-46 were needed on the disturbed caps).
+constexpr int kBilaplacianIterations = 300;
+/// Relative residual of a linear initial mesh that the intrinsic iteration refines: its
+/// errors lie far below the distance the iteration moves the vertices.
+constexpr double kInitialMeshResidual = 1e-8;
+/// Relative residual where the linear solution is the result (OuterFairness::Bilaplacian):
+/// that of a direct solve.
+constexpr double kExactResidual = 1e-12;
 
 }  // namespace geofair
