@@ -68,6 +68,11 @@ class Construction {
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
                              int iteration_offset = 0, bool polish = true);
 
+  /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
+  /// preconditioner (NewtonStep::analyze), which depends only on the mesh. fair() calls it
+  /// for the finest level on its second thread while the coarser levels are built.
+  void prepare_newton() { newton_.analyze(); }
+
   /// Multigrid coarse-grid problems (multigrid.h): solve Σ_j w_ij (H_i − H_j) = τ_i
   /// (#V_I, kept by pointer; nullptr: eq. (12) itself) instead of 0, and move along the
   /// normals only (no inner fairness) if `tangential` is false.

@@ -130,6 +130,11 @@ class NewtonStep {
              const std::vector<double>& w, const Eigen::VectorXd& defects,
              const Eigen::VectorXd* tau, const JacobianProduct& product, Eigen::VectorXd& t);
 
+  /// The symbolic analysis of the preconditioner's pattern (PatternLU::analyze) now rather
+  /// than at the first step: with METIS's nested dissection from kNestedDissectionMin free
+  /// vertices on.
+  void analyze() { lu_.analyze(A_, A_.rows() >= kNestedDissectionMin); }
+
  private:
   // Fills A_ = D J_N at X (the preconditioner's matrix, see the class comment).
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
