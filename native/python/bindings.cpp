@@ -293,7 +293,7 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
-    or fails, and above, "paper" from the start. The LU factors take memory (0.82 GiB peak
+    or fails, and above, "paper" from the start. The LU factors take memory (0.74-0.77 GiB peak
     at 100,000 free vertices, growing faster than the vertex count). Measured in the
     README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+2 and 8+3
     Newton steps (base + finest level) against thousands of paper iterations (which do not

@@ -55,7 +55,7 @@ struct FairingResult {
 /// prolongation of the coarser solution; the same discrete equations (12), all normal
 /// offsets per step from one inexact Newton step with the exact Jacobian's products; the
 /// base levels keep at least 8 free vertices per G1 boundary vertex (coarser ones
-/// diverged), so the disturbed 13000- and 100000-vertex caps run on 2 levels with 4+4 and
+/// diverged), so the disturbed 13000- and 100000-vertex caps run on 2 levels with 4+2 and
 /// 8+3 steps, where the paper's iteration takes thousands. Where a coarse level fails the
 /// finest level is solved alone; where that stalls or fails (measured on regions of real
 /// meshes whose linear initial mesh is far from the solution and folded at the boundary),
