@@ -8,6 +8,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 
+#include <algorithm>
 #include <cmath>
 
 namespace geofair {
