@@ -10,7 +10,7 @@ vertices) of both.
 
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
-        [--iteration auto|newton|paper]
+        [--iteration auto|newton|paper] [--phases]
         [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
@@ -25,7 +25,10 @@ includes the Python interpreter, numpy and the scene arrays for ours, about 40 M
 is its own; "solve MiB" is the part added by fair() itself. Times are
 wall times of the fair() call alone (not the scene I/O). The machine may be shared: rerun
 when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
-"failed" row; one that exceeds --timeout a "timeout" row.
+"failed" row; one that exceeds --timeout a "timeout" row. With --phases each row is
+followed by the wall time of the solve's phases (FairingResult.phase_seconds: the
+hierarchy, and per level the initial mesh, set-up, inner-fairness relaxations, Newton
+steps and polishes, or the paper's iterations).
 """
 
 import argparse
@@ -110,6 +113,7 @@ def child(args):
                 "error": radial_error(r.vertices, free),
                 "peak_mib": peak,
                 "solve_mib": peak - before,
+                "phases": [[name, t] for name, t in r.phase_seconds],
             }
         )
     )
@@ -147,6 +151,7 @@ def main():
     parser.add_argument("--max-iterations", type=int, default=20000)
     parser.add_argument("--iteration", default="auto", help="auto (default), newton or paper")
     parser.add_argument("--no-cgal", action="store_true")
+    parser.add_argument("--phases", action="store_true", help="print the time of each phase")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
@@ -208,6 +213,8 @@ def main():
         else:
             theirs = "(CGAL not run)"
         print(f"{n_free:>8} {ours} | {theirs}", flush=True)
+        if args.phases and r:
+            print("#   phases [s]: " + ", ".join(f"{name} {t:.3f}" for name, t in r["phases"]), flush=True)
     print(f"time exponent (log-log slope over the sizes): ours {slope(ns, ours_t):.2f}", end="")
     print(f", CGAL {slope(ns, cgal_t):.2f}" if use_cgal else "")
     print("(* = not converged within max_iterations)")

@@ -2,6 +2,8 @@
 iteration with multigrid: the same discrete solution, in a number of steps that does not
 grow with the mesh, and the fallback of iteration="auto"."""
 
+import time
+
 import numpy as np
 import pytest
 
@@ -106,6 +108,40 @@ def test_newton_is_scale_invariant_and_cancellable():
     assert np.allclose(r.vertices / 1e3, ref.vertices, rtol=0, atol=1e-9 * s.size)
     r = geofair.fair(v, s.faces, s.free, progress=lambda k, res: False, **kw)
     assert not r.converged and r.iterations == 0
+
+
+def test_phase_seconds_account_for_the_solve():
+    s = scenes.sphere_cap(n_free=1200, irregular=True, seed=3)
+    v = s.disturbed(seed=4, amplitude=0.1)
+    kw = dict(boundary_normals=s.normals, levels=2)
+
+    def timed(**options):
+        t = time.perf_counter()
+        r = geofair.fair(v, s.faces, s.free, **kw, **options)
+        return r, time.perf_counter() - t
+
+    newton, wall = timed(iteration="newton")
+    per_level = ["initial mesh", "set-up", "inner fairness", "Newton steps", "polishes"]
+    names = ["hierarchy"] + [f"level {level} {what}" for level in (0, 1) for what in per_level]
+    assert newton.converged and [name for name, _ in newton.phase_seconds] == names
+    seconds = dict(newton.phase_seconds)
+    # Wall-clock laps of one thread: none negative, together within the call's time; the
+    # polishes run only on the finest level.
+    assert min(seconds.values()) >= 0.0 and sum(seconds.values()) <= wall
+    assert seconds["level 0 polishes"] == 0.0 < seconds["level 1 polishes"]
+    assert seconds["level 1 Newton steps"] > 0.0 and seconds["level 1 inner fairness"] > 0.0
+    # One step per level does not converge: "auto" tries Newton's method on two levels and on
+    # one, then the paper's iteration, and keeps the phases of all three attempts.
+    auto, wall = timed(max_iterations=1)
+    assert auto.iteration == "paper" and not auto.converged
+    names = [name for name, _ in auto.phase_seconds]
+    two_levels, one_level = names[:11], names[11:17]
+    assert two_levels == [name for name, _ in newton.phase_seconds]
+    assert one_level == ["hierarchy"] + [f"level 0 {what}" for what in per_level]
+    assert names[17:] == ["hierarchy"] + [
+        f"level {level} {what}" for level in (0, 1) for what in ("initial mesh", "set-up", "iterations")
+    ]
+    assert sum(t for _, t in auto.phase_seconds) <= wall
 
 
 def test_unknown_iteration_is_rejected():

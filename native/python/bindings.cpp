@@ -218,6 +218,14 @@ PYBIND11_MODULE(geofair, m) {
       .def_readonly("newton_iterations", &FairingResult::newton_iterations,
                     "Newton steps performed, including an attempt that iteration=\"auto\" "
                     "abandoned for the paper's iteration.")
+      .def_readonly("phase_seconds", &FairingResult::phase_seconds,
+                    "Wall-clock seconds of the solve's phases, a list of (name, seconds) in "
+                    "the order they ran: \"hierarchy\", then per level l (0 = coarsest) "
+                    "\"level l initial mesh\", \"level l set-up\" and, for Newton's method, "
+                    "\"level l inner fairness\", \"level l Newton steps\", \"level l "
+                    "polishes\", for the paper's iteration \"level l iterations\" (an "
+                    "abandoned attempt's phases included). They do not overlap: their sum "
+                    "stays below the call's wall time.")
       .def("__repr__", [](const FairingResult& r) {
         return "FairingResult(converged=" + std::string(r.converged ? "True" : "False") +
                ", iterations=" + std::to_string(r.iterations) +
@@ -314,7 +322,8 @@ Returns
 -------
 FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
 .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-.iteration ("newton" or "paper") and .newton_iterations.
+.iteration ("newton" or "paper"), .newton_iterations and .phase_seconds (wall-clock seconds
+per phase, for profiling).
 
 Raises
 ------

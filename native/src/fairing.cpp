@@ -11,6 +11,7 @@
 #include "geofair/sparse_lu.h"
 
 #include <algorithm>
+#include <chrono>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -88,6 +89,27 @@ int solve_threads() {
   return std::clamp(omp_get_num_procs() - busy_elsewhere, 1, max_threads);
 }
 #endif
+
+using Phases = std::vector<std::pair<std::string, double>>;  // FairingResult::phase_seconds
+
+// Wall-clock seconds since the last call (the first: since construction), for
+// FairingResult::phase_seconds.
+class Laps {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+std::string level_phase(int l, const char* what) {
+  return "level " + std::to_string(l) + " " + what;
+}
 
 Positions gather(const Positions& X, const std::vector<int>& ids) {
   Positions Y(Eigen::Index(ids.size()), 3);
@@ -196,13 +218,13 @@ struct NewtonRun {
 // inner fairness with the weights of the original mesh at that level's connectivity (the
 // collapses keep the vertices, so that is the original mesh replayed alongside). Coarse
 // levels stop at a looser tolerance or after kCoarseNewtonSteps. `newton_iterations`
-// accumulates the steps of all levels. With levels = 1 it is the single-level Newton
+// accumulates the steps of all levels, `phases` the wall time of its phases. With levels = 1 it is the single-level Newton
 // iteration from the linear initial mesh.
 // \throw SolverError if a level diverges or its Newton system is singular.
 NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
-                           int& newton_iterations) {
+                           int& newton_iterations, Phases& phases) {
   // The finest level's construction does not depend on the hierarchy: it is set up, with
   // the symbolic analysis of its Newton preconditioner, on another thread while this one
   // decimates and solves the coarser levels (100000-vertex cap: 0.38 s of set-up and 0.8-1 s
@@ -213,11 +235,13 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
         construction->prepare_newton();
         return construction;
       });
+  Laps laps;
   Positions Xs;
   const ProgressiveMesh hierarchy = build_hierarchy(region, X0, lambda_finest, levels, Xs);
   NewtonRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
+  phases.emplace_back("hierarchy", laps.lap());
   LevelSolution solution(X0);
   std::deque<FairingRegion> regions;  // the constructions refer to them
   const int n_levels = int(hierarchy.triangles.size());
@@ -239,17 +263,23 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
                                local);
     }
+    phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     const std::unique_ptr<Construction> level_construction =
         finest ? finest_construction.get()
                : std::make_unique<Construction>(lr, std::move(coarse_lambda), options, L);
     Construction& construction = *level_construction;
     if (finest && l > 0)
       construction.set_coarse_space(coarse_space(lr, level_splits));
+    phases.emplace_back(level_phase(l, "set-up"), laps.lap());
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, finest);
+    laps.lap();
+    phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
+    phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
+    phases.emplace_back(level_phase(l, "polishes"), report.polish_seconds);
     newton_iterations += report.iterations;
     solution.store(lr, Y, construction);
     result.iterations_per_level.push_back(report.iterations);
@@ -301,6 +331,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       inner_fairness_weights(finest_level, X0, options.inner_fairness);
 
   int newton_iterations = 0;
+  Phases phases;
   const bool newton =
       options.iteration == Iteration::Newton ||
       (options.iteration == Iteration::Auto && region.n_free <= kNewtonMaxFree);
@@ -315,7 +346,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       bool failed = false;
       try {
         run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
-                               newton_iterations);
+                               newton_iterations, phases);
       } catch (const SolverError&) {
         if (options.iteration == Iteration::Newton && last) throw;
         failed = true;
@@ -323,12 +354,14 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       if (!failed && (run.result.converged || run.cancelled ||
                       (options.iteration == Iteration::Newton && last))) {
         run.result.newton_iterations = newton_iterations;
+        run.result.phase_seconds = std::move(phases);
         return finish(run.result, run.X);
       }
     }
   }
 
   const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
+  Laps laps;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
   const ProgressiveMesh hierarchy = build_hierarchy(
       region, X0, lambda_finest,
@@ -337,6 +370,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   FairingResult result;
   result.iteration = Iteration::Paper;
   result.newton_iterations = newton_iterations;
+  phases.emplace_back("hierarchy", laps.lap());
   LevelSolution solution(X0);
   // Coarse levels estimate normals with Max's weights where the fitted normal is asked for:
   // the fit, consistent on the finest mesh, is ill-conditioned on the decimated rings of
@@ -376,9 +410,11 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       level.from_coarser.resize(coarser.n);
       for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
     }
+    phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     level.construction = std::make_unique<Construction>(lr, std::move(lambda),
                                                         finest ? options : coarse_options, L);
     Construction& construction = *level.construction;
+    phases.emplace_back(level_phase(l, "set-up"), laps.lap());
     IterationReport report;
     if (options.outer_fairness == OuterFairness::Bilaplacian) {
       // The linear solution is exact; the residual says how far it is from Δ_B H = 0.
@@ -392,6 +428,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       report = l == 0 ? construction.run(Y, budget, tolerance, result.iterations)
                       : multigrid.solve(l, Y, tolerance, budget, result.iterations);
     }
+    phases.emplace_back(level_phase(l, "iterations"), laps.lap());
     solution.store(lr, Y, construction);
     result.iterations = 0;
     for (const MultigridLevel& done : levels_built)
@@ -407,6 +444,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   for (const MultigridLevel& done : levels_built)
     result.iterations_per_level.push_back(int(done.construction->iterations()));
 
+  result.phase_seconds = std::move(phases);
   return finish(result, solution.X);
 }
 

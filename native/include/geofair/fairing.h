@@ -4,6 +4,8 @@
 
 #include "geofair/types.h"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace geofair {
@@ -22,6 +24,15 @@ struct FairingResult {
   Iteration iteration = Iteration::Paper;
   /// Newton steps performed, including those of an attempt that Auto abandoned.
   int newton_iterations = 0;
+  /// Wall-clock seconds of the solve's phases in the order they ran (for profiling; beyond
+  /// the paper): "hierarchy" (smoothed copy and progressive mesh), then per level ℓ
+  /// (0 = coarsest) "level ℓ initial mesh" (the linear Δ²f = 0 solve or the prolongation),
+  /// "level ℓ set-up" (the level's construction, or the wait for the one built on the second
+  /// thread), and for Newton's method "level ℓ inner fairness" (the tangential relaxations
+  /// before the steps), "level ℓ Newton steps" and "level ℓ polishes", for the paper's
+  /// iteration "level ℓ iterations". An attempt that was abandoned keeps its phases; the
+  /// phases do not overlap, so their sum stays below the call's wall time.
+  std::vector<std::pair<std::string, double>> phase_seconds;
 };
 
 /// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,
