@@ -8,22 +8,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 
-#include <algorithm>
-#include <cmath>
-
 namespace geofair {
 namespace {
-
-// Whether K equals its transpose to round-off (relative to its largest entry).
-bool is_symmetric(const Eigen::SparseMatrix<double>& K) {
-  const Eigen::SparseMatrix<double> D = K - Eigen::SparseMatrix<double>(K.transpose());
-  double scale = 0.0, defect = 0.0;
-  for (Eigen::Index k = 0; k < K.nonZeros(); ++k)
-    scale = std::max(scale, std::abs(K.valuePtr()[k]));
-  for (Eigen::Index k = 0; k < D.nonZeros(); ++k)
-    defect = std::max(defect, std::abs(D.valuePtr()[k]));
-  return std::isfinite(scale) && scale > 0.0 && defect <= 1e-10 * scale;
-}
 
 // The preconditioner I₃ ⊗ K_s⁻¹ for Eigen's ConjugateGradient (the interface of Eigen's
 // preconditioners): the three coordinate blocks of a vector solved at once with one
@@ -34,10 +20,10 @@ struct CoordinateBlocks {
   template <class M> CoordinateBlocks& factorize(const M&) { return *this; }
   template <class M> CoordinateBlocks& compute(const M&) { return *this; }
   template <class V> Eigen::VectorXd solve(const V& b) const {
-    const Eigen::Index n = b.size() / 3;
-    const Eigen::MatrixXd B = Eigen::Map<const Eigen::MatrixXd>(Eigen::VectorXd(b).data(), n, 3);
-    const Eigen::MatrixXd Z = llt->solve(B);
-    return Eigen::Map<const Eigen::VectorXd>(Z.data(), 3 * n);
+    Eigen::VectorXd z = b;  // x, y, z blocks: the columns of an (n, 3) matrix
+    Eigen::Map<Eigen::MatrixXd> blocks(z.data(), z.size() / 3, 3);
+    blocks = llt->solve(Eigen::MatrixXd(blocks));
+    return z;
   }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 };
@@ -51,8 +37,8 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   using Mat3 = Eigen::Matrix3d;
   // Unknowns by coordinate: x of all free vertices, then y, then z (a*nf + i).
   // Equation block i is scaled by S_i = Σ_k w_ik (InnerFairnessWeights::row_sum) where the
-  // row sums are known. With symmetric weights w the system is then symmetric positive
-  // definite: with M = λ − I (so S_i M_ij = w_ij − S_i δ_ij, symmetric),
+  // row sums are given, that is where the weights w are symmetric. The system is then
+  // symmetric positive definite: with M = λ − I (so S_i M_ij = w_ij − S_i δ_ij, symmetric),
   //   S_i Δ²f(q_i) = Σ_j (S_i M_ij) (P_j / S_j) (S_j M_jk) f_k,
   // P_j = I at a free vertex and n_j n_jᵀ at a boundary vertex; the free-free part of
   // W − S is nonsingular and the P_j / S_j are positive semidefinite.
@@ -106,7 +92,7 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   // grow with the free vertices inside. Disturbed 100000-vertex cap, base level of 26000 free
   // vertices: 32 iterations to 1e-8, 46 to 1e-12; 0.5-0.7 s in all against 1.1-1.7 s for
   // UMFPACK's LU of K (and 1.1-1.25 s for CHOLMOD's Cholesky of K).
-  if (scaled && is_symmetric(K)) {
+  if (scaled) {
     Eigen::SparseMatrix<double> Ks(nf, nf);
     Ks.setFromTriplets(scalar.begin(), scalar.end());
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
@@ -126,8 +112,8 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
       solved = cg.info() == Eigen::Success && f.allFinite();
     }
   }
-  // Otherwise (weights without known symmetric row sums, e.g. a vertex whose weights fell
-  // back to uniform) UMFPACK's LU of K.
+  // Otherwise (weights without symmetric row sums, e.g. a vertex whose weights fell back to
+  // uniform, or CG not converging) UMFPACK's LU of K.
   if (!solved) {
     Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
     {

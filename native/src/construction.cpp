@@ -5,7 +5,6 @@
 #include "geofair/vertex_update.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -110,11 +109,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
+  Laps laps;  // report's relax, step and polish seconds
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh (up to 10 on the disturbed 100000-vertex cap),
   // and of a prolongated one (up to 7: the levels' uniform weights see different meshes).
@@ -133,7 +128,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
           lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
       if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
     }
-  report.relax_seconds = seconds_since(start);
+  report.relax_seconds = laps.lap();
   double residual = evaluate(X);
   const double first_residual = residual;
   double best = residual;
@@ -165,7 +160,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       // and H_ are those of X: the residual was just evaluated there. The solve is
       // preconditioned by the factorization of the relaxation before the steps (100000-vertex
       // cap: 0.59 s instead of 0.87 s with a new one).
-      const Clock::time_point polish_start = Clock::now();
+      report.step_seconds += laps.lap();
       const Positions before = X;
       tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning);
       double move = 0.0;  // the largest move, in mean distances to the neighbours
@@ -179,7 +174,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       polished = move <= kPolishedMove || ++polishes >= kNewtonPolishes;
       residual = evaluate(X);
       best = residual, best_at = k;
-      report.polish_seconds += seconds_since(polish_start);
+      report.polish_seconds += laps.lap();
     }
     report.iterations = k;
     report.residual = residual;
@@ -203,7 +198,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     ++iterations_;
     residual = evaluate(X);
   }
-  report.step_seconds = seconds_since(start) - report.relax_seconds - report.polish_seconds;
+  report.step_seconds += laps.lap();
   return report;
 }
 

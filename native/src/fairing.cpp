@@ -11,7 +11,6 @@
 #include "geofair/sparse_lu.h"
 
 #include <algorithm>
-#include <chrono>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -91,21 +90,6 @@ int solve_threads() {
 #endif
 
 using Phases = std::vector<std::pair<std::string, double>>;  // FairingResult::phase_seconds
-
-// Wall-clock seconds since the last call (the first: since construction), for
-// FairingResult::phase_seconds.
-class Laps {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 std::string level_phase(int l, const char* what) {
   return "level " + std::to_string(l) + " " + what;

@@ -13,7 +13,8 @@ namespace geofair {
 namespace {
 
 // λ_ij = w_ij / Σ_k w_ik over vertex i's weights [begin, end), w clamped at 0; uniform if
-// they all vanish (or are not finite). Returns the sum Σ_k w_ik (m for the uniform fallback).
+// they all vanish (or are not finite). Returns the sum Σ_k w_ik, or 0 for the uniform
+// fallback (whose weights are not those of the neighbours' rows: no symmetric row sum).
 double normalize(double* w, int m) {
   double sum = 0.0;
   for (int k = 0; k < m; ++k) {
@@ -21,11 +22,20 @@ double normalize(double* w, int m) {
     sum += w[k];
   }
   if (!(sum > 0.0) || !std::isfinite(sum)) {
-    std::fill(w, w + m, 1.0);
-    sum = m;
+    std::fill(w, w + m, 1.0 / m);
+    return 0.0;
   }
   for (int k = 0; k < m; ++k) w[k] /= sum;
   return sum;
+}
+
+// Keeps lambda.row_sum only if every vertex with weights has one (see InnerFairnessWeights).
+void drop_row_sums_unless_symmetric(InnerFairnessWeights& lambda) {
+  for (int i = 0; i < lambda.size(); ++i)
+    if (lambda.offset[i + 1] > lambda.offset[i] && !(lambda.row_sum[i] > 0.0)) {
+      lambda.row_sum.clear();
+      return;
+    }
 }
 
 }  // namespace
@@ -44,6 +54,7 @@ InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Po
     if (type != InnerFairness::Uniform) cotangent_weights(rings, X0, i, lambda.weight.data() + begin);
     lambda.row_sum[i] = normalize(lambda.weight.data() + begin, m);
   }
+  drop_row_sums_unless_symmetric(lambda);
   return lambda;
 }
 
@@ -71,6 +82,7 @@ InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const P
     lambda.row_sum[i] =
         normalize(lambda.weight.data() + lambda.offset[i], lambda.offset[i + 1] - lambda.offset[i]);
   }
+  drop_row_sums_unless_symmetric(lambda);
   return lambda;
 }
 

@@ -28,10 +28,10 @@ struct InnerFairnessWeights {
   std::vector<int> neighbour;  ///< vertex ids (local ids of the region)
   std::vector<double> weight;  ///< λ_ij, dimensionless
   /// S_i = Σ_k w_ik, the row sums of the weights w before their normalization
-  /// λ_ij = w_ij / S_i (the valence for uniform weights), #vertices; empty if unknown.
-  /// The uniform, cotangent and intrinsic weights are symmetric (w_ij = w_ji), so
-  /// S_i λ_ij = S_j λ_ji: bilaplacian_initial_mesh uses this to solve a symmetric system.
-  /// Where a vertex falls back to uniform weights (all of its w vanish) the symmetry is lost.
+  /// λ_ij = w_ij / S_i (the valence for uniform weights), #vertices. The uniform, cotangent
+  /// and intrinsic weights are symmetric (w_ij = w_ji), so S_i λ_ij = S_j λ_ji:
+  /// bilaplacian_initial_mesh then solves a symmetric system. Empty where that does not
+  /// hold: a vertex whose weights all vanish falls back to uniform weights of its own.
   std::vector<double> row_sum;
 
   int size() const { return int(offset.size()) - 1; }

@@ -64,10 +64,8 @@ class PatternLU {
     for (int c = 0; c < matrix_.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, c); it; ++it)
         it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
     if (nested_dissection) lu_.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
-    lu_.analyzePattern(matrix_);
-    analyzed_ = true;
+    analyze_matrix();
   }
 
   /// Factorizes A; false if it is singular (then factorized() is false).
@@ -76,11 +74,7 @@ class PatternLU {
     // A new pattern (or the first) is analyzed anew.
     if (analyzed_ && !same_pattern(A)) analyzed_ = false;
     matrix_ = A;
-    if (!analyzed_) {
-      lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
-      lu_.analyzePattern(matrix_);
-      analyzed_ = true;
-    }
+    if (!analyzed_) analyze_matrix();
     const BlasThreads threads(factorization_blas_threads(int(A.rows())));
     lu_.factorize(matrix_);
     factorized_ = lu_.info() == Eigen::Success;
@@ -91,6 +85,12 @@ class PatternLU {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return lu_.solve(b); }
 
  private:
+  // The symbolic analysis of matrix_'s pattern; solves without iterative refinement.
+  void analyze_matrix() {
+    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+    lu_.analyzePattern(matrix_);
+    analyzed_ = true;
+  }
   bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
     return A.rows() == matrix_.rows() && A.cols() == matrix_.cols() &&
            A.nonZeros() == matrix_.nonZeros() && A.isCompressed() &&

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <chrono>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,21 @@ using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// #F×3 triangle vertex indices (row-major), counter-clockwise seen from the normal side.
 using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Vec3 = Eigen::Vector3d;
+
+/// Wall-clock seconds between calls, for FairingResult::phase_seconds.
+class Laps {
+ public:
+  /// Seconds since the last call (the first call: since construction).
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 /// A violated precondition of a public function (bad shapes, indices, NaN, topology).
 /// Messages start with the function name. Mapped to Python's ValueError.
