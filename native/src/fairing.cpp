@@ -228,6 +228,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
   phases.emplace_back("hierarchy", laps.lap());
   LevelSolution solution(X0);
   std::deque<FairingRegion> regions;  // the constructions refer to them
+  InnerFairnessWeights coarser_lambda;  // the inner fairness weights of level l - 1
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
     const bool finest = l + 1 == n_levels;
@@ -253,7 +254,8 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
                : std::make_unique<Construction>(lr, std::move(coarse_lambda), options, L);
     Construction& construction = *level_construction;
     if (finest && l > 0)
-      construction.set_coarse_space(coarse_space(lr, level_splits));
+      construction.set_coarse_space(
+          coarse_space(lr, level_splits, regions[l - 1], coarser_lambda));
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
     const int budget = finest ? options.max_iterations
@@ -265,6 +267,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
     phases.emplace_back(level_phase(l, "polishes"), report.polish_seconds);
     newton_iterations += report.iterations;
+    if (!finest) coarser_lambda = construction.lambda();
     solution.store(lr, Y, construction);
     result.iterations_per_level.push_back(report.iterations);
     result.vertices_per_level.push_back(lr.n);

@@ -245,25 +245,39 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
                                       Eigen::VectorXd& u) {
   const int nf = n_free_, nc = int(coarse_.vertex.size());
   if (!lagged || !coarse_lu_.factorized()) {
+    // Block (a, b) of T_aᵀ T_b for vertices a, b with tangent bases of the last assemble().
+    auto add_block = [&](std::vector<Eigen::Triplet<double>>& entries, int row, int col, int a,
+                         int b, double w) {
+      entries.emplace_back(2 * row, 2 * col, w * t1_[a].dot(t1_[b]));
+      entries.emplace_back(2 * row, 2 * col + 1, w * t1_[a].dot(t2_[b]));
+      entries.emplace_back(2 * row + 1, 2 * col, w * t2_[a].dot(t1_[b]));
+      entries.emplace_back(2 * row + 1, 2 * col + 1, w * t2_[a].dot(t2_[b]));
+    };
     // P̃: block (i, c) = P_ic T_iᵀ T_c, the coarse tangential move of column c's vertex
     // carried over into the tangent plane of i.
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(4 * std::size_t(coarse_.P.nonZeros()));
     for (int i = 0; i < nf; ++i)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(coarse_.P, i); it; ++it) {
-        const int c = int(it.col()), v = coarse_.vertex[c];
-        const double w = it.value();
-        entries.emplace_back(2 * i, 2 * c, w * t1_[i].dot(t1_[v]));
-        entries.emplace_back(2 * i, 2 * c + 1, w * t1_[i].dot(t2_[v]));
-        entries.emplace_back(2 * i + 1, 2 * c, w * t2_[i].dot(t1_[v]));
-        entries.emplace_back(2 * i + 1, 2 * c + 1, w * t2_[i].dot(t2_[v]));
-      }
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(coarse_.P, i); it; ++it)
+        add_block(entries, i, int(it.col()), i, coarse_.vertex[it.col()], it.value());
     coarse_P_.resize(2 * nf, 2 * nc);
     coarse_P_.setFromTriplets(entries.begin(), entries.end());
-    const Eigen::SparseMatrix<double> AP = A_ * coarse_P_;
-    Eigen::SparseMatrix<double> galerkin = coarse_P_.transpose() * AP;
-    galerkin.makeCompressed();
-    if (!coarse_lu_.factorize(galerkin)) return false;
+    // A_c: the system of assemble() with fixed tangent planes on the coarser level (its
+    // vertices' tangent bases here; G1 boundary neighbours do not move).
+    const InnerFairnessWeights& lambda = coarse_.lambda;
+    entries.clear();
+    entries.reserve(4 * (std::size_t(nc) + lambda.neighbour.size()));
+    for (int c = 0; c < nc; ++c) {
+      entries.emplace_back(2 * c, 2 * c, 1.0);
+      entries.emplace_back(2 * c + 1, 2 * c + 1, 1.0);
+      for (int k = lambda.offset[c]; k < lambda.offset[c + 1]; ++k)
+        if (const int d = lambda.neighbour[k]; d >= 0)
+          add_block(entries, c, d, coarse_.vertex[c], coarse_.vertex[d], -lambda.weight[k]);
+    }
+    Eigen::SparseMatrix<double> coarse_A(2 * nc, 2 * nc);
+    coarse_A.setFromTriplets(entries.begin(), entries.end());
+    coarse_A.makeCompressed();
+    if (!coarse_lu_.factorize(coarse_A)) return false;
   }
   two_grid_.preconditioner().solver = this;
   set_up_gmres(two_grid_, A_, kTwoGridIterations, kTwoGridTolerance);

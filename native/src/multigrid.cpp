@@ -39,7 +39,9 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
   return weights;
 }
 
-CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits) {
+CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
+                         const FairingRegion& coarser,
+                         const InnerFairnessWeights& coarser_lambda) {
   const int nf = level.n_free;
   const OneRings& r = level.rings;
   std::vector<int> column(nf, -1);
@@ -104,6 +106,26 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits)
     for (const auto& [c, w] : rows[i]) entries.emplace_back(i, c, w);
   coarse.P.resize(nf, Eigen::Index(coarse.vertex.size()));
   coarse.P.setFromTriplets(entries.begin(), entries.end());
+
+  // The coarser level's weights in column ids: coarser vertex b is region vertex
+  // coarser.global[b], a vertex of the level that no split of it adds.
+  std::vector<int> local_of_global(
+      std::size_t(*std::max_element(level.global.begin(), level.global.end())) + 1, -1);
+  for (int i = 0; i < level.n; ++i) local_of_global[level.global[i]] = i;
+  auto column_of = [&](int b) {
+    return b < coarser.n_free ? column[local_of_global[coarser.global[b]]] : -1;
+  };
+  std::vector<int> coarser_of_column(coarse.vertex.size());
+  for (int b = 0; b < coarser.n_free; ++b) coarser_of_column[column_of(b)] = b;
+  InnerFairnessWeights& lambda = coarse.lambda;
+  lambda.offset.assign(1, 0);
+  for (const int b : coarser_of_column) {
+    for (int k = coarser_lambda.offset[b]; k < coarser_lambda.offset[b + 1]; ++k) {
+      lambda.neighbour.push_back(column_of(coarser_lambda.neighbour[k]));
+      lambda.weight.push_back(coarser_lambda.weight[k]);
+    }
+    lambda.offset.push_back(int(lambda.neighbour.size()));
+  }
   return coarse;
 }
 

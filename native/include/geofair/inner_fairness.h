@@ -122,9 +122,12 @@ constexpr int kLaggedTangentialIterations = 20;
 /// Interpolation of corrections from a coarser level (multigrid.h, coarse_space):
 /// row i, free vertex i of the level, holds the weights of the coarser level's free vertices
 /// (columns) in the value at i; `vertex[c]` is the level-local id of column c's vertex.
+/// `lambda`: the coarser level's inner fairness weights, one row per column c (its
+/// neighbours as column ids, -1 for a G1 boundary vertex), for the coarse-grid operator.
 struct CoarseSpace {
   Eigen::SparseMatrix<double, Eigen::RowMajor> P;
   std::vector<int> vertex;
+  InnerFairnessWeights lambda;
 };
 
 /// TangentialSolver::relax with a coarse space: Gauss–Seidel sweeps before and after the
@@ -188,10 +191,15 @@ class TangentialSolver {
   /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
   /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a
   /// two-grid cycle instead of factorizing the system, kTwoGridSweeps symmetric Gauss–Seidel
-  /// sweeps around a coarse-grid correction with the Galerkin operator P̃ᵀ A P̃ (P̃: the
-  /// interpolation carried into the tangent bases, P_ic T_iᵀ T_c), factorized at the first
-  /// relax and, with `lagged`, kept for the next ones. If GMRES does not converge in
-  /// kTwoGridIterations, the system is factorized.
+  /// sweeps around a coarse-grid correction P̃ A_c⁻¹ P̃ᵀ (P̃: the interpolation carried into
+  /// the tangent bases, P_ic T_iᵀ T_c). A_c is the coarser level's own linearized system
+  /// (fixed tangent planes, weights coarse.lambda) in the tangent bases T_c of its vertices
+  /// here: the operator rediscretized on the coarse mesh, 1-ring sparse, rather than the
+  /// Galerkin product P̃ᵀ A P̃, whose stencil is wider. Measured on the 100000-vertex cap
+  /// (49992 coarse unknowns): the same GMRES iterations per solve (6, 7, 7, 6), operator
+  /// 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c is factorized at the first relax and, with
+  /// `lagged`, kept for the next ones. If GMRES does not converge in kTwoGridIterations,
+  /// the system is factorized.
   void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
 
  private:

@@ -58,12 +58,20 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
 /// vertices, in increasing level-local id. The coarse space of the finest level's tangential
 /// solves (TangentialSolver::set_coarse_space); the replayed splits of prolongate
 /// interpolate too, but their rows fill up (on the 13000-vertex cap 10.7 coarse vertices
-/// per row, and 26 2×2 blocks per row in the tangential Galerkin operator; these rows: 1.7
-/// and 5). The levels are those of the progressive mesh of section 7.4.
+/// per row against 1.7). The levels are those of the progressive mesh of section 7.4.
+/// \param level    the finer level's region
+/// \param splits   its vertex splits, in level-local ids
+/// \param coarser  the coarser level's region (its `global` ids and those of `level` are
+///                 ids of one region)
+/// \param coarser_lambda  the coarser level's inner fairness weights
 /// \return P: #V_I(level) × #V_I(coarser level), dimensionless weights in [0, 1] whose row
 ///         sums are 1 away from the boundary and less next to it; `vertex`: the coarser
-///         level's free vertices (level-local ids), one per column. Throws nothing.
-CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits);
+///         level's free vertices (level-local ids), one per column; `lambda`: the rows of
+///         coarser_lambda of those vertices, neighbours renumbered to columns (-1: G1
+///         boundary). Throws nothing.
+CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
+                         const FairingRegion& coarser,
+                         const InnerFairnessWeights& coarser_lambda);
 
 /// Gauss–Seidel sweeps of the relaxation, step 2 of prolongate.
 constexpr int kProlongationSweeps = 2;
