@@ -62,9 +62,19 @@ double Construction::evaluate(const Positions& X) {
   return length_ * dirichlet_.max_mean_deviation(H_, source_);
 }
 
+Eigen::VectorXd Construction::target_curvatures(bool global) {
+  Eigen::VectorXd b = dirichlet_.rhs(H_);
+  if (source_) b += *source_;
+  Eigen::VectorXd H_target = H_.head(region_.n_free);
+  if (global)
+    solver_.global_step(dirichlet_.S(), b, H_target);
+  else
+    gauss_seidel_sweep(dirichlet_.S(), b, H_target);
+  return H_target;
+}
+
 IterationReport Construction::run(Positions& X, int max_iterations, double tolerance,
                                   int iteration_offset) {
-  const int nf = region_.n_free;
   IterationReport report;
   double first_residual = 0.0;
   for (int k = 0;; ++k) {
@@ -80,14 +90,8 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
       report.cancelled = true;
       break;
     }
-    Eigen::VectorXd b = dirichlet_.rhs(H_);
-    if (source_) b += *source_;
-    Eigen::VectorXd H_target = H_.head(nf);
     const bool global = k % 2 == 1;
-    if (global)
-      solver_.global_step(dirichlet_.S(), b, H_target);
-    else
-      gauss_seidel_sweep(dirichlet_.S(), b, H_target);
+    const Eigen::VectorXd H_target = target_curvatures(global);
     if (iterations_++ % kCouplingRefresh == 0 || coupling_.empty())
       coupling_factors(region_, dirichlet_.weights(), options_.normal_weighting, H_, X, N_,
                        coupling_);
@@ -105,7 +109,7 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
 }
 
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
-                                         int iteration_offset, bool polish) {
+                                         int iteration_offset, bool polish, bool prolongated) {
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
@@ -130,6 +134,22 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     }
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
+  if (prolongated) {
+    // The construction's local step (sections 7.1-7.2), with the paper's vertex update (no
+    // coupling factors) and no tangential move (the relaxation has just placed the vertices),
+    // kept if it lowers the residual.
+    const Positions before = X;
+    update_free_vertices(region_, lambda_, target_curvatures(/*global=*/false),
+                         options_.normal_weighting, options_.damping, X, N_, nullptr, nullptr,
+                         /*tangential=*/false);
+    const double smoothed = evaluate(X);
+    if (smoothed < residual) {
+      residual = smoothed;
+    } else {
+      X = before;
+      residual = evaluate(X);
+    }
+  }
   const double first_residual = residual;
   double best = residual;
   int best_at = 0, polishes = 0;

@@ -261,7 +261,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);
     const IterationReport report =
-        construction.run_newton(Y, budget, tolerance, newton_iterations, finest);
+        construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0);
     laps.lap();
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
     phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);

@@ -63,11 +63,12 @@ struct FairingResult {
 /// With options.iteration = Auto (the default) or Newton, the same hierarchy is solved by
 /// Newton's method level by level instead (nested iteration; Construction::run_newton,
 /// newton_step.h): the base level from the linear initial mesh, each finer level from the
-/// prolongation of the coarser solution; the same discrete equations (12), all normal
+/// prolongation of the coarser solution, its tangential relaxation and one local step of
+/// the construction above; the same discrete equations (12), all normal
 /// offsets per step from one inexact Newton step with the exact Jacobian's products; the
 /// base levels keep at least 8 free vertices per G1 boundary vertex (coarser ones
 /// diverged), so the disturbed 13000- and 100000-vertex caps run on 2 levels with 4+2 and
-/// 8+3 steps, where the paper's iteration takes thousands. Where a coarse level fails the
+/// 8+2 steps, where the paper's iteration takes thousands. Where a coarse level fails the
 /// finest level is solved alone; where that stalls or fails (measured on regions of real
 /// meshes whose linear initial mesh is far from the solution and folded at the boundary),
 /// Auto starts over with the paper's steps below; Paper runs them alone.
