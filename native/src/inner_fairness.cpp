@@ -6,6 +6,7 @@
 #include "geofair/laplace_beltrami.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 namespace geofair {
@@ -291,24 +292,40 @@ Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const
   const double* value = A.valuePtr();
   const int* column = A.innerIndexPtr();
   const int* outer = A.outerIndexPtr();
-  // Gauss–Seidel on A x = b.
-  auto sweep = [&](Eigen::VectorXd& x, int r) {
-    double sum = b(r), diagonal = 1.0;
-    for (int p = outer[r]; p < outer[r + 1]; ++p)
-      if (column[p] != r)
-        sum -= value[p] * x(column[p]);
+  // Hybrid Gauss–Seidel on A x = b: Gauss–Seidel within each of kTwoGridBlocks blocks of
+  // rows, which read the other blocks' values of the start of the sweep (`start`). The
+  // blocks are fixed, so the result does not depend on the threads that sweep them.
+  const int blocks = n > kParallelMin ? kTwoGridBlocks : 1;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), start;
+  auto sweep = [&](bool forward) {
+    start = x;
+#pragma omp parallel for schedule(static, 1) if (blocks > 1)
+    for (int block = 0; block < blocks; ++block) {
+      // Whole 2×2 blocks (even boundaries) to each block of rows.
+      const int lo = 2 * int(std::int64_t(n / 2) * block / blocks);
+      const int hi = block + 1 == blocks ? n : 2 * int(std::int64_t(n / 2) * (block + 1) / blocks);
+      auto relax_row = [&](int r) {
+        double sum = b(r), diagonal = 1.0;
+        for (int p = outer[r]; p < outer[r + 1]; ++p) {
+          const int c = column[p];
+          if (c == r)
+            diagonal = value[p];
+          else
+            sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
+        }
+        x(r) = sum / diagonal;
+      };
+      if (forward)
+        for (int r = lo; r < hi; ++r) relax_row(r);
       else
-        diagonal = value[p];
-    x(r) = sum / diagonal;
+        for (int r = hi; r-- > lo;) relax_row(r);
+    }
   };
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  for (int s = 0; s < kTwoGridSweeps; ++s)
-    for (int r = 0; r < n; ++r) sweep(x, r);
+  for (int s = 0; s < kTwoGridSweeps; ++s) sweep(true);
   const Eigen::VectorXd residual = b - A * x;
   const Eigen::VectorXd coarse = solver->coarse_P_.transpose() * residual;
   x += solver->coarse_P_ * solver->coarse_lu_.solve(coarse);
-  for (int s = 0; s < kTwoGridSweeps; ++s)
-    for (int r = n; r-- > 0;) sweep(x, r);
+  for (int s = 0; s < kTwoGridSweeps; ++s) sweep(false);
   return x;
 }
 
