@@ -242,7 +242,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     VertexSplits level_splits;
     std::vector<double> level_weights;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kInitialMeshResidual);
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kNewtonInitialMeshResidual);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
