@@ -48,8 +48,8 @@ constexpr int kBilaplacianIterations = 300;
 constexpr double kInitialMeshResidual = 1e-8;
 /// ... and of the base level that Newton's method refines (fairing.cpp, newton_multigrid).
 /// Disturbed caps: the same steps per level (5; 4/2; 8/2) and results to 2e-12 (2000 and
-/// 13000: conformal as well) with 14, 14 and 20 conjugate-gradient iterations instead of 21, 20 and 31 at 1e-8
-/// (100000-vertex cap: the base level's initial mesh 0.73 -> 0.58 s).
+/// 13000: conformal as well) with 14, 14 and 20 conjugate-gradient iterations instead of
+/// 21, 20 and 31 at 1e-8 (100000-vertex cap: the base level's initial mesh 0.73 -> 0.58 s).
 constexpr double kNewtonInitialMeshResidual = 1e-5;
 /// Relative residual where the linear solution is the result (OuterFairness::Bilaplacian):
 /// that of a direct solve.
