@@ -136,8 +136,8 @@ constexpr int kTwoGridSweeps = 2;
 /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
 /// blocks' values from the start of the sweep (hybrid Gauss–Seidel), one thread per block
 /// above kParallelMin unknowns. Fixed, so results do not depend on the thread count.
-/// 100k cap (199984 unknowns): 1, 2, 4 blocks all take 6, 7, 7, 6 GMRES iterations;
-/// finest relaxations 1.61 -> 1.41 s with 2 blocks on 2 cores (medians of 5).
+/// 100k cap (199984 unknowns): 1, 2, 4 blocks all take 6, 7, 7, 6 GMRES iterations (to
+/// 1e-4); finest relaxations 1.61 -> 1.41 s with 2 blocks on 2 cores (medians of 5).
 constexpr int kTwoGridBlocks = 2;
 constexpr int kTwoGridIterations = 40;
 /// ... and GMRES's relative residual there. A solve's error only leaves the next polish
@@ -205,10 +205,10 @@ class TangentialSolver {
   /// (fixed tangent planes, weights coarse.lambda) in the tangent bases T_c of its vertices
   /// here: the operator rediscretized on the coarse mesh, 1-ring sparse, rather than the
   /// Galerkin product P̃ᵀ A P̃, whose stencil is wider. Measured on the 100000-vertex cap
-  /// (49992 coarse unknowns): the same GMRES iterations per solve (6, 7, 7, 6), operator
-  /// 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c is factorized at the first relax and, with
-  /// `lagged`, kept for the next ones. If GMRES does not converge in kTwoGridIterations,
-  /// the system is factorized.
+  /// (49992 coarse unknowns): the same GMRES iterations per solve (6, 7, 7, 6 to 1e-4),
+  /// operator 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c is factorized at the first relax
+  /// and, with `lagged`, kept for the next ones. If GMRES does not converge in
+  /// kTwoGridIterations, the system is factorized.
   void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
 
  private:
