@@ -297,13 +297,15 @@ Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const
   // blocks are fixed, so the result does not depend on the threads that sweep them.
   const int blocks = n > kParallelMin ? kTwoGridBlocks : 1;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), start;
+  // First row of block k: whole 2×2 blocks (even boundaries) to each block of rows.
+  auto first_row = [&](int k) {
+    return k == blocks ? n : 2 * int(std::int64_t(n / 2) * k / blocks);
+  };
   auto sweep = [&](bool forward) {
-    start = x;
+    if (blocks > 1) start = x;  // one block reads only its own rows
 #pragma omp parallel for schedule(static, 1) if (blocks > 1)
     for (int block = 0; block < blocks; ++block) {
-      // Whole 2×2 blocks (even boundaries) to each block of rows.
-      const int lo = 2 * int(std::int64_t(n / 2) * block / blocks);
-      const int hi = block + 1 == blocks ? n : 2 * int(std::int64_t(n / 2) * (block + 1) / blocks);
+      const int lo = first_row(block), hi = first_row(block + 1);
       auto relax_row = [&](int r) {
         double sum = b(r), diagonal = 1.0;
         for (int p = outer[r]; p < outer[r + 1]; ++p) {

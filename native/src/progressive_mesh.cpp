@@ -18,6 +18,13 @@ struct DoubleTraits : OpenMesh::DefaultTraits {
   using Normal = OpenMesh::Vec3d;
 };
 
+// The collapse priority of ModFairingHierarchyT (smallest first) for a half-edge from p0 to
+// p1: its squared length, as a float like the decimater's priorities. Mesh::Sweep compares
+// with it, so both must compute it alike.
+float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1) {
+  return float((p1 - p0).sqrnorm());
+}
+
 // The mesh the decimater works on. DecimaterT asks the mesh type whether a half-edge
 // collapse keeps the mesh a manifold (is_collapse_ok) for every candidate it weighs; the
 // library's TriConnectivity::is_collapse_ok is compiled into Debian's libOpenMeshCore with
@@ -49,7 +56,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
     const VertexHandle v0 = from_vertex_handle(v0v1);
     if (v0v1 == halfedge_handle(v0) || v0 != sweep.from)
       sweep.start(v0);
-    else if (float((point(to_vertex_handle(v0v1)) - point(v0)).sqrnorm()) > sweep.best)
+    else if (length_priority(point(v0), point(to_vertex_handle(v0v1))) > sweep.best)
       return false;
     return keeps_manifold(v0v1);
   }
@@ -137,7 +144,7 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
       if (triangle_quality(q[0], q[1], q[2], n_new) < kMinQuality) return float(Base::ILLEGAL_COLLAPSE);
       if ((n_old | n_new) < 0.5 * n_old.norm() * n_new.norm()) return float(Base::ILLEGAL_COLLAPSE);
     }
-    const float priority = float((ci.p1 - ci.p0).sqrnorm());
+    const float priority = length_priority(ci.p0, ci.p1);
     if (ci.v0 == mesh_.sweep.from) mesh_.sweep.best = std::min(mesh_.sweep.best, priority);
     return priority;
   }
