@@ -180,3 +180,53 @@ def test_multigrid_reports_iteration_limit_and_cancellation():
     calls = []
     r = fair(v, s.faces, s.free, progress=lambda k, res: calls.append(k) or False, **kw)
     assert calls and not r.converged and r.iterations == 0
+
+
+@pytest.fixture(scope="module")
+def newton_hierarchy():
+    # The hierarchy of Newton's method (coarsen_boundary=True), with a fixed vertex pinned
+    # inside the region: it has a closed fan and must never collapse.
+    s = scenes.sphere_cap(n_free=2000, irregular=True, seed=1)
+    free = s.free.copy()
+    pinned = int(np.argmin(np.where(free, np.linalg.norm(s.vertices[:, :2], axis=1), np.inf)))
+    free[pinned] = False
+    v = s.disturbed(seed=2, amplitude=0.1)
+    return s, free, pinned, geofair.progressive_mesh(v, s.faces, free, 3, coarsen_boundary=True)
+
+
+def test_newton_hierarchy_coarsens_the_boundary_along_the_border(newton_hierarchy):
+    s, free, pinned, levels = newton_hierarchy
+    region, _, boundary = region_vertices(s.faces, free)
+    assert len(levels) == 3
+    assert {tuple(t) for t in levels[-1]} == {tuple(t) for t in region}
+    sets = [set(np.unique(T).tolist()) for T in levels]
+    for coarse, fine in zip(sets[:-1], sets[1:], strict=True):
+        assert coarse < fine
+    n_boundary = [len(vertices & set(boundary.tolist())) for vertices in sets]
+    n_total = [len(vertices) for vertices in sets]
+    # The boundary shrinks with the level (about 2x per level along a curve, 4x in all).
+    assert n_boundary[0] < n_boundary[1] < n_boundary[2], n_boundary
+    ratios = np.array(n_total[1:]) / np.array(n_total[:-1])
+    assert np.all((ratios > 3.0) & (ratios < 5.0)), n_total
+    for T in levels:
+        assert pinned in T  # the fixed vertex inside the region stays
+        # Every level is an oriented disk whose border consists of G1 boundary vertices, in
+        # one loop of at least 12 vertices.
+        directed = np.concatenate([T[:, [0, 1]], T[:, [1, 2]], T[:, [2, 0]]])
+        directed_set = {tuple(e) for e in directed}
+        assert len(directed_set) == len(directed)
+        border = [e for e in directed_set if (e[1], e[0]) not in directed_set]
+        assert not free[np.array(border)].any()
+        assert len(border) >= 12
+        edges = {tuple(sorted(e)) for e in directed}
+        assert len(np.unique(T)) - len(edges) + len(T) == 1
+
+
+def test_newton_hierarchy_removes_low_valences_and_does_not_fold(newton_hierarchy):
+    s, free, _, levels = newton_hierarchy
+    for T in levels[:-1]:
+        ids, valence = np.unique(T, return_counts=True)  # triangles = valence at a free vertex
+        v_free = valence[free[ids]]
+        assert v_free.min() >= 4 and v_free.max() <= 10, (v_free.min(), v_free.max())
+        n = scenes.face_normals(s.vertices, T)
+        assert (np.einsum("ij,ij->i", n, s.normals[T].sum(axis=1)) > 0).all()

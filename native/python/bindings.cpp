@@ -450,7 +450,8 @@ singular.)doc");
 
   m.def(
       "progressive_mesh",
-      [](const py::object& vertices, const py::object& faces, const py::object& free, int levels) {
+      [](const py::object& vertices, const py::object& faces, const py::object& free, int levels,
+         bool coarsen_boundary) {
         const Positions V = to_positions(vertices, "vertices");
         const Triangles F = to_triangles(faces);
         const std::vector<bool> mask = to_mask(free, V.rows());
@@ -465,7 +466,10 @@ singular.)doc");
           for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
           const int n = levels > 0 ? levels : default_levels(region.n_free);
           const Positions smoothed = hierarchy_positions(region, X, nullptr);
-          for (Triangles T : build_progressive_mesh(region, smoothed, n).triangles) {
+          for (Triangles T :
+               build_progressive_mesh(region, smoothed, n,
+                                      coarsen_boundary ? kNewtonDecimation : kPaperDecimation)
+                   .triangles) {
             for (Eigen::Index k = 0; k < T.size(); ++k) T.data()[k] = region.global[T.data()[k]];
             out.push_back(std::move(T));
           }
@@ -473,13 +477,23 @@ singular.)doc");
         return out;
       },
       py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("levels") = 1,
+      py::arg("coarsen_boundary") = false,
       R"doc(The progressive-mesh hierarchy that fair() uses for its multigrid (Schneider &
 Kobbelt 2001, section 7.4): a list of (m_l, 3) int32 triangle arrays in the input's vertex
 indices, coarsest level first, the last being the region (triangles with a free vertex)
-itself. Levels are nested; G1 boundary vertices are never collapsed, free vertices keep
-valences 5..8 through the collapses, and a coarse level keeps at least half as many free
-vertices as there are boundary vertices. Measured on the input smoothed by 10 sweeps of the
-uniform Laplacian (fair() smooths with its inner fairness weights).
+itself. Levels are nested (the vertex set of each is a subset of the next).
+
+coarsen_boundary=False: the hierarchy of the paper's iteration (iteration="paper"): G1
+boundary vertices are never collapsed, free vertices keep valences 5..8 through the
+collapses, and a coarse level keeps at least half as many free vertices as there are boundary
+vertices. True: the hierarchy of Newton's method (iteration="newton", the default path):
+boundary vertices collapse too, along the region's border into a neighbour on it (each border
+loop keeps at least 12 vertices; a fixed vertex inside the region never collapses), free
+vertices keep valences 4..10, those of valence 3 and 4 collapse first, and level l keeps about
+(free + boundary vertices) / 4^(levels-1-l) vertices.
+
+Measured on the input smoothed by 10 sweeps of the uniform Laplacian (fair() smooths with its
+inner fairness weights).
 
 Raises ValueError for invalid input.)doc");
 

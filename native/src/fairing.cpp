@@ -107,11 +107,11 @@ Positions gather(const Positions& X, const std::vector<int>& ids) {
 // region, Xs empty) if levels is 1 or the mesh cannot be decimated.
 ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& X0,
                                 const InnerFairnessWeights& lambda_finest, int levels,
-                                Positions& Xs) {
+                                const Decimation& rules, Positions& Xs) {
   ProgressiveMesh hierarchy;
   if (levels > 1) {
     Xs = hierarchy_positions(region, X0, &lambda_finest);
-    hierarchy = build_progressive_mesh(region, Xs, levels);
+    hierarchy = build_progressive_mesh(region, Xs, levels, rules);
   }
   if (hierarchy.triangles.size() < 2) {
     hierarchy.triangles.assign(1, region.triangles);
@@ -165,25 +165,20 @@ struct LevelSolution {
   }
 };
 
-// Newton's method on the levels of a progressive mesh (nested iteration): the smallest
-// number of free vertices a coarse level keeps per G1 boundary vertex, and in all. The
-// boundary is never coarsened, so coarser levels join a dense boundary to a sparse interior
-// by fans of long triangles; measured on the disturbed caps (uniform weights): a base level
-// with 8 free vertices per boundary vertex (3247 of the 13000-vertex cap) and with 22
-// (25000 of the 100000-vertex cap) converged, with 2 (812, and 125 of the 2000-vertex cap)
-// or 5.6 (6249 of the 100000-vertex cap) Newton's method diverged from the linear initial
-// mesh.
-constexpr double kNewtonMinFreePerBoundary = 8.0;
-constexpr int kNewtonMinBaseFree = 1000;
+// Newton's method on the levels of a progressive mesh (nested iteration, kNewtonDecimation):
+// the free vertices the base level keeps at least. Every level from a base of 200 to 25000
+// free vertices converged in 2-3 steps on the disturbed caps, and the finest level's cost
+// decides the time (13000-vertex cap: bases of 3200, 800 and 200 took 0.90, 0.84 and 0.88
+// s); below 2 × this one level is solved (2000-vertex cap: 5 steps, the same time as two
+// levels).
+constexpr int kNewtonMinBaseFree = 700;
 // Coarse levels of the Newton hierarchy stop after this many steps, converged or not: they
 // only start the next level, whose own steps decide the result.
 constexpr int kCoarseNewtonSteps = 30;
 
 int newton_levels(const FairingRegion& region) {
-  const double floor = std::max<double>(kNewtonMinBaseFree,
-                                        kNewtonMinFreePerBoundary * (region.n - region.n_free));
   int levels = 1;
-  for (double n = region.n_free / 4.0; n >= floor; n /= 4.0) ++levels;
+  for (double n = region.n_free / 4.0; n >= kNewtonMinBaseFree; n /= 4.0) ++levels;
   return levels;
 }
 
@@ -221,7 +216,8 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
       });
   Laps laps;
   Positions Xs;
-  const ProgressiveMesh hierarchy = build_hierarchy(region, X0, lambda_finest, levels, Xs);
+  const ProgressiveMesh hierarchy =
+      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation, Xs);
   NewtonRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
@@ -352,7 +348,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   Positions Xs;  // the smoothed copy the hierarchy is measured on
   const ProgressiveMesh hierarchy = build_hierarchy(
       region, X0, lambda_finest,
-      options.outer_fairness == OuterFairness::Intrinsic ? levels : 1, Xs);
+      options.outer_fairness == OuterFairness::Intrinsic ? levels : 1, kPaperDecimation, Xs);
 
   FairingResult result;
   result.iteration = Iteration::Paper;

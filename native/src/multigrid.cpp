@@ -46,7 +46,8 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
   const OneRings& r = level.rings;
   std::vector<int> column(nf, -1);
   std::vector<std::uint8_t> is_new(nf, 0);
-  for (const int v : splits.vertex) is_new[v] = 1;
+  for (const int v : splits.vertex)
+    if (v < nf) is_new[v] = 1;  // new G1 boundary vertices are no unknowns
   CoarseSpace coarse;
   for (int i = 0; i < nf; ++i)
     if (!is_new[i]) {
@@ -145,9 +146,15 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
       h += weights[k] * H(j);
     }
     const int v = splits.vertex[s];
+    H(v) = h;
+    if (v >= level.n_free) {
+      // A G1 boundary vertex (the boundary coarsened): its position is fixed, its normal
+      // prescribed.
+      N.row(v) = level.g1_normals.row(v - level.n_free);
+      continue;
+    }
     X.row(v) = q;
     N.row(v) = n.normalized();
-    H(v) = h;
   }
 
   // 2. Relax the union of the 1-disks (free vertices); old vertices stay on the coarse
@@ -184,6 +191,7 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
   //    from the normal: the surface lies H/2·(tangential distance)² below a tangent plane).
   for (std::size_t s = 0; s < splits.size(); ++s) {
     const int v = splits.vertex[s];
+    if (v >= level.n_free) continue;
     const Vec3 q = X.row(v), n = N.row(v);
     double t = 0.0, sum_w = 0.0;
     for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k) {

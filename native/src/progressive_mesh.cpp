@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 namespace geofair {
@@ -19,10 +20,11 @@ struct DoubleTraits : OpenMesh::DefaultTraits {
 };
 
 // The collapse priority of ModFairingHierarchyT (smallest first) for a half-edge from p0 to
-// p1: its squared length, as a float like the decimater's priorities. Mesh::Sweep compares
-// with it, so both must compute it alike.
-float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1) {
-  return float((p1 - p0).sqrnorm());
+// p1: its squared length times `factor` (Mesh::priority_factor of the vertex at p0), as a
+// float like the decimater's priorities. Mesh::Sweep compares with it, so both must compute
+// it alike.
+float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1, float factor) {
+  return factor * float((p1 - p0).sqrnorm());
 }
 
 // The mesh the decimater works on. DecimaterT asks the mesh type whether a half-edge
@@ -55,10 +57,20 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   bool is_collapse_ok(HalfedgeHandle v0v1) {
     const VertexHandle v0 = from_vertex_handle(v0v1);
     if (v0v1 == halfedge_handle(v0) || v0 != sweep.from)
-      sweep.start(v0);
-    else if (length_priority(point(v0), point(to_vertex_handle(v0v1))) > sweep.best)
+      sweep.start(v0, priority_factor(v0));
+    else if (length_priority(point(v0), point(to_vertex_handle(v0v1)), sweep.factor) > sweep.best)
       return false;
     return keeps_manifold(v0v1);
+  }
+
+  // Region-local ids from n_free on are G1 boundary vertices.
+  int n_free = 0;
+  bool low_valence_first = false;
+  bool is_g1(VertexHandle v) const { return v.idx() >= n_free; }
+  // The factor of the priorities of collapses from v0 (length_priority): 1e-4 for a free
+  // vertex of valence below 5 if low valences go first, else 1.
+  float priority_factor(VertexHandle v0) const {
+    return low_valence_first && !is_g1(v0) && valence(v0) < 5 ? 1e-4f : 1.0f;
   }
 
   // DecimaterT::heap_vertex(v) weighs every half-edge out of v in turn, starting at
@@ -75,8 +87,8 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // the decimation; now 13000-vertex cap 0.108 -> 0.080 s, 100000: 1.28 -> 1.10 s.
   struct Sweep {
     VertexHandle from;
-    float best = FLT_MAX;
-    void start(VertexHandle v) { from = v, best = FLT_MAX; }
+    float best = FLT_MAX, factor = 1.0f;  // factor: priority_factor(from)
+    void start(VertexHandle v, float f = 1.0f) { from = v, best = FLT_MAX, factor = f; }
   } sweep;
 
  private:
@@ -121,14 +133,24 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
 
   explicit ModFairingHierarchyT(MeshT& mesh) : Base(mesh, false), mesh_(mesh) {}
 
+  Decimation rules;
+
   float collapse_priority(const CollapseInfo& ci) override {
-    // Valences after the collapse: vl and vr lose an edge, v1 takes over v0's. Locked
-    // (boundary) vertices keep whatever fan the region gives them.
+    // A G1 boundary vertex (locked unless the boundary is coarsened) collapses only along
+    // the region's border (the decimater's own test: v1 on the border, one triangle at the
+    // edge) into a boundary vertex, while its border loop keeps kMinBoundaryLoop vertices;
+    // a fixed vertex inside the region (closed fan) never.
+    if (mesh_.is_g1(ci.v0) &&
+        !(mesh_.is_boundary(ci.v0) && mesh_.is_g1(ci.v1) &&
+          mesh_.is_boundary(mesh_.edge_handle(ci.v0v1)) && long_loop(ci.v0)))
+      return float(Base::ILLEGAL_COLLAPSE);
+    // Valences after the collapse: vl and vr lose an edge, v1 takes over v0's. G1 boundary
+    // vertices keep whatever fan the region gives them.
     for (auto v : {ci.vl, ci.vr})
-      if (v.is_valid() && !mesh_.status(v).locked() && int(mesh_.valence(v)) - 1 < kMinValence)
+      if (v.is_valid() && !mesh_.is_g1(v) && int(mesh_.valence(v)) - 1 < rules.min_valence)
         return float(Base::ILLEGAL_COLLAPSE);
-    if (!mesh_.status(ci.v1).locked() &&
-        int(mesh_.valence(ci.v1) + mesh_.valence(ci.v0)) - 4 > kMaxValence)
+    if (!mesh_.is_g1(ci.v1) &&
+        int(mesh_.valence(ci.v1) + mesh_.valence(ci.v0)) - 4 > rules.max_valence)
       return float(Base::ILLEGAL_COLLAPSE);
     for (auto f : mesh_.vf_range(ci.v0)) {
       if (f == ci.fl || f == ci.fr) continue;  // these two triangles disappear
@@ -144,7 +166,8 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
       if (triangle_quality(q[0], q[1], q[2], n_new) < kMinQuality) return float(Base::ILLEGAL_COLLAPSE);
       if ((n_old | n_new) < 0.5 * n_old.norm() * n_new.norm()) return float(Base::ILLEGAL_COLLAPSE);
     }
-    const float priority = length_priority(ci.p0, ci.p1);
+    const float priority = length_priority(
+        ci.p0, ci.p1, ci.v0 == mesh_.sweep.from ? mesh_.sweep.factor : mesh_.priority_factor(ci.v0));
     if (ci.v0 == mesh_.sweep.from) mesh_.sweep.best = std::min(mesh_.sweep.best, priority);
     return priority;
   }
@@ -160,6 +183,15 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   VertexSplits collapses;  // in collapse order
 
  private:
+  // True if the border loop through border vertex v has more than kMinBoundaryLoop vertices.
+  bool long_loop(typename MeshT::VertexHandle v) const {
+    auto h = mesh_.halfedge_handle(v);  // the border half-edge out of v
+    for (int k = 0; k < kMinBoundaryLoop; ++k) {
+      h = mesh_.next_halfedge_handle(h);
+      if (mesh_.from_vertex_handle(h) == v) return false;
+    }
+    return true;
+  }
   static constexpr double kMinQuality = 0.25;
   MeshT& mesh_;
 };
@@ -206,14 +238,16 @@ Positions hierarchy_positions(const FairingRegion& region, const Positions& X_in
 }
 
 ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
-                                       int levels) {
+                                       int levels, const Decimation& rules) {
   Mesh mesh;
+  mesh.n_free = region.n_free;
+  mesh.low_valence_first = rules.low_valence_first;
   mesh.request_vertex_status();
   mesh.request_edge_status();
   mesh.request_face_status();
   for (int i = 0; i < region.n; ++i) {
     const auto v = mesh.add_vertex(Mesh::Point(X(i, 0), X(i, 1), X(i, 2)));
-    if (i >= region.n_free) mesh.status(v).set_locked(true);
+    if (i >= region.n_free && !rules.coarsen_boundary) mesh.status(v).set_locked(true);
   }
   for (Eigen::Index t = 0; t < region.triangles.rows(); ++t)
     mesh.add_face(mesh.vertex_handle(region.triangles(t, 0)), mesh.vertex_handle(region.triangles(t, 1)),
@@ -222,6 +256,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
   typename ModFairingHierarchyT<Mesh>::Handle module;
   decimater.add(module);
+  decimater.module(module).rules = rules;
   decimater.initialize();
   VertexSplits& collapses = decimater.module(module).collapses;
 
@@ -232,15 +267,21 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   const double n_free_min = kMinFreePerBoundary * n_boundary;
   double previous = region.n_free;
   for (int level = levels - 2; level >= 0; --level) {
-    double n_free = region.n_free / std::pow(4.0, levels - 1 - level);
-    if (n_free < n_free_min) {
-      // Clamp the coarsest level to the floor, if that still coarsens by 1.5×.
-      if (previous < 1.5 * n_free_min) break;
-      n_free = n_free_min;
-      level = 0;
+    const double shrink = std::pow(4.0, levels - 1 - level);
+    std::size_t target;  // vertices of the level
+    if (rules.coarsen_boundary) {
+      target = std::size_t(std::max(1.0, std::round(region.n / shrink)));
+    } else {
+      double n_free = region.n_free / shrink;
+      if (n_free < n_free_min) {
+        // Clamp the coarsest level to the floor, if that still coarsens by 1.5×.
+        if (previous < 1.5 * n_free_min) break;
+        n_free = n_free_min;
+        level = 0;
+      }
+      previous = n_free;
+      target = std::size_t(n_boundary) + std::size_t(std::max(1.0, std::round(n_free)));
     }
-    previous = n_free;
-    const std::size_t target = std::size_t(n_boundary) + std::size_t(std::max(1.0, std::round(n_free)));
     collapses = VertexSplits{};
     // decimate_to counts deleted vertices too, so ask for the number of collapses.
     const std::size_t present = region.n - std::accumulate(splits_fine_to_coarse.begin(), splits_fine_to_coarse.end(), std::size_t(0), [](std::size_t a, const VertexSplits& s) { return a + s.size(); });
@@ -255,8 +296,18 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
                          collapses.ring.begin() + collapses.offset[c + 1]);
       splits.offset.push_back(int(splits.ring.size()));
     }
+    Triangles level_triangles = snapshot(mesh);
+    if (rules.coarsen_boundary) {
+      // With the boundary coarsened, too few free vertices may remain: no such level (and
+      // none coarser).
+      std::vector<std::uint8_t> seen(region.n_free, 0);
+      int n_free = 0;
+      for (Eigen::Index k = 0; k < level_triangles.size(); ++k)
+        if (const int v = level_triangles.data()[k]; v < region.n_free && !seen[v]) seen[v] = 1, ++n_free;
+      if (n_free < kMinLevelFree) break;
+    }
     splits_fine_to_coarse.push_back(std::move(splits));
-    fine_to_coarse.push_back(snapshot(mesh));
+    fine_to_coarse.push_back(std::move(level_triangles));
   }
   ProgressiveMesh pm;
   pm.triangles.assign(fine_to_coarse.rbegin(), fine_to_coarse.rend());

@@ -21,7 +21,8 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
                                   const Positions& X0);
 
 /// Inserts the vertices a level adds to the coarser one, replaying the vertex splits in
-/// order (section 7.4):
+/// order (section 7.4; a G1 boundary vertex that a coarsened boundary re-inserts keeps its
+/// position in X and takes its prescribed normal, only its H is interpolated):
 ///  1. each new vertex q_i at Σ_j w_ij q_j over the ring it is split into (`weights`: the
 ///     conformal weights of the smoothed input, i.e. the inner-fairness position of the
 ///     coarse levels), with H and the normal interpolated the same way;
@@ -51,7 +52,8 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
                 Positions& X, Eigen::VectorXd& H, Positions& N);
 
 /// The interpolation of corrections that vanish on the G1 boundary from the next coarser
-/// level to `level` (whose vertex splits, in level-local ids, are `splits`), as a sparse
+/// level to `level` (whose vertex splits, in level-local ids, are `splits`; a split of a G1
+/// boundary vertex adds no unknown), as a sparse
 /// matrix: a vertex of the coarser level keeps its value; a new vertex takes the mean over
 /// its ring of the coarser level's vertices (the boundary counting as zeros), or, with
 /// none of those in its ring, the mean of its ring's rows. Columns: the coarser level's free

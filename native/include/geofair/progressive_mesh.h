@@ -48,11 +48,44 @@ int default_levels(int n_free);
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
                               const InnerFairnessWeights* lambda);
 
+/// The rules of build_progressive_mesh's collapses.
+struct Decimation {
+  /// G1 boundary vertices collapse too, along the region's border (see
+  /// build_progressive_mesh); else they are never collapsed.
+  bool coarsen_boundary = false;
+  /// The valence range that collapses keep at free vertices.
+  int min_valence = 5, max_valence = 8;
+  /// Free vertices of valence below 5 collapse first (their priority is scaled by 1e-4).
+  bool low_valence_first = false;
+};
+
+/// The hierarchy of the paper's iteration (Paper): the boundary locked, valences 5..8.
+constexpr Decimation kPaperDecimation{};
+
+/// The hierarchy of Newton's method on the levels (fairing.cpp; beyond the paper): the
+/// boundary coarsened, free valences 4..10, valences 3 and 4 collapsed first. Measured on
+/// the disturbed caps (bench/speed.py), Newton steps per level coarsest first:
+/// - With the boundary locked, a level keeps every boundary vertex, so coarse levels join a
+///   dense boundary to a sparse interior by fans of long triangles; Newton's method diverged
+///   there from the linear initial mesh unless a level kept 8 free vertices per boundary
+///   vertex (a base of 25000 free vertices for the 100000-vertex cap: 8 + 2 steps; at
+///   1000000 the base of 62000 never converged).
+/// - Coarsening the boundary with valences 5..8 left clusters of small triangles where
+///   every collapse broke a valence limit: the 100000-vertex cap's base of 1500 free vertices
+///   stalled at residual 100-400 (H up to ±50 on the unit sphere at the clusters).
+/// - Valences 4..10 removed the clusters, but vertices of valence 3 of the input survived
+///   into coarse levels (longer edges, collapsed late) and held the largest defects after
+///   each prolongation (residual 22-59, one extra step per level).
+/// - Low valences first: residual 4-6 after every prolongation, 3 + 2 + 2 + 2 steps on 4
+///   levels of the 100000-vertex cap, 3 + 2 + 2 on 3 levels of the 13000-vertex cap; every
+///   level of the 1000000-vertex cap (6 levels) converges in 2-3 steps.
+constexpr Decimation kNewtonDecimation{true, 4, 10, true};
+
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
 /// is collapsed shortest first (so the smallest edge length of the coarse mesh grows), but
 /// never if a triangle around it would become distorted (quality 4√3·area / Σ edge² below
 /// 0.25, or its normal turns by more than 60°), never from a G1 boundary vertex, and never
-/// if a free vertex would end with a valence outside [kMinValence, kMaxValence].
+/// if a free vertex would end with a valence outside [rules.min_valence, rules.max_valence].
 /// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least half as many as
 /// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
 /// come back if that leaves nothing to coarsen or the mesh cannot be decimated that far).
@@ -65,18 +98,29 @@ Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
 /// on the unit sphere) and the multigrid cycles stall (residual 8e-2 after 20000
 /// iterations of the finest level, against converged after 1200 with the limits).
 ///
+/// With rules.coarsen_boundary (kNewtonDecimation) the G1 boundary is coarsened too: a
+/// boundary vertex may collapse along the region's border into its neighbour on the same
+/// border loop (never a fixed vertex inside the region, whose fan is closed, and no loop
+/// below kMinBoundaryLoop vertices), and level ℓ keeps about #region / 4^(levels−1−ℓ)
+/// vertices in all, without the floor above (fewer levels come back if a level would keep
+/// fewer than kMinLevelFree free vertices). The kept boundary vertices keep their
+/// positions and G1 normals, so every level is a coarser discretization of the same
+/// boundary-value problem, with edges of one length up to the border.
+///
 /// \param X       #region×3 positions to measure on (hierarchy_positions of the input)
 /// \param levels  requested number of levels, ≥ 1
+/// \param rules   kPaperDecimation or kNewtonDecimation
 ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
-                                       int levels);
+                                       int levels, const Decimation& rules = kPaperDecimation);
 
 /// Smoothing sweeps of hierarchy_positions.
 constexpr int kHierarchySmoothing = 10;
-/// Valence range of the free vertices that the collapses keep.
-constexpr int kMinValence = 5;
-constexpr int kMaxValence = 8;
-/// Free vertices a coarse level keeps at least, per G1 boundary vertex.
+/// Free vertices a coarse level keeps at least, per G1 boundary vertex (boundary locked).
 constexpr double kMinFreePerBoundary = 0.5;
+/// Vertices a border loop of G1 boundary vertices keeps at least (boundary coarsened).
+constexpr int kMinBoundaryLoop = 12;
+/// Free vertices a level keeps at least (boundary coarsened): a coarser one is not built.
+constexpr int kMinLevelFree = 16;
 
 /// The fairing region of one level: its free vertices (region-local ids below n_free)
 /// first, then its boundary vertices; `global` maps to region-local ids.
