@@ -40,8 +40,7 @@ ITERATION_ITEMS = (
     (
         "AUTO",
         "Auto",
-        "Newton's method up to 150,000 free vertices, falling back to the paper's iteration where it stalls; "
-        "the paper's iteration above",
+        "Newton's method, falling back to the paper's iteration where it stalls",
     ),
     (
         "NEWTON",

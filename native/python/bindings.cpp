@@ -293,26 +293,25 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
     per vertex. At convergence of the finest level tangential solves restore inner
     fairness (linearized with the turn of the tangent planes, so that repeated solves
-    converge quadratically; on the finest of several levels by GMRES on a two-grid
-    preconditioner with the next coarser level, without a factorization at the finest
-    size), repeated while one moves a vertex by more than 1e-3 mean neighbour distances,
+    converge quadratically; above the base level by GMRES on a two-grid preconditioner with
+    the next coarser level, without a factorization at the level's size), repeated while one moves a vertex by more than 1e-3 mean neighbour distances,
     at most 8 times (the steps go on where one raised the residual). A level stops when the
     residual has not halved in 20 steps; where a coarse level fails, the finest level is
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
-    "auto" (default): "newton" up to 150,000 free vertices, and where it stops unconverged
-    or fails, and above, "paper" from the start. The LU factors take memory (0.74-0.77 GiB peak
-    at 100,000 free vertices, growing faster than the vertex count). Measured in the
-    README (Speed): the disturbed 2000-, 13000- and 100000-vertex caps take 5, 4+2 and 8+3
-    Newton steps (base + finest level) against thousands of paper iterations (which do not
-    converge at 100000).
+    "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
+    start. The LU factors of the Newton steps take memory, growing faster than the vertex
+    count (peak 0.7 GiB at 100,000 free vertices, 7.4 GiB at 1,000,000). Measured in the
+    README (Speed): the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
+    3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
+    of paper iterations (which do not converge at 100000).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
 levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
     free vertices per level: 1 solves the whole region as one level; 0 (default) picks
-    them from the region. For "newton": as many as keep at least 1000 free vertices and 8
-    free vertices per G1 boundary vertex on the base level (the boundary is never
-    coarsened; coarser bases diverged); for "paper": one level up to 1000 free vertices and
+    them from the region. For "newton": as many as keep at least 700 free vertices on the
+    base level (its hierarchy coarsens the G1 boundary too, see progressive_mesh); for
+    "paper": one level up to 1000 free vertices and
     about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
     multigrid cycles on the coarser ones.
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;

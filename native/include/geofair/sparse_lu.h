@@ -62,7 +62,7 @@ class PatternLU {
   void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
     matrix_ = pattern;
     for (int c = 0; c < matrix_.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix_, c); it; ++it)
+      for (Matrix::InnerIterator it(matrix_, c); it; ++it)
         it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
     if (nested_dissection) lu_.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
     analyze_matrix();
@@ -100,8 +100,12 @@ class PatternLU {
                       matrix_.innerIndexPtr());
   }
 
-  Eigen::SparseMatrix<double> matrix_;
-  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu_;
+  // UMFPACK's long-index interface (umfpack_dl_*): with int indices its workspace is
+  // addressed in int units, and the factorization of the 1000000-vertex cap's finest Newton
+  // preconditioner failed for lack of them.
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
+  Matrix matrix_;
+  Eigen::UmfPackLU<Matrix> lu_;
   bool analyzed_ = false;
   bool factorized_ = false;
 };

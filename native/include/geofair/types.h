@@ -79,8 +79,7 @@ enum class OuterFairness {
 /// How the discrete equations (12) are solved. Both solve the same equations with the
 /// same discretization; they differ in speed and in the meshes they converge on.
 enum class Iteration {
-  Auto,    ///< Newton up to 150000 free vertices (the memory of its sparse LU factors);
-           ///< where it fails to converge, and above, the paper's iteration
+  Auto,    ///< Newton; where it fails to converge, the paper's iteration
   Newton,  ///< Newton's method on the normal offsets of all free vertices at once, level
            ///< by level on the progressive mesh (nested iteration, section 7.4; levels)
            ///< (Construction::run_newton, newton_step.h; beyond the paper)
@@ -115,9 +114,8 @@ struct FairingOptions {
   /// Conjugate-gradient iterations n of a global step (section 7.1).
   int cg_iterations = 10;
   /// Levels of the progressive-mesh multigrid (section 7.4): 1 = single level,
-  /// 0 = picked from the region (Newton: as many as keep 1000 free vertices and 8 per G1
-  /// boundary vertex on the base level; Paper: default_levels, one level up to 1000 free
-  /// vertices).
+  /// 0 = picked from the region (Newton: as many as keep 700 free vertices on the base
+  /// level, fairing.cpp; Paper: default_levels, one level up to 1000 free vertices).
   int levels = 0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
