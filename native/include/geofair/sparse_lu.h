@@ -37,6 +37,13 @@ constexpr int kThreadedBlasMin = 50000;
 /// with at least this many unknowns take METIS's nested dissection ordering.
 constexpr int kNestedDissectionMin = 50000;
 
+/// PatternLU factorizes systems of at least this many unknowns with UMFPACK's long-index
+/// interface (umfpack_dl_*): with int indices its workspace is addressed in int units, and
+/// the factorization of the 1000000-vertex cap's finest Newton preconditioner failed for
+/// lack of them. Below, int indices: on the 100000-vertex cap the long ones made the
+/// factorization 1.12 -> 1.48 s and a solve about 20% slower.
+constexpr int kWideIndexMin = 500000;
+
 /// The BLAS threads of a factorization of n unknowns (see BlasThreads).
 int factorization_blas_threads(int n);
 
@@ -60,54 +67,70 @@ class PatternLU {
   /// (AMD) against 0.78-0.98 s (METIS), numeric factorization 1.2-1.5 s against 0.9-1.2 s,
   /// a solve 51-57 ms against 40-53 ms.
   void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
-    matrix_ = pattern;
-    for (int c = 0; c < matrix_.outerSize(); ++c)
-      for (Matrix::InnerIterator it(matrix_, c); it; ++it)
-        it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-    if (nested_dissection) lu_.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
-    analyze_matrix();
+    wide_ = pattern.rows() >= kWideIndexMin;
+    wide_ ? wide_factors_.analyze(pattern, nested_dissection)
+          : narrow_factors_.analyze(pattern, nested_dissection);
   }
 
   /// Factorizes A; false if it is singular (then factorized() is false).
   bool factorize(const Eigen::SparseMatrix<double>& A) {
-    factorized_ = false;
-    // A new pattern (or the first) is analyzed anew.
-    if (analyzed_ && !same_pattern(A)) analyzed_ = false;
-    matrix_ = A;
-    if (!analyzed_) analyze_matrix();
+    wide_ = A.rows() >= kWideIndexMin;
     const BlasThreads threads(factorization_blas_threads(int(A.rows())));
-    lu_.factorize(matrix_);
-    factorized_ = lu_.info() == Eigen::Success;
-    return factorized_;
+    return wide_ ? wide_factors_.factorize(A) : narrow_factors_.factorize(A);
   }
-  bool factorized() const { return factorized_; }
+  bool factorized() const { return wide_ ? wide_factors_.factorized : narrow_factors_.factorized; }
   /// x with A x = b for the last factorized A (requires factorized()).
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return lu_.solve(b); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+    if (wide_) return wide_factors_.lu.solve(b);
+    return narrow_factors_.lu.solve(b);
+  }
 
  private:
-  // The symbolic analysis of matrix_'s pattern; solves without iterative refinement.
-  void analyze_matrix() {
-    lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
-    lu_.analyzePattern(matrix_);
-    analyzed_ = true;
-  }
-  bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
-    return A.rows() == matrix_.rows() && A.cols() == matrix_.cols() &&
-           A.nonZeros() == matrix_.nonZeros() && A.isCompressed() &&
-           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1,
-                      matrix_.outerIndexPtr()) &&
-           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(),
-                      matrix_.innerIndexPtr());
-  }
+  // UMFPACK with Index as its index type: int (umfpack_di_*) or SuiteSparse_long
+  // (umfpack_dl_*).
+  template <class Index>
+  struct Factors {
+    using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, Index>;
+    Matrix matrix;
+    Eigen::UmfPackLU<Matrix> lu;
+    bool analyzed = false, factorized = false;
 
-  // UMFPACK's long-index interface (umfpack_dl_*): with int indices its workspace is
-  // addressed in int units, and the factorization of the 1000000-vertex cap's finest Newton
-  // preconditioner failed for lack of them.
-  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
-  Matrix matrix_;
-  Eigen::UmfPackLU<Matrix> lu_;
-  bool analyzed_ = false;
-  bool factorized_ = false;
+    void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
+      matrix = pattern;
+      for (int c = 0; c < matrix.outerSize(); ++c)
+        for (typename Matrix::InnerIterator it(matrix, c); it; ++it)
+          it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+      if (nested_dissection) lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
+      analyze_matrix();
+    }
+    bool factorize(const Eigen::SparseMatrix<double>& A) {
+      factorized = false;
+      // A new pattern (or the first) is analyzed anew.
+      if (analyzed && !same_pattern(A)) analyzed = false;
+      matrix = A;
+      if (!analyzed) analyze_matrix();
+      lu.factorize(matrix);
+      factorized = lu.info() == Eigen::Success;
+      return factorized;
+    }
+    // The symbolic analysis of matrix's pattern; solves without iterative refinement.
+    void analyze_matrix() {
+      lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
+      lu.analyzePattern(matrix);
+      analyzed = true;
+    }
+    bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
+      return A.rows() == matrix.rows() && A.cols() == matrix.cols() &&
+             A.nonZeros() == matrix.nonZeros() && A.isCompressed() &&
+             std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1,
+                        matrix.outerIndexPtr()) &&
+             std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(),
+                        matrix.innerIndexPtr());
+    }
+  };
+  Factors<int> narrow_factors_;
+  Factors<SuiteSparse_long> wide_factors_;
+  bool wide_ = false;  // the factors in use: wide_factors_ (kWideIndexMin unknowns or more)
 };
 
 /// An Eigen iterative solver's preconditioner (the interface of Eigen's preconditioners)
