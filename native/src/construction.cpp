@@ -189,9 +189,10 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
         X.row(i) -= (0.5 * H_(i) * d.squaredNorm()) * N_.row(i);
         move = std::max(move, d.norm() / rings.mean_neighbour_distance(before, i));
       }
-      // Another polish (after the steps it needs) while this one still moved a vertex by
-      // more than kPolishedMove.
-      polished = move <= kPolishedMove || ++polishes >= kNewtonPolishes;
+      // Another polish (after the steps it needs) while the next would still move a vertex
+      // by more than kPolishedMove: the solves converge quadratically, so the next moves
+      // about kPolishContraction · move².
+      polished = kPolishContraction * move * move <= kPolishedMove || ++polishes >= kNewtonPolishes;
       residual = evaluate(X);
       best = residual, best_at = k;
       report.polish_seconds += laps.lap();

@@ -84,7 +84,8 @@ constexpr Decimation kNewtonDecimation{true, 4, 10, true};
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
 /// is collapsed shortest first (so the smallest edge length of the coarse mesh grows), but
 /// never if a triangle around it would become distorted (quality 4√3·area / Σ edge² below
-/// 0.25, or its normal turns by more than 60°), never from a G1 boundary vertex, and never
+/// 0.25, or its normal turns by more than 60°), never from a G1 boundary vertex (but see
+/// rules.coarsen_boundary below), and never
 /// if a free vertex would end with a valence outside [rules.min_valence, rules.max_valence].
 /// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least half as many as
 /// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
