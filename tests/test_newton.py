@@ -150,17 +150,20 @@ def test_unknown_iteration_is_rejected():
         geofair.fair(s.vertices, s.faces, s.free, iteration="multigrid")
 
 
-def test_newton_on_levels_reaches_the_single_level_solution():
-    # The finest level's tangential solves run on a two-grid preconditioner (coarse space:
-    # the next coarser level) instead of a factorization, from vertices that the
+@pytest.mark.parametrize("levels", [2, 3])
+def test_newton_on_levels_reaches_the_single_level_solution(levels):
+    # The hierarchy coarsens the G1 boundary too (three levels: a base of about 300 free
+    # vertices). The tangential solves above the base level run on a two-grid
+    # preconditioner (coarse space: the next coarser level) instead of a factorization,
+    # from vertices that the
     # prolongation left up to a mean edge length from inner fairness; they must reach the
     # single level's surface and vertices as close to inner fairness (with at most 4
     # polishes they did not: defect 1.30e-4 against 1.15e-4, surfaces 1.2e-5 · size apart).
     s = scenes.sphere_cap(n_free=4800, irregular=True, seed=3)
     v = s.disturbed(seed=4, amplitude=0.1)
     kw = dict(boundary_normals=s.normals, iteration="newton", tolerance=1e-5)
-    multi = geofair.fair(v, s.faces, s.free, levels=2, **kw)
+    multi = geofair.fair(v, s.faces, s.free, levels=levels, **kw)
     single = geofair.fair(v, s.faces, s.free, levels=1, **kw)
     assert multi.converged and single.converged
-    assert len(multi.iterations_per_level) == 2 and len(single.iterations_per_level) == 1
-    assert_same_solution(multi, single, s, "two levels", "one level", uniform=True)
+    assert len(multi.iterations_per_level) == levels and len(single.iterations_per_level) == 1
+    assert_same_solution(multi, single, s, f"{levels} levels", "one level", uniform=True)
