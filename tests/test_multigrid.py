@@ -222,7 +222,7 @@ def test_newton_hierarchy_coarsens_the_boundary_along_the_border(newton_hierarch
         assert len(np.unique(T)) - len(edges) + len(T) == 1
 
 
-def test_newton_hierarchy_removes_low_valences_and_does_not_fold(newton_hierarchy):
+def test_newton_hierarchy_keeps_valences_4_to_10_and_does_not_fold(newton_hierarchy):
     s, free, _, levels = newton_hierarchy
     for T in levels[:-1]:
         ids, valence = np.unique(T, return_counts=True)  # triangles = valence at a free vertex
@@ -230,3 +230,25 @@ def test_newton_hierarchy_removes_low_valences_and_does_not_fold(newton_hierarch
         assert v_free.min() >= 4 and v_free.max() <= 10, (v_free.min(), v_free.max())
         n = scenes.face_normals(s.vertices, T)
         assert (np.einsum("ij,ij->i", n, s.normals[T].sum(axis=1)) > 0).all()
+
+
+def test_newton_hierarchy_collapses_valence_3_first():
+    # 40 triangles of the cap split 1-to-3 at their centroid: 40 free vertices of valence 3.
+    # Collapsed first, none is left on the coarse levels (collapsed by edge length alone,
+    # 5 survived on the middle level, where they held the largest defects after the
+    # prolongation).
+    s = scenes.sphere_cap(n_free=2000, irregular=True, seed=1)
+    v = s.disturbed(seed=2, amplitude=0.1)
+    inner = np.flatnonzero(s.free[s.faces].all(axis=1))
+    split = np.random.default_rng(0).choice(inner, 40, replace=False)
+    centroids = np.arange(len(v), len(v) + len(split))
+    a, b, c = s.faces[split].T
+    faces = np.concatenate(
+        [np.delete(s.faces, split, axis=0)] + [np.column_stack([p, q, centroids]) for p, q in ((a, b), (b, c), (c, a))]
+    )
+    vertices = np.concatenate([v, v[s.faces[split]].mean(axis=1)])
+    free = np.concatenate([s.free, np.ones(len(split), bool)])
+    levels = geofair.progressive_mesh(vertices, faces, free, 3, coarsen_boundary=True)
+    for T, valence_3 in zip(levels, [0, 0, len(split)], strict=True):
+        ids, valence = np.unique(T, return_counts=True)
+        assert (valence[free[ids]] == 3).sum() == valence_3
