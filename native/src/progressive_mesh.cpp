@@ -63,14 +63,15 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
     return keeps_manifold(v0v1);
   }
 
-  // Region-local ids from n_free on are G1 boundary vertices.
+  // Region-local ids from n_free on are G1 boundary vertices; `rules` are those of
+  // build_progressive_mesh, read here and by the priority module.
   int n_free = 0;
-  bool low_valence_first = false;
+  Decimation rules;
   bool is_g1(VertexHandle v) const { return v.idx() >= n_free; }
   // The factor of the priorities of collapses from v0 (length_priority): 1e-4 for a free
   // vertex of valence below 5 if low valences go first, else 1.
   float priority_factor(VertexHandle v0) const {
-    return low_valence_first && !is_g1(v0) && valence(v0) < 5 ? 1e-4f : 1.0f;
+    return rules.low_valence_first && !is_g1(v0) && valence(v0) < 5 ? 1e-4f : 1.0f;
   }
 
   // DecimaterT::heap_vertex(v) weighs every half-edge out of v in turn, starting at
@@ -133,16 +134,13 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
 
   explicit ModFairingHierarchyT(MeshT& mesh) : Base(mesh, false), mesh_(mesh) {}
 
-  Decimation rules;
-
   float collapse_priority(const CollapseInfo& ci) override {
-    // A G1 boundary vertex (locked unless the boundary is coarsened) collapses only along
-    // the region's border (the decimater's own test: v1 on the border, one triangle at the
-    // edge) into a boundary vertex, while its border loop keeps kMinBoundaryLoop vertices;
-    // a fixed vertex inside the region (closed fan) never.
-    if (mesh_.is_g1(ci.v0) &&
-        !(mesh_.is_boundary(ci.v0) && mesh_.is_g1(ci.v1) &&
-          mesh_.is_boundary(mesh_.edge_handle(ci.v0v1)) && long_loop(ci.v0)))
+    const Decimation& rules = mesh_.rules;
+    // A G1 boundary vertex (locked unless the boundary is coarsened) collapses only while
+    // its border loop keeps kMinBoundaryLoop vertices; a fixed vertex inside the region
+    // (closed fan) never. The decimater itself collapses a vertex on the border only into
+    // a neighbour on the border along a border edge (free vertices are never on it).
+    if (mesh_.is_g1(ci.v0) && !(mesh_.is_boundary(ci.v0) && long_loop(ci.v0)))
       return float(Base::ILLEGAL_COLLAPSE);
     // Valences after the collapse: vl and vr lose an edge, v1 takes over v0's. G1 boundary
     // vertices keep whatever fan the region gives them.
@@ -241,7 +239,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
                                        int levels, const Decimation& rules) {
   Mesh mesh;
   mesh.n_free = region.n_free;
-  mesh.low_valence_first = rules.low_valence_first;
+  mesh.rules = rules;
   mesh.request_vertex_status();
   mesh.request_edge_status();
   mesh.request_face_status();
@@ -256,7 +254,6 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
   typename ModFairingHierarchyT<Mesh>::Handle module;
   decimater.add(module);
-  decimater.module(module).rules = rules;
   decimater.initialize();
   VertexSplits& collapses = decimater.module(module).collapses;
 
@@ -266,6 +263,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   const int n_boundary = region.n - region.n_free;
   const double n_free_min = kMinFreePerBoundary * n_boundary;
   double previous = region.n_free;
+  int free_present = region.n_free;  // free vertices not collapsed yet
   for (int level = levels - 2; level >= 0; --level) {
     const double shrink = std::pow(4.0, levels - 1 - level);
     std::size_t target;  // vertices of the level
@@ -296,18 +294,13 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
                          collapses.ring.begin() + collapses.offset[c + 1]);
       splits.offset.push_back(int(splits.ring.size()));
     }
-    Triangles level_triangles = snapshot(mesh);
-    if (rules.coarsen_boundary) {
-      // With the boundary coarsened, too few free vertices may remain: no such level (and
-      // none coarser).
-      std::vector<std::uint8_t> seen(region.n_free, 0);
-      int n_free = 0;
-      for (Eigen::Index k = 0; k < level_triangles.size(); ++k)
-        if (const int v = level_triangles.data()[k]; v < region.n_free && !seen[v]) seen[v] = 1, ++n_free;
-      if (n_free < kMinLevelFree) break;
-    }
+    free_present -= int(std::count_if(collapses.vertex.begin(), collapses.vertex.end(),
+                                      [&](int v) { return v < region.n_free; }));
+    // With the boundary coarsened, too few free vertices may remain: no such level (and
+    // none coarser).
+    if (rules.coarsen_boundary && free_present < kMinLevelFree) break;
     splits_fine_to_coarse.push_back(std::move(splits));
-    fine_to_coarse.push_back(std::move(level_triangles));
+    fine_to_coarse.push_back(snapshot(mesh));
   }
   ProgressiveMesh pm;
   pm.triangles.assign(fine_to_coarse.rbegin(), fine_to_coarse.rend());
