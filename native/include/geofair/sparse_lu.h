@@ -34,8 +34,16 @@ class BlasThreads {
 /// threads (BlasThreads).
 constexpr int kThreadedBlasMin = 50000;
 /// Newton preconditioners analyzed ahead (PatternLU::analyze, Construction::prepare_newton)
-/// with at least this many unknowns take METIS's nested dissection ordering.
-constexpr int kNestedDissectionMin = 50000;
+/// with at least this many unknowns take METIS's nested dissection ordering. Only the
+/// finest level's is analyzed ahead, on the second thread during the decimation, where the
+/// ordering's cost is hidden. Measured, finest Newton steps and whole fair() call against
+/// AMD (medians of interleaved runs): 13000-vertex cap 0.27-0.32 -> 0.22-0.27 s, 0.744 ->
+/// 0.682 s (9 pairs); 30000: 0.81-1.07 -> 0.74-0.81 s, 2.06 -> 1.99 s (5 pairs); 5000: no
+/// difference (0.309 against 0.312 s, 7 pairs). The coarse levels keep AMD: analyzed on
+/// the critical path, METIS cost more than it saved (100000-vertex cap's 25000-vertex
+/// level: +0.23-0.30 s of ordering, -0.1 s of Newton steps; 1000000's 250000: +3.9 s,
+/// -1.4 s).
+constexpr int kNestedDissectionMin = 10000;
 
 /// PatternLU factorizes systems of at least this many unknowns with UMFPACK's long-index
 /// interface (umfpack_dl_*): with int indices its workspace is addressed in int units, and
