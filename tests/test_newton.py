@@ -155,7 +155,8 @@ def test_newton_on_levels_reaches_the_single_level_solution(levels):
     # The hierarchy coarsens the G1 boundary too (three levels: a base of about 300 free
     # vertices). The tangential solves above the base level run on a two-grid
     # preconditioner (coarse space: the next coarser level) instead of a factorization,
-    # from vertices that the
+    # on the finest of three levels a three-grid one (the coarse correction itself a
+    # two-grid cycle around the base level's LU), from vertices that the
     # prolongation left up to a mean edge length from inner fairness; they must reach the
     # single level's surface and vertices as close to inner fairness (with at most 4
     # polishes they did not: defect 1.30e-4 against 1.15e-4, surfaces 1.2e-5 · size apart).

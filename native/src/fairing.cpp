@@ -220,6 +220,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
   LevelSolution solution(X0);
   std::deque<FairingRegion> regions;  // the constructions refer to them
   InnerFairnessWeights coarser_lambda;  // the inner fairness weights of level l - 1
+  CoarseSpace coarser_space;  // the coarse space of level l - 1 (from level l - 2), if any
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
     const bool finest = l + 1 == n_levels;
@@ -244,9 +245,12 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
         finest ? finest_construction.get()
                : std::make_unique<Construction>(lr, std::move(coarse_lambda), options, L);
     Construction& construction = *level_construction;
-    if (l > 0)
-      construction.set_coarse_space(
-          coarse_space(lr, level_splits, regions[l - 1], coarser_lambda));
+    if (l > 0) {
+      CoarseSpace coarse = coarse_space(lr, level_splits, regions[l - 1], coarser_lambda);
+      CoarseSpace next = coarse;  // the next level's coarser space
+      construction.set_coarse_space(std::move(coarse), std::move(coarser_space));
+      coarser_space = std::move(next);
+    }
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());
     const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
     const int budget = finest ? options.max_iterations

@@ -244,8 +244,9 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
 
 bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
                                       Eigen::VectorXd& u) {
-  const int nf = n_free_, nc = int(coarse_.vertex.size());
-  if (!lagged || !coarse_lu_.factorized()) {
+  const int nc = int(coarse_.vertex.size());
+  const bool three_grid = !coarser_.vertex.empty();
+  if (!lagged || !(three_grid ? coarser_lu_.factorized() : coarse_lu_.factorized())) {
     // Block (a, b) of T_aᵀ T_b for vertices a, b with tangent bases of the last assemble().
     auto add_block = [&](std::vector<Eigen::Triplet<double>>& entries, int row, int col, int a,
                          int b, double w) {
@@ -254,81 +255,125 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
       entries.emplace_back(2 * row + 1, 2 * col, w * t2_[a].dot(t1_[b]));
       entries.emplace_back(2 * row + 1, 2 * col + 1, w * t2_[a].dot(t2_[b]));
     };
-    // P̃: block (i, c) = P_ic T_iᵀ T_c, the coarse tangential move of column c's vertex
-    // carried over into the tangent plane of i.
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(4 * std::size_t(coarse_.P.nonZeros()));
-    for (int i = 0; i < nf; ++i)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(coarse_.P, i); it; ++it)
-        add_block(entries, i, int(it.col()), i, coarse_.vertex[it.col()], it.value());
-    coarse_P_.resize(2 * nf, 2 * nc);
-    coarse_P_.setFromTriplets(entries.begin(), entries.end());
-    // A_c: the system of assemble() with fixed tangent planes on the coarser level (its
-    // vertices' tangent bases here; G1 boundary neighbours do not move).
-    const InnerFairnessWeights& lambda = coarse_.lambda;
-    entries.clear();
-    entries.reserve(4 * (std::size_t(nc) + lambda.neighbour.size()));
-    for (int c = 0; c < nc; ++c) {
-      entries.emplace_back(2 * c, 2 * c, 1.0);
-      entries.emplace_back(2 * c + 1, 2 * c + 1, 1.0);
-      for (int k = lambda.offset[c]; k < lambda.offset[c + 1]; ++k)
-        if (const int d = lambda.neighbour[k]; d >= 0)
-          add_block(entries, c, d, coarse_.vertex[c], coarse_.vertex[d], -lambda.weight[k]);
+    // P̃ from the rows' vertices `row_vertex` (this level's ids) to the columns of `space`
+    // (vertices space.vertex[c], mapped to this level's ids by `column_vertex`): block
+    // (i, c) = P_ic T_iᵀ T_c, the coarse tangential move of column c's vertex carried over
+    // into the tangent plane of row i's.
+    auto interpolation = [&](const CoarseSpace& space, auto row_vertex, auto column_vertex) {
+      std::vector<Eigen::Triplet<double>> entries;
+      entries.reserve(4 * std::size_t(space.P.nonZeros()));
+      for (int i = 0; i < space.P.rows(); ++i)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(space.P, i); it; ++it)
+          add_block(entries, i, int(it.col()), row_vertex(i), column_vertex(int(it.col())),
+                    it.value());
+      Eigen::SparseMatrix<double> P(2 * space.P.rows(), 2 * space.P.cols());
+      P.setFromTriplets(entries.begin(), entries.end());
+      return P;
+    };
+    // The system of assemble() with fixed tangent planes on a coarser level with weights
+    // `lambda` (columns as unknowns; G1 boundary neighbours do not move), in the tangent
+    // bases here of the columns' vertices `vertex(c)`.
+    auto coarse_system = [&](const InnerFairnessWeights& lambda, int n, auto vertex) {
+      std::vector<Eigen::Triplet<double>> entries;
+      entries.reserve(4 * (std::size_t(n) + lambda.neighbour.size()));
+      for (int c = 0; c < n; ++c) {
+        entries.emplace_back(2 * c, 2 * c, 1.0);
+        entries.emplace_back(2 * c + 1, 2 * c + 1, 1.0);
+        for (int k = lambda.offset[c]; k < lambda.offset[c + 1]; ++k)
+          if (const int d = lambda.neighbour[k]; d >= 0)
+            add_block(entries, c, d, vertex(c), vertex(d), -lambda.weight[k]);
+      }
+      Eigen::SparseMatrix<double> A(2 * n, 2 * n);
+      A.setFromTriplets(entries.begin(), entries.end());
+      A.makeCompressed();
+      return A;
+    };
+    auto coarse_vertex = [&](int c) { return coarse_.vertex[c]; };
+    coarse_P_ = interpolation(coarse_, [](int i) { return i; }, coarse_vertex);
+    Eigen::SparseMatrix<double> coarse_A = coarse_system(coarse_.lambda, nc, coarse_vertex);
+    if (three_grid) {
+      auto coarser_vertex = [&](int c) { return coarse_.vertex[coarser_.vertex[c]]; };
+      coarser_P_ = interpolation(coarser_, coarse_vertex, coarser_vertex);
+      coarse_rows_ = coarse_A;
+      if (!coarser_lu_.factorize(
+              coarse_system(coarser_.lambda, int(coarser_.vertex.size()), coarser_vertex)))
+        return false;
+    } else if (!coarse_lu_.factorize(coarse_A)) {
+      return false;
     }
-    Eigen::SparseMatrix<double> coarse_A(2 * nc, 2 * nc);
-    coarse_A.setFromTriplets(entries.begin(), entries.end());
-    coarse_A.makeCompressed();
-    if (!coarse_lu_.factorize(coarse_A)) return false;
   }
   two_grid_.preconditioner().solver = this;
+  two_grid_.preconditioner().three_grid = three_grid;
   set_up_gmres(two_grid_, A_, kTwoGridIterations, kTwoGridTolerance);
   u = two_grid_.solve(rhs);
   return two_grid_.info() == Eigen::Success && u.allFinite();
 }
 
-Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const {
-  const auto& A = solver->A_;
+namespace {
+
+// One hybrid Gauss–Seidel sweep on A x = b, forward or backward: Gauss–Seidel within each of
+// kTwoGridBlocks blocks of rows (one above kParallelMin unknowns), which read the other
+// blocks' values of the start of the sweep. The blocks are fixed, so the result does not
+// depend on the threads that sweep them.
+void gauss_seidel_sweep(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
+                        const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) {
   const int n = int(A.rows());
   const double* value = A.valuePtr();
   const int* column = A.innerIndexPtr();
   const int* outer = A.outerIndexPtr();
-  // Hybrid Gauss–Seidel on A x = b: Gauss–Seidel within each of kTwoGridBlocks blocks of
-  // rows, which read the other blocks' values of the start of the sweep (`start`). The
-  // blocks are fixed, so the result does not depend on the threads that sweep them.
   const int blocks = n > kParallelMin ? kTwoGridBlocks : 1;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), start;
   // First row of block k: whole 2×2 blocks (even boundaries) to each block of rows.
   auto first_row = [&](int k) {
     return k == blocks ? n : 2 * int(std::int64_t(n / 2) * k / blocks);
   };
-  auto sweep = [&](bool forward) {
-    if (blocks > 1) start = x;  // one block reads only its own rows
+  Eigen::VectorXd start;
+  if (blocks > 1) start = x;  // one block reads only its own rows
 #pragma omp parallel for schedule(static, 1) if (blocks > 1)
-    for (int block = 0; block < blocks; ++block) {
-      const int lo = first_row(block), hi = first_row(block + 1);
-      auto relax_row = [&](int r) {
-        double sum = b(r), diagonal = 1.0;
-        for (int p = outer[r]; p < outer[r + 1]; ++p) {
-          const int c = column[p];
-          if (c == r)
-            diagonal = value[p];
-          else
-            sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
-        }
-        x(r) = sum / diagonal;
-      };
-      if (forward)
-        for (int r = lo; r < hi; ++r) relax_row(r);
-      else
-        for (int r = hi; r-- > lo;) relax_row(r);
-    }
-  };
-  for (int s = 0; s < kTwoGridSweeps; ++s) sweep(true);
+  for (int block = 0; block < blocks; ++block) {
+    const int lo = first_row(block), hi = first_row(block + 1);
+    auto relax_row = [&](int r) {
+      double sum = b(r), diagonal = 1.0;
+      for (int p = outer[r]; p < outer[r + 1]; ++p) {
+        const int c = column[p];
+        if (c == r)
+          diagonal = value[p];
+        else
+          sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
+      }
+      x(r) = sum / diagonal;
+    };
+    if (forward)
+      for (int r = lo; r < hi; ++r) relax_row(r);
+    else
+      for (int r = hi; r-- > lo;) relax_row(r);
+  }
+}
+
+// x ≈ A⁻¹ b by kTwoGridSweeps Gauss–Seidel sweeps on A, forward, then the correction
+// P coarse⁻¹ Pᵀ of the residual, then as many sweeps backward.
+template <class CoarseSolve>
+Eigen::VectorXd two_grid_cycle(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
+                               const Eigen::SparseMatrix<double>& P, const Eigen::VectorXd& b,
+                               const CoarseSolve& coarse_solve) {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
+  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, true);
   const Eigen::VectorXd residual = b - A * x;
-  const Eigen::VectorXd coarse = solver->coarse_P_.transpose() * residual;
-  x += solver->coarse_P_ * solver->coarse_lu_.solve(coarse);
-  for (int s = 0; s < kTwoGridSweeps; ++s) sweep(false);
+  x += P * coarse_solve(Eigen::VectorXd(P.transpose() * residual));
+  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, false);
   return x;
+}
+
+}  // namespace
+
+Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const {
+  const TangentialSolver& s = *solver;
+  if (!three_grid)
+    return two_grid_cycle(s.A_, s.coarse_P_, b,
+                          [&](const Eigen::VectorXd& r) { return s.coarse_lu_.solve(r); });
+  return two_grid_cycle(s.A_, s.coarse_P_, b, [&](const Eigen::VectorXd& r) {
+    return two_grid_cycle(s.coarse_rows_, s.coarser_P_, r,
+                          [&](const Eigen::VectorXd& rc) { return s.coarser_lu_.solve(rc); });
+  });
 }
 
 }  // namespace geofair

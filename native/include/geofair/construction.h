@@ -104,8 +104,8 @@ class Construction {
   /// The next coarser level of a progressive mesh as the coarse space of the tangential
   /// solves (TangentialSolver::set_coarse_space): the polishes of run_newton then need no
   /// factorization at this level's size.
-  void set_coarse_space(CoarseSpace coarse) {
-    tangential_solver_.set_coarse_space(std::move(coarse));
+  void set_coarse_space(CoarseSpace coarse, CoarseSpace coarser = {}) {
+    tangential_solver_.set_coarse_space(std::move(coarse), std::move(coarser));
   }
 
   /// The defects d_i = Σ_j w_ij (H_i − H_j) (#V_I, 1/length) of the positions last evaluated.

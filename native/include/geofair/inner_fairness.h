@@ -209,7 +209,20 @@ class TangentialSolver {
   /// operator 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c is factorized at the first relax
   /// and, with `lagged`, kept for the next ones. If GMRES does not converge in
   /// kTwoGridIterations, the system is factorized.
-  void set_coarse_space(CoarseSpace coarse) { coarse_ = std::move(coarse); }
+  ///
+  /// `coarser`: the coarse space of the coarser level itself (its rows the columns of
+  /// `coarse`, its `vertex` column ids of `coarse`), or empty. With it the coarse-grid
+  /// correction is not A_c's LU but a cycle of the same kind on A_c around the LU of the
+  /// next coarser level's system (in the tangent bases here): a three-grid cycle, which
+  /// factorizes a system 4 times smaller. Measured (interleaved runs of the same build with
+  /// and without): the same 5 GMRES iterations per solve on the 100000-vertex cap's finest
+  /// level, its relaxations 1.17 -> 0.82 s and polish 0.42 -> 0.35 s; 1000000-vertex cap:
+  /// finest relaxations 20-25 -> 17 s (no factorization of 500000 unknowns), peak memory
+  /// 7.48 -> 7.03 GiB; 13000: 0.12 -> 0.09 s (medians of 5).
+  void set_coarse_space(CoarseSpace coarse, CoarseSpace coarser = {}) {
+    coarse_ = std::move(coarse);
+    coarser_ = std::move(coarser);
+  }
 
  private:
   // Fills A_ at the tangent planes of N and returns the right-hand side.
@@ -230,9 +243,11 @@ class TangentialSolver {
   // the two-grid preconditioner; false if it did not converge.
   bool solve_two_grid(const Eigen::VectorXd& rhs, bool lagged, Eigen::VectorXd& u);
 
-  // Two-grid cycle on A_ (see set_coarse_space), as an Eigen preconditioner.
+  // Two-grid cycle on A_ (see set_coarse_space), as an Eigen preconditioner; with
+  // three_grid the coarse correction is itself a two-grid cycle.
   struct TwoGrid {
     const TangentialSolver* solver = nullptr;
+    bool three_grid = false;
     template <class M> TwoGrid& analyzePattern(const M&) { return *this; }
     template <class M> TwoGrid& factorize(const M&) { return *this; }
     template <class M> TwoGrid& compute(const M&) { return *this; }
@@ -242,9 +257,13 @@ class TangentialSolver {
 
   PatternLU direct_;
   Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, LaggedFactorization> lagged_;
-  CoarseSpace coarse_;
+  CoarseSpace coarse_, coarser_;
   Eigen::SparseMatrix<double> coarse_P_;  // P̃ of the last coarse factorization
   PatternLU coarse_lu_;
+  // The three-grid cycle's: A_c by rows, P̃ from the coarser level, that level's LU.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> coarse_rows_;
+  Eigen::SparseMatrix<double> coarser_P_;
+  PatternLU coarser_lu_;
   Eigen::GMRES<Eigen::SparseMatrix<double, Eigen::RowMajor>, TwoGrid> two_grid_;
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::IdentityPreconditioner>
       solver_;
