@@ -301,7 +301,7 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
     start. The LU factors of the Newton steps take memory, growing faster than the vertex
-    count (peak 0.7 GiB at 100,000 free vertices, 7.4 GiB at 1,000,000). Measured in the
+    count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
     README (Speed): the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
     3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
     of paper iterations (which do not converge at 100000).
