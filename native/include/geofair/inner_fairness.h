@@ -218,7 +218,7 @@ class TangentialSolver {
   /// and without): the same 5 GMRES iterations per solve on the 100000-vertex cap's finest
   /// level, its relaxations 1.17 -> 0.82 s and polish 0.42 -> 0.35 s; 1000000-vertex cap:
   /// finest relaxations 20-25 -> 17 s (no factorization of 500000 unknowns), peak memory
-  /// 7.48 -> 7.03 GiB; 13000: 0.12 -> 0.09 s (medians of 5).
+  /// 7.48 -> 7.03 GiB; 13000: finest relaxations 0.12 -> 0.09 s (medians of 5).
   void set_coarse_space(CoarseSpace coarse, CoarseSpace coarser = {}) {
     coarse_ = std::move(coarse);
     coarser_ = std::move(coarser);
