@@ -294,8 +294,10 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     per vertex. At convergence of the finest level tangential solves restore inner
     fairness (linearized with the turn of the tangent planes, so that repeated solves
     converge quadratically; above the base level by GMRES on a two-grid preconditioner with
-    the next coarser level, without a factorization at the level's size), repeated while
-    one moves a vertex by more than 1e-3 mean neighbour distances, at most 8 times (the steps go on where one raised the residual). A level stops when the
+    the next coarser level, three-grid with the next two, without a factorization at the
+    level's size), repeated while the next one would move a vertex by more than 1e-3 mean
+    neighbour distances (predicted from the last move by the quadratic convergence), at
+    most 8 times (the steps go on where one raised the residual). A level stops when the
     residual has not halved in 20 steps; where a coarse level fails, the finest level is
     solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).

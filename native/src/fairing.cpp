@@ -247,7 +247,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     Construction& construction = *level_construction;
     if (l > 0) {
       CoarseSpace coarse = coarse_space(lr, level_splits, regions[l - 1], coarser_lambda);
-      CoarseSpace next = coarse;  // the next level's coarser space
+      CoarseSpace next = finest ? CoarseSpace{} : coarse;  // the next level's coarser space
       construction.set_coarse_space(std::move(coarse), std::move(coarser_space));
       coarser_space = std::move(next);
     }

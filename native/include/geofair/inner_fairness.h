@@ -206,8 +206,9 @@ class TangentialSolver {
   /// here: the operator rediscretized on the coarse mesh, 1-ring sparse, rather than the
   /// Galerkin product P̃ᵀ A P̃, whose stencil is wider. Measured on the 100000-vertex cap
   /// (49992 coarse unknowns): the same GMRES iterations per solve (6, 7, 7, 6 to 1e-4),
-  /// operator 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c is factorized at the first relax
-  /// and, with `lagged`, kept for the next ones. If GMRES does not converge in
+  /// operator 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c (with `coarser` below: the next
+  /// coarser system) is factorized at the first relax and, with `lagged`, kept for the
+  /// next ones. If GMRES does not converge in
   /// kTwoGridIterations, the system is factorized.
   ///
   /// `coarser`: the coarse space of the coarser level itself (its rows the columns of
