@@ -2,7 +2,8 @@
 
 A legacy add-on (``bl_info``, Blender 3.4 to 4.1) and an extension
 (``blender_manifest.toml``, Blender 4.2+) from the same folder: only relative
-imports, and the compiled module ``geofair`` is found inside the package.
+imports, and the compiled module ``geofair`` is found inside the package (legacy zip)
+or installed from the extension's wheel (see ``native.py``).
 
 For scripts: :func:`fair_object` (see ``examples/fair_object.py``).
 """
@@ -10,7 +11,7 @@ For scripts: :func:`fair_object` (see ``examples/fair_object.py``).
 bl_info = {
     "name": "Geometric Fairing",
     "author": "geofair",
-    "version": (0, 2, 0),
+    "version": (0, 0, 0),  # the build writes pyproject.toml's version here (cmake/stamp_version.cmake)
     "blender": (3, 4, 0),
     "location": "View3D > Sidebar > Fairing (Edit Mode); Edit Mode > Mesh > Geometric Fairing",
     "description": "Fair the selected faces: intrinsic fairing Δ_B H = 0 with a G1 boundary",

@@ -192,7 +192,7 @@ PYBIND11_MODULE(geofair, m) {
       "Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary conditions\n"
       "(Schneider & Kobbelt, Geometric fairing of irregular meshes for free-form surface\n"
       "design, CAGD 18, 2001).";
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = GEOFAIR_VERSION;  // pyproject.toml's, through CMake
   py::register_exception<InvalidInputError>(m, "InvalidInputError", PyExc_ValueError);
   py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError);
 
