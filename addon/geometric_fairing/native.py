@@ -1,8 +1,10 @@
-"""The compiled module ``geofair``, found inside this package, and a clear message when it cannot be loaded.
+"""The compiled module ``geofair``, in this package or from the wheel, and a clear message when it cannot load.
 
-The build puts ``geofair.cpython-3XY-<platform>.so`` (or ``.pyd``) next to this
-file. A module built for another Python than Blender's does not import; the
-message then names both versions instead of Python's "No module named".
+The legacy zip (build/geometric_fairing.zip) puts ``geofair.cpython-3XY-<platform>.so``
+(or ``.pyd``) next to this file. The extension (scripts/build_extension.sh) has none here:
+Blender 4.2+ installs the wheel its manifest lists into the extensions' site-packages,
+and ``import geofair`` finds it there. A module built for another Python than Blender's
+does not import; the message then names both versions instead of Python's "No module named".
 No bpy here.
 """
 
@@ -38,7 +40,8 @@ def import_error_message(error, folder=PACKAGE_DIR, version=None):
     files = module_files(folder)
     if not files:
         return (
-            f"The compiled module 'geofair' is missing from the add-on folder {folder}: build the project "
+            f"The compiled module 'geofair' is missing from the add-on folder {folder} and no geofair wheel is "
+            f"installed: install the extension zip (scripts/build_extension.sh) in Blender 4.2+, or build the project "
             f"(cmake --build build) and install build/geometric_fairing.zip ({error})"
         )
     built_for = {python_tag(name) for name in files} - {None}
@@ -60,6 +63,8 @@ def load():
     if not __package__:  # loaded as a lone file (tests of the functions above)
         return None, "native.py is not part of the geometric_fairing package"
     try:
+        if not module_files():  # the extension: the module comes from its wheel
+            return importlib.import_module("geofair"), None
         return importlib.import_module(".geofair", __package__), None
     except ImportError as error:
         # pybind11 registers its types once per process: a second copy of the module (the add-on

@@ -1,0 +1,90 @@
+"""Build the Blender extension zip with Blender's own ``extension build`` and validate it.
+
+    python3 scripts/build_extension.py [--wheel dist/geofair-*.whl] [--out dist]
+
+Stages build/extension/geometric_fairing/: the add-on's Python files and its
+blender_manifest.toml as the CMake build stamped them (build/addon/geometric_fairing/, so
+``cmake --build build`` first), without the compiled module and the OpenMesh libraries,
+plus the self-contained wheel (scripts/build_wheel.sh) in wheels/, listed in the manifest
+as ``wheels = [...]``. Then runs what ``blender --command extension build --split-platforms``
+and ``... validate`` run, Blender's bl_pkg command line, here through the bpy module from
+PyPI (no Blender binary of 4.2+ needed), and writes
+dist/geometric_fairing-<version>-linux_x64.zip. Blender 4.2+ installs it with
+``blender --command extension install-file -r user_default -e <zip>`` or Preferences ›
+Get Extensions › Install from Disk, and installs the wheel for the add-on.
+"""
+
+import argparse
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
+
+# Runs Blender's `blender --command extension ARGS` handler inside the bpy module.
+BLENDER_COMMAND = """
+import sys
+import bpy
+from bl_pkg import bl_extension_cli
+sys.exit(bl_extension_cli.cli_extension_handler(sys.argv[1:]))
+"""
+
+
+def blender_extension_command(args, python=sys.executable):
+    """``blender --command extension *args`` through the bpy module of ``python``; returns its output."""
+    completed = subprocess.run([python, "-c", BLENDER_COMMAND, *map(str, args)], capture_output=True, text=True)
+    output = completed.stdout + completed.stderr
+    if completed.returncode != 0:
+        raise SystemExit(f"extension {' '.join(map(str, args))} failed ({completed.returncode}):\n{output}")
+    return output
+
+
+def stage(addon, wheel, folder):
+    """Copy the add-on without compiled files and the wheel to ``folder``; list the wheel in its manifest."""
+    shutil.rmtree(folder, ignore_errors=True)
+    (folder / "wheels").mkdir(parents=True)
+    for file in sorted(addon.iterdir()):
+        if file.is_file() and file.suffix in (".py", ".toml"):
+            shutil.copy(file, folder / file.name)
+    shutil.copy(wheel, folder / "wheels" / wheel.name)
+    manifest = folder / "blender_manifest.toml"
+    text = manifest.read_text()
+    assert tomllib.loads(text)["version"] == VERSION, "build/addon is stale: cmake --build build"
+    # A top-level key: before the first table ([permissions]).
+    first_table = re.search(r"^\[", text, re.MULTILINE).start()
+    text = f'{text[:first_table]}wheels = ["./wheels/{wheel.name}"]\n\n{text[first_table:]}'
+    manifest.write_text(text)
+    assert tomllib.loads(text)["wheels"] == [f"./wheels/{wheel.name}"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--wheel", type=pathlib.Path, help="default: the one dist/geofair-<version>-*.whl")
+    parser.add_argument("--addon", type=pathlib.Path, default=REPO / "build" / "addon" / "geometric_fairing")
+    parser.add_argument("--out", type=pathlib.Path, default=REPO / "dist")
+    args = parser.parse_args()
+    wheel = args.wheel
+    if wheel is None:
+        wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-*manylinux*.whl"))
+        if len(wheels) != 1:
+            raise SystemExit(
+                f"expected one dist/geofair-{VERSION}-*manylinux*.whl, found {wheels}: scripts/build_wheel.sh"
+            )
+        (wheel,) = wheels
+    folder = REPO / "build" / "extension" / "geometric_fairing"
+    stage(args.addon, wheel.resolve(), folder)
+    args.out.mkdir(parents=True, exist_ok=True)
+    archive = args.out.resolve() / f"geometric_fairing-{VERSION}-linux_x64.zip"
+    archive.unlink(missing_ok=True)
+    print(blender_extension_command(["build", "--split-platforms", "--source-dir", folder, "--output-dir", args.out]))
+    print(blender_extension_command(["validate", archive]))
+    assert archive.is_file(), archive
+    print(f"wrote {archive}")
+
+
+if __name__ == "__main__":
+    main()

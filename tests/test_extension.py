@@ -1,0 +1,152 @@
+"""The Blender extension zip (scripts/build_extension.py) in bpy 4.5 and bpy 5.0.
+
+- the zip is built by Blender's own ``extension build`` from the built add-on and the
+  repaired wheel (dist/), and ``extension validate`` of bpy 4.5 and of bpy 5.0 accepts it;
+  it holds the wheel byte for byte, no compiled module of its own, and the manifest's
+  version, licence, copyright, platform and permissions;
+- tests/blender/check_extension.py installs it into a fresh user folder of bpy 4.5 (this
+  Python's) and of bpy 5.0 (its own venv, ``$XDG_CACHE_HOME/geofair/bpy5-venv`` made by
+  scripts/setup.sh, or GEOFAIR_BPY5_PYTHON), and the operator fairs the UV sphere's cap with
+  geofair from the wheel; the faired positions must be those the build tree's module
+  computes for the same region and options, and the cap must have changed.
+
+A missing wheel, bpy or bpy 5.0 venv is skipped locally and fails when CI is set.
+"""
+
+import importlib.util
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import tomllib
+import zipfile
+
+import numpy as np
+import pytest
+
+import geofair
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
+VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
+CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache")
+BPY5_PYTHON = pathlib.Path(os.environ.get("GEOFAIR_BPY5_PYTHON", CACHE / "geofair" / "bpy5-venv" / "bin" / "python"))
+sys.path.insert(0, str(REPO / "scripts"))
+from build_extension import BLENDER_COMMAND  # noqa: E402
+
+
+def _unavailable(reason):
+    if os.environ.get("CI"):
+        pytest.fail(f"{reason} (CI is set, so this is not skipped)")
+    pytest.skip(reason)
+
+
+def bpy_python(variant):
+    if variant == "bpy-4.5":
+        if importlib.util.find_spec("bpy") is None:
+            _unavailable(f"the bpy module is not installed for {sys.executable}")
+        return sys.executable
+    if not BPY5_PYTHON.is_file():
+        _unavailable(f"no bpy 5.0 venv at {BPY5_PYTHON}: scripts/setup.sh makes it")
+    return str(BPY5_PYTHON)
+
+
+def run(command, **kwargs):
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "GEOFAIR_BUILD")}
+    env.update(kwargs.pop("env", {}))
+    completed = subprocess.run(command, capture_output=True, text=True, env=env, timeout=300, **kwargs)
+    output = completed.stdout + completed.stderr
+    assert completed.returncode == 0, f"{' '.join(map(str, command))} exited {completed.returncode}:\n{output}"
+    return output
+
+
+@pytest.fixture(scope="module")
+def extension_zip(tmp_path_factory):
+    """The zip that scripts/build_extension.py builds (with bpy 4.5) from build/addon and dist/'s wheel."""
+    wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-*manylinux*.whl"))
+    if not wheels:
+        _unavailable("no repaired wheel in dist/: run scripts/build_wheel.sh")
+    if not (BUILD / "addon" / "geometric_fairing" / "blender_manifest.toml").is_file():
+        _unavailable(f"no built add-on in {BUILD / 'addon'}")
+    bpy_python("bpy-4.5")
+    out = tmp_path_factory.mktemp("extension")
+    run(
+        [
+            sys.executable,
+            REPO / "scripts" / "build_extension.py",
+            "--out",
+            out,
+            "--addon",
+            BUILD / "addon" / "geometric_fairing",
+        ]
+    )
+    archive = out / f"geometric_fairing-{VERSION}-linux_x64.zip"
+    assert archive.is_file(), list(out.iterdir())
+    return archive, wheels[0]
+
+
+def test_the_zip_holds_the_wheel_and_a_complete_manifest(extension_zip):
+    archive, wheel = extension_zip
+    with zipfile.ZipFile(archive) as zipped:
+        names = zipped.namelist()
+        manifest = tomllib.loads(zipped.read("blender_manifest.toml").decode())
+        assert zipped.read(f"wheels/{wheel.name}") == wheel.read_bytes()
+    assert manifest["version"] == VERSION and manifest["id"] == "geometric_fairing"
+    assert manifest["wheels"] == [f"./wheels/{wheel.name}"]
+    assert manifest["platforms"] == ["linux-x64"] and manifest["license"] == ["SPDX:GPL-3.0-or-later"]
+    assert set(manifest["permissions"]) == {"files"}
+    credited = " ".join(manifest["copyright"])
+    for library in ("OpenMesh", "UMFPACK", "CHOLMOD", "METIS", "OpenBLAS", "libgomp", "libgfortran", "Eigen"):
+        assert library in credited, library
+    assert "__init__.py" in names and "native.py" in names
+    assert not [n for n in names if n.endswith(".so") or ".so." in n], names  # the module comes from the wheel
+
+
+@pytest.mark.parametrize("variant", ["bpy-4.5", "bpy-5.0"])
+def test_blender_validates_the_zip(variant, extension_zip):
+    archive, _ = extension_zip
+    output = run([bpy_python(variant), "-c", BLENDER_COMMAND, "validate", archive], cwd=archive.parent)
+    assert "Success parsing TOML" in output, output
+
+
+def reference(data):
+    """What the build tree's geofair makes of the region the add-on fairs, with the same options."""
+    options = json.loads(str(data["options"]))
+    assert "build" in geofair.__file__, geofair.__file__  # (conftest: build/python)
+    return geofair.fair(
+        data["vertices"],
+        data["triangles"],
+        data["free"],
+        boundary_normals=data["boundary_normals"],
+        inner_fairness=options["inner_fairness"].lower(),
+        outer_fairness=options["outer_fairness"].lower(),
+        tolerance=options["tolerance"],
+        max_iterations=options["max_iterations"],
+        levels=options["levels"],
+        iteration=options["iteration"].lower(),
+    )
+
+
+@pytest.mark.parametrize("variant", ["bpy-4.5", "bpy-5.0"])
+def test_the_extension_installs_and_fairs_the_sphere_cap(variant, extension_zip, tmp_path):
+    archive, _ = extension_zip
+    user = {
+        "BLENDER_USER_RESOURCES": str(tmp_path),
+        "BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
+        "BLENDER_USER_CONFIG": str(tmp_path / "config"),
+    }
+    out = tmp_path / "sphere.npz"
+    command = [bpy_python(variant), REPO / "tests" / "blender" / "check_extension.py", "--", archive, out]
+    output = run(command, env=user, cwd=tmp_path)
+    assert "check_extension: all checks passed" in output, output
+    data = np.load(out)
+    assert str(data["blender"]).startswith("4.5" if variant == "bpy-4.5" else "5.0"), str(data["blender"])
+    module = pathlib.Path(str(data["module"]))
+    assert tmp_path in module.parents and "site-packages" in module.parts, module
+    free, before, after = data["free"], data["before"], data["after"]
+    assert 700 < free.sum() < 900, free.sum()  # the cap above z = 0.25 less its boundary ring
+    assert np.array_equal(after[~free], before[~free]), "vertices outside the region moved"
+    assert np.abs(after[free] - before[free]).max() > 0.05, "the cap did not change"
+    expected = reference(data).vertices.astype(np.float32).astype(np.float64)  # Blender stores float32
+    assert np.abs(after - expected).max() < 1e-6, np.abs(after - expected).max()
