@@ -1,4 +1,4 @@
-"""Speed of geofair.fair on disturbed irregular sphere caps, with CGAL's linear fair beside it.
+"""Speed of geofair.fair on disturbed sphere caps (irregular; --regular), with CGAL's linear fair beside it.
 
 For each size (free vertices, default about 2k, 13k, 100k and 1M) prints: our wall time,
 the iteration used ("newton": steps; "paper": iterations per level, coarsest first), final
@@ -10,11 +10,13 @@ vertices) of both.
 
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
-        [--iteration auto|newton|paper] [--phases]
+        [--iteration auto|newton|paper] [--phases] [--regular]
         [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
-disturbed by ``disturbed(seed=2, amplitude=0.1)``. CGAL gets the whole mesh (its second,
+disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same with
+``irregular=False`` (concentric rings of 6k vertices, interior valence 6, so the free
+vertex count is the nearest 1 + 3K(K - 1)). CGAL gets the whole mesh (its second,
 outer fixed ring gives it tangent continuity); geofair the same vertices and free mask with
 the exact sphere normals as G1 boundary normals. Generating the 1M-vertex irregular cap
 takes about 5 minutes and 1 GiB in tests/scenes.py (100k: 11 s), so scenes are cached as
@@ -54,18 +56,19 @@ def vm_hwm_mib():
     return float("nan")
 
 
-def scene_path(cache, n):
-    return os.path.join(cache, f"sphere_cap_irregular_seed1_rings2_{n}.npz")
+def scene_path(cache, n, regular=False):
+    kind = "regular" if regular else "irregular"
+    return os.path.join(cache, f"sphere_cap_{kind}_seed1_rings2_{n}.npz")
 
 
-def load_scene(cache, n):
+def load_scene(cache, n, regular=False):
     """(vertices disturbed, faces, free, normals) of the cap with about n free vertices."""
-    path = scene_path(cache, n)
+    path = scene_path(cache, n, regular)
     if not os.path.exists(path):
         import scenes
 
         t = time.perf_counter()
-        s = scenes.sphere_cap(n_free=n, irregular=True, seed=1, boundary_rings=2)
+        s = scenes.sphere_cap(n_free=n, irregular=not regular, seed=1, boundary_rings=2)
         v = s.disturbed(seed=2, amplitude=0.1)
         os.makedirs(cache, exist_ok=True)
         tmp = path + ".tmp.npz"
@@ -84,7 +87,7 @@ def child(args):
     """Runs one of our solves; prints a JSON line."""
     import geofair
 
-    v, f, free, normals = load_scene(args.cache, args.child)
+    v, f, free, normals = load_scene(args.cache, args.child, args.regular)
     before = vm_hwm_mib()
     t = time.perf_counter()
     r = geofair.fair(
@@ -123,6 +126,8 @@ def run_ours(args, n):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
     cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
+    if args.regular:
+        cmd.append("--regular")
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
@@ -152,6 +157,7 @@ def main():
     parser.add_argument("--iteration", default="auto", help="auto (default), newton or paper")
     parser.add_argument("--no-cgal", action="store_true")
     parser.add_argument("--phases", action="store_true", help="print the time of each phase")
+    parser.add_argument("--regular", action="store_true", help="regular caps (interior valence 6)")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
@@ -164,7 +170,8 @@ def main():
 
     use_cgal = not args.no_cgal and cgal_fair.available()
     print(
-        f"# geofair.fair: iteration={args.iteration}, normal_weighting={args.normal_weighting}, "
+        f"# {'regular' if args.regular else 'irregular'} caps; geofair.fair: iteration={args.iteration}, "
+        f"normal_weighting={args.normal_weighting}, "
         f"inner_fairness={args.inner}, "
         f"default tolerance and levels; {os.cpu_count()} cores, load average "
         f"{os.getloadavg()[0]:.1f}"
@@ -176,7 +183,7 @@ def main():
     )
     ns, ours_t, cgal_t = [], [], []
     for n in args.sizes:
-        load_scene(args.cache, n)  # generate outside the timed children
+        load_scene(args.cache, n, args.regular)  # generate outside the timed children
         r = run_ours(args, n)
         failed = r.pop("failed", None) if r else None
         if failed:
@@ -184,7 +191,7 @@ def main():
             r = None
         c = None
         if use_cgal:
-            v, f, free, _ = load_scene(args.cache, n)
+            v, f, free, _ = load_scene(args.cache, n, args.regular)
             c = cgal_fair.cgal_fair(v, f, free)
             c_err = radial_error(c.vertices, free)
             n_free = int(free.sum())
