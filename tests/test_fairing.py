@@ -2,6 +2,8 @@
 spheres, cylinders and minimal surfaces (Schneider & Kobbelt 2001, section 3), on regular
 and irregular meshes, unlike the linear Δ²f = 0 solution."""
 
+import time
+
 import numpy as np
 import pytest
 
@@ -102,6 +104,42 @@ def test_not_converged_is_reported():
     s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
     r = fair(s, max_iterations=2)
     assert not r.converged and r.iterations == 2 and r.residual > 1e-4
+
+
+def test_message_says_how_the_solve_ended():
+    s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
+    assert fair(s).message.startswith("converged (residual ")
+    r = fair(s, max_iterations=2)
+    assert r.message.startswith("did not converge within max_iterations (residual ")
+    assert "tolerance 1.0e-04" in r.message
+
+
+@pytest.mark.parametrize("iteration", ["auto", "paper"])
+def test_time_limit_stops_unconverged(iteration):
+    # A tolerance no iteration reaches: only the time limit ends the call.
+    s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
+    v = s.disturbed(seed=7, amplitude=0.1)
+    start = time.perf_counter()
+    r = fair(s, vertices=v, tolerance=1e-300, max_iterations=10**9, time_limit=0.3, iteration=iteration)
+    elapsed = time.perf_counter() - start
+    assert not r.converged and r.message.startswith("stopped at the time limit of 3.0e-01 s")
+    assert elapsed < 0.3 + 2.0  # one more iteration or level set-up after the limit, no more
+    assert np.array_equal(r.vertices[~s.free], v[~s.free]) and np.isfinite(r.vertices).all()
+
+
+def test_time_limit_zero_returns_the_input():
+    s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
+    v = s.disturbed(seed=7, amplitude=0.1)
+    r = fair(s, vertices=v, time_limit=0.0, levels=2)
+    assert not r.converged and "time limit" in r.message
+    assert np.array_equal(r.vertices, v)
+
+
+@pytest.mark.parametrize("limit", [-1.0, float("nan")])
+def test_bad_time_limit(limit):
+    s = scenes.sphere_cap(n_free=50, seed=1)
+    with pytest.raises(ValueError, match="time_limit"):
+        geofair.fair(s.vertices, s.faces, s.free, boundary_normals=s.normals, time_limit=limit)
 
 
 def test_progress_callback_can_stop():

@@ -108,7 +108,8 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                       const py::object& boundary_normals, const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
-                      int levels, const std::string& iteration, const py::object& progress) {
+                      int levels, const std::string& iteration, const py::object& progress,
+                      const py::object& time_limit) {
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces);
   const std::vector<bool> mask = to_mask(free, V.rows());
@@ -133,6 +134,12 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   options.damping = damping;
   options.cg_iterations = cg_iterations;
   options.levels = levels;
+  if (!time_limit.is_none()) {
+    options.time_limit = time_limit.cast<double>();
+    if (!(options.time_limit >= 0.0))
+      throw InvalidInputError("fair: time_limit must be None or a number >= 0 (seconds), got " +
+                              std::string(py::str(time_limit)));
+  }
 
   // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
   // KeyboardInterrupt) stops the run and is re-raised.
@@ -209,6 +216,9 @@ PYBIND11_MODULE(geofair, m) {
                     "Region vertices (free and G1 boundary) on each level, coarsest first.")
       .def_readonly("residual", &FairingResult::residual,
                     "Normalized residual of the returned mesh (dimensionless, see fair).")
+      .def_readonly("message", &FairingResult::message,
+                    "How the solve ended, one sentence: \"converged (...)\" or why not (the "
+                    "time limit, max_iterations, cancelled), with the residual and tolerance.")
       .def_property_readonly(
           "iteration",
           [](const FairingResult& r) {
@@ -238,6 +248,7 @@ PYBIND11_MODULE(geofair, m) {
         py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
         py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
         py::arg("iteration") = "auto", py::arg("progress") = py::none(),
+        py::arg("time_limit") = py::none(),
         R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
 condition (fixed positions and unit normals) at the fixed vertices next to free ones.
@@ -316,6 +327,10 @@ levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times
     "paper": one level up to 1000 free vertices and
     about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
     multigrid cycles on the coarser ones.
+time_limit : seconds (float) the whole call may take, or None (default): 5 s plus 0.2 ms
+    per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
+    max_iterations); float("inf") for no limit. Once spent, the result is returned with
+    converged=False and a message saying so (the input positions if no level finished).
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).
 

@@ -134,3 +134,71 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
 }
 
 }  // namespace geofair
+
+namespace geofair {
+
+bool surrounding_bilaplacian(const Positions& V, const Triangles& F, const FairingRegion& region,
+                             Positions& Y) {
+  const int nf = region.n_free, nv = int(V.rows());
+  // The region's vertices (free and G1 boundary) and the triangles around them: the rows of
+  // L at the region's vertices then see their whole one-rings, with the fixed ring beyond.
+  std::vector<int> rank(nv, -1);  // region-local id of a region vertex
+  for (int i = 0; i < region.n; ++i) rank[region.global[i]] = i;
+  std::vector<double> area(region.n, 0.0);
+  std::vector<Eigen::Triplet<double>> rows;  // L restricted to the region's rows, all columns
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const int a = F(t, 0), b = F(t, 1), c = F(t, 2);
+    if (rank[a] < 0 && rank[b] < 0 && rank[c] < 0) continue;
+    const Vec3 p[3] = {V.row(a).transpose(), V.row(b).transpose(), V.row(c).transpose()};
+    const int v[3] = {a, b, c};
+    const double twice_area = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    if (!(twice_area > 0.0) || !std::isfinite(twice_area)) return false;
+    for (int k = 0; k < 3; ++k) {
+      // The angle at corner k weighs the edge opposite it (cot = cos/sin).
+      const Vec3 e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+      const double half_cot = 0.5 * e1.dot(e2) / twice_area;
+      const int i = v[(k + 1) % 3], j = v[(k + 2) % 3];
+      for (const auto& [row, col] : {std::pair{i, j}, std::pair{j, i}}) {
+        if (rank[row] < 0) continue;
+        rows.emplace_back(rank[row], col, half_cot);
+        rows.emplace_back(rank[row], row, -half_cot);
+      }
+      if (rank[v[k]] >= 0) area[rank[v[k]]] += twice_area / 6.0;
+    }
+  }
+  // L_R (region rows × all vertices), split into the free columns A and the fixed rest.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> LR(region.n, nv);
+  LR.setFromTriplets(rows.begin(), rows.end());
+  std::vector<Eigen::Triplet<double>> a_entries;
+  Eigen::MatrixXd fixed_part = Eigen::MatrixXd::Zero(region.n, 3);  // L_R x with free x = 0
+  for (int r = 0; r < region.n; ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(LR, r); it; ++it) {
+      const int col = int(it.col());
+      if (rank[col] >= 0 && rank[col] < nf)
+        a_entries.emplace_back(r, rank[col], it.value());
+      else
+        fixed_part.row(r) += it.value() * V.row(col);
+    }
+  Eigen::SparseMatrix<double> A(region.n, nf);
+  A.setFromTriplets(a_entries.begin(), a_entries.end());
+  Eigen::VectorXd inverse_area(region.n);
+  for (int r = 0; r < region.n; ++r) inverse_area(r) = 1.0 / area[r];
+  // Normal equations of min Σ_r |(L x)_r|² / A_r over the free positions: Aᵀ D⁻¹ A x = −Aᵀ D⁻¹ b.
+  const Eigen::SparseMatrix<double> DA = inverse_area.asDiagonal() * A;
+  const Eigen::SparseMatrix<double> K = Eigen::SparseMatrix<double>(A.transpose()) * DA;
+  const Eigen::MatrixXd rhs = -(DA.transpose() * fixed_part);
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  {
+    const BlasThreads threads(factorization_blas_threads(nf));
+    llt.compute(K);
+  }
+  if (llt.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd f = llt.solve(rhs);
+  if (llt.info() != Eigen::Success || !f.allFinite()) return false;
+  Y.resize(region.n, 3);
+  for (int i = 0; i < region.n; ++i) Y.row(i) = i < nf ? Vec3(f.row(i).transpose()).transpose()
+                                                       : Vec3(V.row(region.global[i]).transpose()).transpose();
+  return true;
+}
+
+}  // namespace geofair

@@ -56,6 +56,20 @@ void Construction::curvatures(const Positions& X, Positions& N, Eigen::VectorXd&
   }
 }
 
+double Construction::merit() const {
+  const OneRings& r = region_.rings;
+  const std::vector<double>& w = dirichlet_.weights();
+  const Eigen::VectorXd d = dirichlet_.defects(H_);
+  double sum = 0.0;
+  for (int i = 0; i < region_.n_free; ++i) {
+    double sum_w = 0.0;
+    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) sum_w += w[k];
+    const double deviation = (d(i) - (source_ ? (*source_)(i) : 0.0)) / std::max(sum_w, 1e-300);
+    sum += deviation * deviation;
+  }
+  return length_ * std::sqrt(sum / region_.n_free);
+}
+
 double Construction::evaluate(const Positions& X) {
   curvatures(X);
   dirichlet_.assemble(X);
@@ -171,6 +185,9 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   };
   probe_N_ = N_;
   probe_H_.resize(region_.n);
+  double sigma = 0.0;  // the continuation's shift σ (dimensionless), see below
+  double current_merit = merit();
+  Eigen::VectorXd mass(nf);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, iteration_offset + k);
     while (residual <= tolerance && tangential_ && polish && !polished) {
@@ -194,6 +211,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       // about kPolishContraction · move².
       polished = kPolishContraction * move * move <= kPolishedMove || ++polishes >= kNewtonPolishes;
       residual = evaluate(X);
+      current_merit = merit();
       best = residual, best_at = k;
       report.polish_seconds += laps.lap();
     }
@@ -207,17 +225,48 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       report.cancelled = true;
       break;
     }
+    // Pseudo-transient continuation: the step solves (J + σ M) t = −d, an implicit Euler
+    // step of the flow ∂t/∂τ = −M⁻¹ d with σ = 1/Δτ; σ = 0 is Newton's step. A step that
+    // does not lower the merit is taken back and σ raised; accepted steps lower σ with the
+    // merit (switched evolution relaxation), so close to the solution the steps are
+    // Newton's and converge quadratically.
     d0 = dirichlet_.defects(H_);
-    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, t))
+    for (int i = 0; i < nf; ++i) {
+      double sum_w = 0.0;
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+        sum_w += std::abs(dirichlet_.weights()[k]);
+      const double h = rings.mean_neighbour_distance(X, i);
+      mass(i) = std::max(sum_w, 1e-12) / (h * h);
+    }
+    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, {sigma, &mass}, t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
     double ratio = 0.0;
     for (int i = 0; i < nf; ++i)
       ratio = std::max(ratio, std::abs(t(i)) / rings.mean_neighbour_distance(X, i));
     const double s = std::min(1.0, kNewtonStep / ratio);
+    const Positions before = X;
     for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
     ++iterations_;
-    residual = evaluate(X);
+    const double trial = evaluate(X);
+    const double trial_merit = merit();
+    if (!(trial_merit < current_merit) || !std::isfinite(trial)) {
+      X = before;
+      residual = evaluate(X);
+      sigma = std::max(kShiftIncrease * sigma, kShiftStart);
+      ++report.rejected;
+      if (sigma > kShiftMax) {
+        report.stalled = true;
+        report.iterations = k + 1;
+        report.residual = residual;
+        break;
+      }
+      continue;
+    }
+    sigma *= trial_merit / current_merit;
+    if (sigma < kShiftNegligible * kShiftNegligible) sigma = 0.0;
+    current_merit = trial_merit;
+    residual = trial;
   }
   report.step_seconds += laps.lap();
   return report;

@@ -16,10 +16,12 @@
 #endif
 #include <cmath>
 #include <cstdio>
+#include <chrono>
 #include <cstring>
 #include <deque>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -35,6 +37,7 @@ void check_options(const FairingOptions& o) {
     throw InvalidInputError("fair: damping must lie in (0, 1]");
   if (o.cg_iterations < 1) throw InvalidInputError("fair: cg_iterations must be >= 1");
   if (o.levels < 0) throw InvalidInputError("fair: levels must be >= 0");
+  if (std::isnan(o.time_limit)) throw InvalidInputError("fair: time_limit must not be NaN");
 }
 
 // Tolerance of the coarse levels, relative to options.tolerance. They only start the next
@@ -198,7 +201,7 @@ struct NewtonRun {
 NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
-                           int& newton_iterations, Phases& phases) {
+                           const Positions* X_linear, int& newton_iterations, Phases& phases) {
   // The finest level's construction does not depend on the hierarchy: it is set up, with
   // the symbolic analysis of its Newton preconditioner, on another thread while this one
   // decimates and solves the coarser levels (100000-vertex cap: 0.38 s of set-up and 0.8-1 s
@@ -234,7 +237,9 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     VertexSplits level_splits;
     std::vector<double> level_weights;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kNewtonInitialMeshResidual);
+      Y = X_linear ? gather(*X_linear, lr.global)
+                   : bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global),
+                                              kNewtonInitialMeshResidual);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
@@ -282,9 +287,62 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
 
 }  // namespace
 
+namespace {
+
+std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1e", x);
+  return text;
+}
+
+FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                    const Positions* boundary_normals, const FairingOptions& options);
+
+}  // namespace
+
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options) {
   check_options(options);
+  // The time limit stops the iterations through the progress callback, which every
+  // iteration of the user's problem calls; the user's callback still sees each call.
+  const auto start = std::chrono::steady_clock::now();
+  const long n_free = std::count(free.begin(), free.end(), true);
+  const double limit =
+      options.time_limit >= 0.0 ? options.time_limit
+      : options.iteration == Iteration::Auto
+          ? kTimeLimitBase + kTimeLimitPerFree * double(n_free)
+          : std::numeric_limits<double>::infinity();
+  bool timed_out = false, user_cancelled = false;
+  FairingOptions timed = options;
+  timed.progress = [&](int k, double residual) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
+      timed_out = true;
+      return false;
+    }
+    if (options.progress && !options.progress(k, residual)) {
+      user_cancelled = true;
+      return false;
+    }
+    return true;
+  };
+  FairingResult result = solve(V, F, free, boundary_normals, timed);
+  const std::string figures =
+      "residual " + scientific(result.residual) + ", tolerance " + scientific(options.tolerance);
+  if (result.converged)
+    result.message = "converged (" + figures + ")";
+  else if (timed_out)
+    result.message = "stopped at the time limit of " + scientific(limit) + " s (" + figures + ")";
+  else if (user_cancelled)
+    result.message = "cancelled (" + figures + ")";
+  else
+    result.message = "did not converge within max_iterations (" + figures + ")";
+  return result;
+}
+
+namespace {
+
+FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                    const Positions* boundary_normals, const FairingOptions& options) {
 #ifdef _OPENMP
   omp_set_dynamic(0);
   omp_set_num_threads(solve_threads());
@@ -320,6 +378,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   const bool newton = options.iteration != Iteration::Paper;
   if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
     const int levels = options.levels > 0 ? options.levels : newton_levels(region);
+    Positions X_linear;
+    const bool have_linear = surrounding_bilaplacian(V, F, region, X_linear);
     // The hierarchy first; if a level fails there, the finest level alone.
     const std::vector<int> attempts =
         levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
@@ -329,7 +389,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       bool failed = false;
       try {
         run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
-                               newton_iterations, phases);
+                               have_linear ? &X_linear : nullptr, newton_iterations, phases);
       } catch (const SolverError&) {
         if (options.iteration == Iteration::Newton && last) throw;
         failed = true;
@@ -430,5 +490,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   result.phase_seconds = std::move(phases);
   return finish(result, solution.X);
 }
+
+}  // namespace
 
 }  // namespace geofair

@@ -50,6 +50,12 @@ NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
     const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
     term_entry_.push_back(int(std::lower_bound(begin, end, i) - A_.innerIndexPtr()));
   });
+  diagonal_entry_.resize(nf);
+  for (int c = 0; c < nf; ++c) {
+    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
+    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
+    diagonal_entry_[c] = int(std::lower_bound(begin, end, c) - A_.innerIndexPtr());
+  }
 }
 
 void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
@@ -100,17 +106,31 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                        const std::vector<double>& w, const Eigen::VectorXd& defects,
                        const Eigen::VectorXd* tau, const JacobianProduct& product,
-                       Eigen::VectorXd& t) {
+                       const Shift& shift, Eigen::VectorXd& t) {
   Eigen::VectorXd b = tau ? Eigen::VectorXd(*tau - defects) : Eigen::VectorXd(-defects);
+  const double sigma = shift.mass ? shift.sigma : 0.0;
+  const JacobianProduct shifted = [&](const Eigen::VectorXd& v, Eigen::VectorXd& Jv) {
+    product(v, Jv);
+    if (sigma > 0.0) Jv += sigma * shift.mass->cwiseProduct(v);
+  };
+  // A factorization with a shift that differs by more than a factor kShiftRefactorization
+  // (shifts below kShiftNegligible count as none) preconditions poorly: refactorize.
+  auto effective = [](double s) { return std::max(s, kShiftNegligible); };
+  const double ratio = effective(sigma) / effective(factorized_sigma_);
+  if (ratio > kShiftRefactorization || ratio < 1.0 / kShiftRefactorization) refactorize_ = true;
   // With the factorization of an earlier step first; if GMRES does not converge on it,
   // refactorize at X and solve again.
-  const JacobianOperator J(b.size(), product);
+  const JacobianOperator J(b.size(), shifted);
   gmres_.preconditioner().lu = &lu_;
   set_up_gmres(gmres_, J, kNewtonKrylovIterations, kNewtonKrylovTolerance);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const bool fresh = refactorize_ || !lu_.factorized();
     if (fresh) {
       assemble(X, N, H, w);
+      if (sigma > 0.0)
+        for (int i = 0; i < region_.n_free; ++i)
+          A_.valuePtr()[diagonal_entry_[i]] += sigma * (*shift.mass)(i);
+      factorized_sigma_ = sigma;
       if (!lu_.factorize(A_)) return false;
       refactorize_ = false;
     }

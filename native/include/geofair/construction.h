@@ -20,6 +20,7 @@ struct IterationReport {
   bool converged = false;  ///< residual <= tolerance
   bool cancelled = false;  ///< the progress callback asked to stop
   bool stalled = false;    ///< run_newton: no halving of the residual in kNewtonPatience steps
+  int rejected = 0;        ///< run_newton: steps taken back (they raised the merit)
   /// run_newton's wall-clock seconds: the tangential relaxations before the steps, the
   /// polishes, and the rest (the Newton steps and their evaluations).
   double relax_seconds = 0.0, polish_seconds = 0.0, step_seconds = 0.0;
@@ -55,7 +56,14 @@ class Construction {
   /// planes, the next with turning ones). Then per iteration the normal offsets of all free
   /// vertices from one inexact Newton step (NewtonStep, with the products of the exact
   /// Jacobian), scaled so that no vertex moves by more than kNewtonStep mean distances to
-  /// its neighbours. The tangential (inner-fairness) relaxation is not interleaved with the
+  /// its neighbours, globalized by pseudo-transient continuation (Kelley & Keyes 1998): the
+  /// first step is Newton's; a step that does not lower merit() is taken back and the next
+  /// solves (J + σ M) t = −d instead (an implicit Euler step of the flow ∂t/∂τ = −M⁻¹ d,
+  /// M_i = Σ_j |w_ij| / h_i², about J's diagonal), σ starting at kShiftStart and growing by
+  /// kShiftIncrease per taken-back step; an accepted step scales σ by the merit's ratio
+  /// (switched evolution relaxation), so σ vanishes as the merit falls and the steps
+  /// become Newton's again. Above kShiftMax the run stops as stalled. The tangential
+  /// (inner-fairness) relaxation is not interleaved with the
   /// steps: if `polish` is set, where the residual reaches the tolerance one tangential
   /// solve with turning tangent planes restores inner fairness (direct, or on the two-grid
   /// preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
@@ -107,6 +115,10 @@ class Construction {
   void set_coarse_space(CoarseSpace coarse, CoarseSpace coarser = {}) {
     tangential_solver_.set_coarse_space(std::move(coarse), std::move(coarser));
   }
+
+  /// L · the root mean square of the Jacobi-scaled defects (H̄_i − H_i, with the source if
+  /// set) of the positions last evaluated: the merit that run_newton's steps must lower.
+  double merit() const;
 
   /// The defects d_i = Σ_j w_ij (H_i − H_j) (#V_I, 1/length) of the positions last evaluated.
   Eigen::VectorXd defects() const { return dirichlet_.defects(H_); }
@@ -187,6 +199,13 @@ constexpr double kPolishContraction = 1.0;
 /// The forward difference of run_newton's Jacobian products moves the vertices by at most
 /// this fraction of L (the region's diagonal).
 constexpr double kProductStep = 1e-7;
+/// Pseudo-transient continuation of run_newton: the shift σ after the first rejected step
+/// (dimensionless; M is about J's diagonal) ...
+constexpr double kShiftStart = 1e-2;
+/// ... multiplied by this at each further rejected step ...
+constexpr double kShiftIncrease = 10.0;
+/// ... up to this: a step that short which still raises the merit ends the run (stalled).
+constexpr double kShiftMax = 1e8;
 /// BiCGSTAB iterations of a global tangential step.
 constexpr int kTangentialIterations = 10;
 

@@ -20,6 +20,9 @@ struct FairingResult {
   std::vector<int> iterations_per_level;
   std::vector<int> vertices_per_level;    ///< region vertices (free + G1 boundary) per level
   double residual = 0.0;   ///< normalized residual of the returned mesh (see fair)
+  /// How the solve ended, one sentence for a user: "converged", or why not (the time
+  /// limit, max_iterations, cancelled, no progress) with the residual and tolerance.
+  std::string message;
   /// The iteration that produced the result: Newton or Paper (Auto falls back to Paper).
   Iteration iteration = Iteration::Paper;
   /// Newton steps performed, including those of an attempt that Auto abandoned.
@@ -62,7 +65,10 @@ struct FairingResult {
 ///
 /// With options.iteration = Auto (the default) or Newton, the same hierarchy is solved by
 /// Newton's method level by level instead (nested iteration; Construction::run_newton,
-/// newton_step.h): the base level from the linear initial mesh, each finer level from the
+/// newton_step.h, globalized by pseudo-transient continuation): the base level from the
+/// linear initial mesh of surrounding_bilaplacian (cotangent weights of the original, tangent
+/// continuity from the fixed ring beyond the boundary; bilaplacian_initial_mesh where that
+/// fails), each finer level from the
 /// prolongation of the coarser solution, its tangential relaxation and one local step of
 /// the construction above; the same discrete equations (12), all normal
 /// offsets per step from one inexact Newton step with the exact Jacobian's products. Its
@@ -109,6 +115,8 @@ struct FairingResult {
 /// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
 ///                for the area-weighted normal of the surrounding triangles without a free
 ///                vertex
+/// The whole call stops unconverged once options.time_limit is spent (result.message).
+///
 /// \throw InvalidInputError for invalid input (see extract_region); SolverError if a
 ///        linear solve fails or the iteration diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,

@@ -79,6 +79,11 @@ constexpr int kNewtonKrylovIterations = 30;
 /// gave 5 (2000), 4 + 4 (13000) and 6 on one level of the 13000-vertex cap; 1e-2 gave 6,
 /// 5 + 5 and 10.
 constexpr double kNewtonKrylovTolerance = 1e-3;
+/// The preconditioner of a shifted step (NewtonStep::solve) is refactorized when the shift σ
+/// differs from the factorized one by more than this factor (dimensionless, > 1) ...
+constexpr double kShiftRefactorization = 4.0;
+/// ... where shifts below this count as none (dimensionless; M is about J's diagonal).
+constexpr double kShiftNegligible = 1e-3;
 
 /// Normal offsets t (#V_I) of all free vertices at once that solve the linearized
 /// discrete fairness equation at every free vertex i (eq. (12); τ = 0 except for
@@ -123,12 +128,20 @@ class NewtonStep {
   /// \param defects #V_I defects d = Σ_j w_ij (H_i − H_j) (DirichletMatrix::defects), 1/length
   /// \param tau    #V_I source, or nullptr
   /// \param product J v at X (see JacobianProduct)
+  /// \param shift  pseudo-transient continuation (run_newton): solve (J + σ M) t = τ − d
+  ///               instead, with σ = shift.sigma ≥ 0 (dimensionless) and M = shift.mass
+  ///               (#V_I, 1/length², positive); σ = 0 is Newton's step
   /// \param t      out: #V_I normal offsets, mesh units, positive along N
   /// \return false if the preconditioner's factorization failed (singular system) or the
   ///         step is not finite
+  struct Shift {
+    double sigma = 0.0;
+    const Eigen::VectorXd* mass = nullptr;
+  };
   bool solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
              const std::vector<double>& w, const Eigen::VectorXd& defects,
-             const Eigen::VectorXd* tau, const JacobianProduct& product, Eigen::VectorXd& t);
+             const Eigen::VectorXd* tau, const JacobianProduct& product, const Shift& shift,
+             Eigen::VectorXd& t);
 
   /// The symbolic analysis of the preconditioner's pattern (PatternLU::analyze) now rather
   /// than at the first step: with METIS's nested dissection from kNestedDissectionMin free
@@ -143,6 +156,8 @@ class NewtonStep {
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J_N (see constructor)
   std::vector<int> term_entry_;  // per term of the assembly of A: its index in A's values
+  std::vector<int> diagonal_entry_;  // per free vertex: the index of A_ii in A's values
+  double factorized_sigma_ = 0.0;    // the shift σ of the last factorization
   Eigen::SparseMatrix<double> A_;
   PatternLU lu_;
   bool refactorize_ = true;

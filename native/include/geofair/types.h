@@ -93,6 +93,11 @@ enum class Iteration {
 /// whose base level has 3627, 0.665 s (with 5000: 0.739 s).
 constexpr int kParallelMin = 2500;
 
+/// The automatic time limit of fair (FairingOptions::time_limit < 0): this many seconds ...
+constexpr double kTimeLimitBase = 5.0;
+/// ... plus this many seconds per free vertex.
+constexpr double kTimeLimitPerFree = 2e-4;
+
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
 
@@ -117,6 +122,11 @@ struct FairingOptions {
   /// 0 = picked from the region (Newton: as many as keep 700 free vertices on the base
   /// level, fairing.cpp; Paper: default_levels, one level up to 1000 free vertices).
   int levels = 0;
+  /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
+  /// spent (FairingResult::message says so). Negative: automatic, kTimeLimitBase +
+  /// kTimeLimitPerFree × free vertices with Iteration::Auto, none with an iteration chosen
+  /// explicitly (the reference iterations run to max_iterations); infinity: none.
+  double time_limit = -1.0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
 };

@@ -40,6 +40,11 @@ class FairingResult:
         Iterations on each level, coarsest first.
         """
     @property
+    def message(self) -> str:
+        """
+        How the solve ended, one sentence: "converged (...)" or why not (the time limit, max_iterations, cancelled), with the residual and tolerance.
+        """
+    @property
     def newton_iterations(self) -> int:
         """
         Newton steps performed, including an attempt that iteration="auto" abandoned for the paper's iteration.
@@ -76,7 +81,7 @@ def cotangent_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse
     
     Raises ValueError for invalid input.
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -156,6 +161,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         "paper": one level up to 1000 free vertices and
         about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
         multigrid cycles on the coarser ones.
+    time_limit : seconds (float) the whole call may take, or None (default): 5 s plus 0.2 ms
+        per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
+        max_iterations); float("inf") for no limit. Once spent, the result is returned with
+        converged=False and a message saying so (the input positions if no level finished).
     progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
         returning False stops the run early (converged is then False).
     
