@@ -203,6 +203,9 @@ class FairingRun(_WorkerThread):
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles
         )
+        self.boundary_normals = region.boundary_normals(
+            self.region, mesh.vertices, mesh.triangles[self.present_triangles], native.geofair.boundary_normals
+        )
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
@@ -231,7 +234,7 @@ class FairingRun(_WorkerThread):
                 mesh.vertices,
                 mesh.triangles[self.present_triangles],
                 fairing_region.free,
-                boundary_normals=fairing_region.boundary_normals,
+                boundary_normals=self.boundary_normals,
                 inner_fairness=options.inner_fairness.lower(),
                 outer_fairness=options.outer_fairness.lower(),
                 tolerance=options.tolerance,
