@@ -183,7 +183,8 @@ def remove(obj):
 
 
 def options(args):
-    given = {"max_iterations": args.max_iterations, "tolerance": args.tolerance}
+    # The result is written (and the write timed) also where the bounded solve stops unconverged.
+    given = {"max_iterations": args.max_iterations, "tolerance": args.tolerance, "keep_unconverged": True}
     if args.iteration is not None:
         given["iteration"] = args.iteration.upper()
     return given

@@ -1,10 +1,17 @@
-"""Tests of the add-on's bpy-free region module on small hand-made meshes."""
+"""Tests of the add-on's bpy-free region module on small hand-made meshes.
+
+Boundary normals come from the library (``geofair.boundary_normals``) except where the
+add-on keeps a vertex's current normal: :func:`normals` assembles them as the add-on does.
+"""
 
 import importlib.util
 import pathlib
 
 import numpy as np
 import pytest
+
+import geofair
+import scenes
 
 _REGION_PY = pathlib.Path(__file__).resolve().parents[1] / "addon" / "geometric_fairing" / "region.py"
 _spec = importlib.util.spec_from_file_location("geofair_region", _REGION_PY)
@@ -27,6 +34,12 @@ def grid(nx, ny):
     starts = np.arange(len(corners)) * 4
     triangles, triangle_polygon = region.triangulate_polygons(starts, np.full(len(corners), 4), np.ravel(corners))
     return vertices, triangles, triangle_polygon, lambda x, y: x + y * nx
+
+
+def normals(r, vertices, triangles, present=None):
+    """The boundary normals the add-on passes to geofair.fair for region ``r``."""
+    triangles = triangles if present is None else triangles[present]
+    return region.boundary_normals(r, vertices, triangles, geofair.boundary_normals)
 
 
 def vertex_mask(n, nx, points):
@@ -94,8 +107,10 @@ def test_square_selection_in_grid():
     # (x, y) to (x+1, y+1)), so they are not part of the G1 boundary.
     expected_boundary = vertex_mask(n, nx, [p for p in ring if p not in ((5, 1), (1, 5))])
     np.testing.assert_array_equal(r.boundary, expected_boundary)
-    np.testing.assert_array_equal(r.boundary_normals[r.boundary], np.tile([0.0, 0.0, 1.0], (14, 1)))
-    np.testing.assert_array_equal(r.boundary_normals[~r.boundary], 0.0)
+    assert not r.keeps_normal.any() and not r.current_normals.any()
+    n_boundary = normals(r, vertices, triangles)
+    np.testing.assert_array_equal(n_boundary[r.boundary], np.tile([0.0, 0.0, 1.0], (14, 1)))
+    np.testing.assert_array_equal(n_boundary[~r.boundary], 0.0)
     assert not r.border_fixed.any()
 
     assert len(r.loops) == 1
@@ -121,10 +136,12 @@ def test_selection_touching_open_border():
     assert r.boundary[2 * (nx + 1)]
     # Its normal falls back to the selected faces at it: cross products, by hand,
     # (-1, 0, 1) + (-1, 1, 1) + (0, 0, 1) of its three triangles.
-    np.testing.assert_allclose(r.boundary_normals[2 * (nx + 1)], np.array([-2, 1, 3]) / np.sqrt(14), rtol=1e-15)
-    # The other boundary vertices see flat unselected faces.
+    np.testing.assert_array_equal(r.keeps_normal, r.border_fixed)
+    n_boundary = normals(r, vertices, triangles)
+    np.testing.assert_allclose(n_boundary[2 * (nx + 1)], np.array([-2, 1, 3]) / np.sqrt(14), rtol=1e-15)
+    # The other boundary vertices see flat unselected faces: the library's estimate.
     others = r.boundary & ~r.border_fixed
-    np.testing.assert_array_equal(r.boundary_normals[others], np.tile([0.0, 0.0, 1.0], (others.sum(), 1)))
+    np.testing.assert_array_equal(n_boundary[others], np.tile([0.0, 0.0, 1.0], (others.sum(), 1)))
     assert len(r.loops) == 1 and 2 * (nx + 1) in r.loops[0]
 
 
@@ -135,7 +152,8 @@ def test_whole_open_grid_selected_fixes_the_border():
     interior = [(x, y) for x in (1, 2) for y in (1, 2)]
     np.testing.assert_array_equal(r.free, vertex_mask(len(vertices), nx, interior))
     assert r.border_fixed.sum() == 12
-    np.testing.assert_array_equal(r.boundary_normals[r.boundary], np.tile([0.0, 0.0, 1.0], (r.boundary.sum(), 1)))
+    n_boundary = normals(r, vertices, triangles)
+    np.testing.assert_array_equal(n_boundary[r.boundary], np.tile([0.0, 0.0, 1.0], (r.boundary.sum(), 1)))
 
 
 def test_two_disjoint_selections():
@@ -179,8 +197,10 @@ def test_octahedron_normals_come_from_unselected_faces():
     np.testing.assert_array_equal(r.free, [False] * 4 + [True, False])
     np.testing.assert_array_equal(r.boundary, [True] * 4 + [False, False])
     equator = vertices[:4]
-    expected = (equator + [0, 0, -1]) / np.sqrt(2)  # bisector of the two lower faces
-    np.testing.assert_allclose(r.boundary_normals[:4], expected, rtol=0, atol=1e-15)
+    # Bisector of the two lower faces: the library's quadric fit has too few samples (four) and
+    # falls back to the area-weighted normal of the surrounding triangles.
+    expected = (equator + [0, 0, -1]) / np.sqrt(2)
+    np.testing.assert_allclose(normals(r, vertices, triangles)[:4], expected, rtol=0, atol=1e-15)
     assert len(r.loops) == 1
     loop = r.loops[0]
     assert np.array_equal(np.roll(loop, -int(np.argmin(loop))), [0, 1, 2, 3])
@@ -235,11 +255,13 @@ def test_hidden_faces_are_absent():
     # them: all selected, so the area-weighted normal of their selected present triangles.
     present_triangles = triangles[~hidden]
     cross = region.face_cross_products(vertices, present_triangles)
+    n_boundary = normals(r, vertices, triangles, present=~hidden)
+    np.testing.assert_array_equal(r.keeps_normal, r.hidden_fixed)
     for x, y in hidden_corners:
         i = x + y * (nx + 1)
         assert r.boundary[i]
         expected = cross[(present_triangles == i).any(axis=1)].sum(axis=0)
-        np.testing.assert_allclose(r.boundary_normals[i], expected / np.linalg.norm(expected), rtol=1e-13)
+        np.testing.assert_allclose(n_boundary[i], expected / np.linalg.norm(expected), rtol=1e-13)
     # Two loops: the outer one and one around the hidden quad.
     assert len(r.loops) == 2 and set(r.loops[1].tolist()) == set(np.flatnonzero(r.hidden_fixed).tolist())
 
@@ -249,7 +271,7 @@ def test_hidden_faces_are_absent():
     np.testing.assert_array_equal(shown.free, r.free)
     assert not shown.hidden_fixed.any()
     i = 3 + 3 * (nx + 1)
-    assert not np.allclose(shown.boundary_normals[i], r.boundary_normals[i])
+    assert not np.allclose(normals(shown, vertices, triangles)[i], n_boundary[i])
 
 
 def test_closed_mesh_with_hidden_faces_selected_elsewhere():
@@ -339,7 +361,8 @@ def test_pinned_vertex_inside_the_region():
     # Its normal is its own current vertex normal: the area-weighted normal of its six triangles, by
     # hand: the bump of height h = 0.5 over unit quads cut along (x, y)-(x+1, y+1) gives cross products
     # summing to (0, 0, 6) in z and cancelling in x and y (the ring is point-symmetric about the vertex).
-    np.testing.assert_allclose(r.boundary_normals[centre], [0.0, 0.0, 1.0], atol=1e-15)
+    assert r.keeps_normal[centre]
+    np.testing.assert_allclose(normals(r, vertices, triangles)[centre], [0.0, 0.0, 1.0], atol=1e-15)
     # Loops outline the triangles that touch a free vertex: a lone pin lies inside that outline.
     assert len(r.loops) == 1 and centre not in r.loops[0]
 
@@ -351,7 +374,36 @@ def test_pinned_normal_on_a_slope():
     vertices[:, 2] = 0.5 * vertices[:, 0]
     selected = select_quads(triangle_polygon, quad, [(x, y) for x in range(4) for y in range(4)])
     r = region.find_region(vertices, triangles, selected, pinned=vertex_mask(len(vertices), nx, [(2, 2)]))
-    np.testing.assert_allclose(r.boundary_normals[2 + 2 * (nx + 1)], np.array([-0.5, 0, 1]) / np.sqrt(1.25))
+    n_boundary = normals(r, vertices, triangles)
+    np.testing.assert_allclose(n_boundary[2 + 2 * (nx + 1)], np.array([-0.5, 0, 1]) / np.sqrt(1.25))
+
+
+def test_normals_are_the_library_estimate_where_there_is_an_unselected_face():
+    # A sphere cap (three rings of fixed vertices around it), its free region's triangles
+    # selected: every boundary vertex has unselected faces, and the add-on passes the
+    # library's estimate unchanged; the one-sided normal of the unselected faces (what the
+    # add-on computed before) is 50 times further from the sphere's.
+    s = scenes.sphere_cap(n_free=2000, irregular=True, boundary_rings=3)
+    r = region.find_region(s.vertices, s.faces, s.free[s.faces].any(axis=1))
+    np.testing.assert_array_equal(r.free, s.free)
+    assert not r.keeps_normal.any()
+    n_boundary = normals(r, s.vertices, s.faces)
+    np.testing.assert_array_equal(n_boundary, geofair.boundary_normals(s.vertices, s.faces, s.free))
+    error = np.linalg.norm(n_boundary[r.boundary] - s.normals[r.boundary], axis=1).max()
+    one_sided = geofair.boundary_normals(s.vertices, s.faces, s.free, method="area")
+    assert error < 1e-4 < 1e-2 < np.linalg.norm(one_sided[r.boundary] - s.normals[r.boundary], axis=1).max()
+
+
+def test_degenerate_boundary_normal_is_an_error():
+    # The unselected faces around the selection collapsed onto one point: no usable normal.
+    nx = ny = 4
+    vertices, triangles, triangle_polygon, quad = grid(nx, ny)
+    selected = select_quads(triangle_polygon, quad, [(x, y) for x in (1, 2) for y in (1, 2)])
+    r = region.find_region(vertices, triangles, selected)
+    outside = ~r.free & ~r.boundary
+    vertices[outside | r.boundary] = 0.0
+    with pytest.raises(region.RegionError, match="boundary vertices have no usable normal"):
+        normals(r, vertices, triangles)
 
 
 def test_everything_pinned_is_an_error():

@@ -21,9 +21,9 @@ bl_info = {
 import bpy  # noqa: E402
 
 from . import operators, overlays, properties, ui  # noqa: E402
-from .fairing import FairingOptions, FairingReport, fair_object  # noqa: E402
+from .fairing import FairingOptions, FairingReport, NotConvergedError, fair_object  # noqa: E402
 
-__all__ = ["FairingOptions", "FairingReport", "fair_object", "register", "unregister"]
+__all__ = ["FairingOptions", "FairingReport", "NotConvergedError", "fair_object", "register", "unregister"]
 
 
 def register():

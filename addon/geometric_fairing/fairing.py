@@ -8,6 +8,11 @@ runs of several objects (multi-object Edit Mode) one after another. The
 operator (modal, Esc to cancel) and :func:`fair_object` (``blender
 --background`` pipelines) share them.
 
+A run whose solve stops unconverged writes nothing either, unless
+``keep_unconverged`` is set: :meth:`FairingRun.finish` returns its report with
+``discarded`` set, the operator reports it as an error and :func:`fair_object`
+raises :class:`NotConvergedError`.
+
 Hidden faces take no part unless ``use_hidden`` is set: the mesh ends at them
 as at an open border (see :func:`region.find_region`), so a hidden face's
 vertices never move, and those next to the region are fixed G1 boundary
@@ -39,6 +44,7 @@ class FairingOptions:
     region_group: str = ""
     pin_group: str = ""
     use_hidden: bool = False
+    keep_unconverged: bool = False
 
     def __post_init__(self):
         self.inner_fairness = self.inner_fairness.upper()
@@ -67,6 +73,9 @@ class FairingReport:
             hidden face too (without ``use_hidden``).
         converged: the residual fell below the tolerance.
         cancelled: stopped by Esc or by a progress callback; the mesh is unchanged.
+        discarded: not converged, and the options did not ask to keep an unconverged
+            result (``keep_unconverged``); the mesh is unchanged.
+        tolerance: the tolerance of the run.
         iterations: fairing iterations (all levels), or Newton steps.
         residual: the last normalized residual of Δ_B H = 0 (dimensionless).
         seconds: wall time of the solve.
@@ -97,11 +106,13 @@ class FairingReport:
     hidden_fixed_vertices: int = 0
     iteration: str = ""
     timings: dict = field(default_factory=dict)
+    discarded: bool = False
+    tolerance: float = float("nan")
 
     @property
     def changed(self):
-        """Whether the mesh was changed (not cancelled)."""
-        return not self.cancelled
+        """Whether the mesh was changed (neither cancelled nor discarded)."""
+        return not self.cancelled and not self.discarded
 
     def summary(self):
         """One line for reports and logs."""
@@ -119,7 +130,33 @@ class FairingReport:
                 text += f" → {self.uv_after.mean:.4f}"
         if self.cancelled:
             return text + ", cancelled: mesh unchanged"
-        return text + (", converged" if self.converged else ", NOT converged")
+        if self.discarded:
+            return text + ", NOT converged: mesh unchanged"
+        return text + (", converged" if self.converged else ", NOT converged, result kept")
+
+
+def short_number(x):
+    """``x`` with at most two significant digits, in scientific notation unless in [1, 10): 3.2e-1, 1e-4, 3.6, 1.2e2."""
+    if not math.isfinite(x) or x == 0.0:
+        return f"{x:g}"
+    mantissa, exponent = f"{x:.1e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    return mantissa if int(exponent) == 0 else f"{mantissa}e{int(exponent)}"
+
+
+class NotConvergedError(RuntimeError):
+    """The solve stopped before the residual reached the tolerance, and the result was not kept.
+
+    Attributes:
+        report: the run's :class:`FairingReport` (``discarded`` set; the mesh is unchanged).
+    """
+
+    def __init__(self, report, hint="Pass keep_unconverged=True to apply it anyway."):
+        self.report = report
+        super().__init__(
+            f"Fairing did not converge (residual {short_number(report.residual)}, tolerance "
+            f"{short_number(report.tolerance)}): the mesh is unchanged. {hint}"
+        )
 
 
 # The result of a run that never got to solve (cancelled first): nothing to write.
@@ -203,6 +240,9 @@ class FairingRun(_WorkerThread):
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles
         )
+        self.boundary_normals = region.boundary_normals(
+            self.region, mesh.vertices, mesh.triangles[self.present_triangles], native.geofair.boundary_normals
+        )
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
@@ -231,7 +271,7 @@ class FairingRun(_WorkerThread):
                 mesh.vertices,
                 mesh.triangles[self.present_triangles],
                 fairing_region.free,
-                boundary_normals=fairing_region.boundary_normals,
+                boundary_normals=self.boundary_normals,
                 inner_fairness=options.inner_fairness.lower(),
                 outer_fairness=options.outer_fairness.lower(),
                 tolerance=options.tolerance,
@@ -264,9 +304,11 @@ class FairingRun(_WorkerThread):
     # -- result ------------------------------------------------------------------------------
 
     def finish(self):
-        """Write the result into the mesh unless cancelled; return the :class:`FairingReport`.
+        """Write the result into the mesh unless cancelled or discarded; return the :class:`FairingReport`.
 
-        Call in Blender's main thread after :meth:`solve` (or when :attr:`done`).
+        Call in Blender's main thread after :meth:`solve` (or when :attr:`done`). An
+        unconverged result is written only with ``options.keep_unconverged``;
+        otherwise the report has ``discarded`` set and the mesh is unchanged.
 
         Raises:
             ValueError, RuntimeError: the solver failed (the mesh is unchanged),
@@ -282,7 +324,8 @@ class FairingRun(_WorkerThread):
         if result is None:  # cancelled before it was solved (a later object of a batch), or failed meanwhile
             cancelled = True
             result = _NOT_SOLVED
-        if not cancelled:
+        discarded = not cancelled and not result.converged and not self.options.keep_unconverged
+        if not cancelled and not discarded:
             positions = np.asarray(result.vertices, dtype=np.float64)
             free = np.flatnonzero(self.region.free)
             if positions.shape != self.mesh.vertices.shape or not np.isfinite(positions[free]).all():
@@ -316,6 +359,8 @@ class FairingRun(_WorkerThread):
             vertices_per_level=list(result.vertices_per_level),
             iteration=str(result.iteration),
             timings=dict(self.timings),
+            discarded=discarded,
+            tolerance=float(self.options.tolerance),
         )
 
     def _uv_distortion(self, positions):
@@ -332,7 +377,8 @@ class FairingBatch(_WorkerThread):
     Solving, cancelling and waiting work as for one :class:`FairingRun`; a
     failure of one run (also inside the compiled solver) is kept by that run
     and does not stop the others. :meth:`finish` writes each run that
-    succeeded and returns the reports and the errors per object.
+    succeeded and returns the reports and the errors per object (the report
+    of a run whose unconverged result was discarded, and not written, too).
 
     Args:
         runs: list of :class:`FairingRun`, each on another mesh.
@@ -459,17 +505,21 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             the solver, see ``geofair.fair``), ``pin_group`` (vertex group name),
             ``use_hidden`` (False: hidden faces take no part, their vertices never move).
             Not given: the Fairing panel's settings, which follow the add-on
-            preferences.
+            preferences. ``keep_unconverged`` (default False): write the result
+            even if the solve stops unconverged.
 
     Returns:
         :class:`FairingReport` (also shown in the panel as the last run).
 
     Raises:
         ValueError: no usable region, unknown option or vertex group.
+        NotConvergedError: (a RuntimeError) the solve stopped unconverged and
+            ``keep_unconverged`` is not set; the mesh is unchanged, the figures
+            are in its ``report``.
         RuntimeError: the solver failed, or the compiled module is missing.
     """
     context = context or bpy.context
-    unknown = set(options) - set(properties.OPTION_NAMES)
+    unknown = set(options) - {*properties.OPTION_NAMES, "keep_unconverged"}
     if unknown:
         raise TypeError(f"fair_object: unknown options {', '.join(sorted(unknown))}")
     faces = None
@@ -485,6 +535,8 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run = FairingRun(obj, run_options, faces=faces, progress=progress)
         run.solve()
         report = run.finish()
+        if report.discarded:
+            raise NotConvergedError(report)
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise
@@ -505,6 +557,10 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last.tolerance = options.tolerance
     last.not_faired = ""
     last.iteration = ""
+    if isinstance(error, NotConvergedError):  # the figures of the run, with the reason it was not written
+        store_last_run(window_manager, options, error.report)
+        last.message = error_text(error)
+        return
     if error is not None:
         last.status, last.message, last.object_name = "ERROR", error_text(error), object_name
         return
@@ -535,6 +591,10 @@ def store_last_runs(window_manager, options, reports, errors, message):
     if session is None:
         return
     if not reports:
+        if len(errors) == 1:  # one object: its error as such (a NotConvergedError keeps its figures)
+            store_last_run(window_manager, options, error=errors[0][1], object_name=errors[0][0])
+            session.last_run.message = message
+            return
         names = ", ".join(name for name, _ in errors)
         store_last_run(window_manager, options, error=RuntimeError(message), object_name=names)
         return

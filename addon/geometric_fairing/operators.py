@@ -16,7 +16,10 @@ Only when no object could be faired does the operator cancel with an error.
 
 Errors never leave a half-written mesh: a run writes only after its solve
 succeeded, and a cancelled operator adds no undo step, so undo after an error
-goes back to the step before it.
+goes back to the step before it. A solve that stops unconverged counts as an
+error (the mesh is left as it was, the report gives the residual and the
+tolerance) unless *Keep Unconverged Result* is ticked: then it is written with
+a warning.
 """
 
 import bpy
@@ -44,6 +47,8 @@ TOGGLE_ITEMS = (
     ("OFF", "Off", "Turn off"),
 )
 
+
+UNCONVERGED_HINT = "Tick 'Keep Unconverged Result' to apply it anyway."
 
 _running = None  # the FairingBatch of the modal operator while it solves
 
@@ -107,7 +112,8 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         for name in OPTION_NAMES:
             if not self.properties.is_property_set(name):
                 setattr(self, name, getattr(settings, name))
-        return fairing.FairingOptions(**{name: getattr(self, name) for name in OPTION_NAMES})
+        options = {name: getattr(self, name) for name in OPTION_NAMES}
+        return fairing.FairingOptions(**options, keep_unconverged=self.keep_unconverged)
 
     def prepare(self, context):
         """Read each mesh in Edit Mode and find its region; the batch, or None (after a report) if none can run."""
@@ -214,7 +220,11 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
     def finish(self, context, batch):
         """Write the results (unless cancelled), keep the figures for the panel, report."""
         reports, errors = batch.finish()
-        errors = [*self._failed, *errors]
+        # An unconverged result that was not kept: that object is not faired, like one that failed.
+        not_kept = [(report.object_name, fairing.NotConvergedError(report, UNCONVERGED_HINT)) for report in reports]
+        not_kept = [(name, error) for name, error in not_kept if error.report.discarded]
+        reports = [report for report in reports if not report.discarded]
+        errors = [*self._failed, *errors, *not_kept]
         options = batch.runs[0].options
         wm = context.window_manager
         if not reports:
@@ -242,7 +252,12 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         elif all(report.converged for report in reports):
             self.report({"INFO"}, f"Geometric Fairing: {message}")
         else:
-            self.report({"WARNING"}, f"Geometric Fairing: {message} (tolerance {options.tolerance:g})")
+            residual = max(report.residual for report in reports if not report.converged)
+            self.report(
+                {"WARNING"},
+                f"Geometric Fairing: did not converge (residual {fairing.short_number(residual)}, tolerance "
+                f"{fairing.short_number(options.tolerance)}), unconverged result kept: {message}",
+            )
         return {"FINISHED"}
 
 

@@ -164,6 +164,17 @@ def _use_hidden(**options):
     )
 
 
+def _keep_unconverged(**options):
+    return BoolProperty(
+        name="Keep Unconverged Result",
+        description="Write the result into the mesh even when the solver stops before the residual reaches the "
+        "tolerance (at Max Iterations, or where it stalls), with a warning. Off: an unconverged run leaves the mesh "
+        "as it was and reports an error",
+        default=False,
+        **options,
+    )
+
+
 def addon_preferences(context=None):
     """The add-on's :class:`FairingPreferences`, or None when it was not enabled through the preferences."""
     context = context or bpy.context
@@ -212,6 +223,8 @@ class FairingProperties:
 
     SKIP_SAVE: an option that is not given comes from the panel's settings
     (which follow the preferences), never from the previous call.
+    ``keep_unconverged`` is the operator's alone (off unless given or ticked in
+    the redo panel).
     """
 
     inner_fairness: _inner_fairness(options={"SKIP_SAVE"})
@@ -223,6 +236,7 @@ class FairingProperties:
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})
     use_hidden: _use_hidden(options={"SKIP_SAVE"})
+    keep_unconverged: _keep_unconverged(options={"SKIP_SAVE"})
 
 
 class FairingSettings(bpy.types.PropertyGroup):
@@ -246,7 +260,11 @@ class FairingLastRun(bpy.types.PropertyGroup):
         items=(
             ("NONE", "None", "No run yet"),
             ("CONVERGED", "Converged", "The residual fell below the tolerance"),
-            ("NOT_CONVERGED", "Not converged", "Stopped at the iteration limit; the mesh was changed"),
+            (
+                "NOT_CONVERGED",
+                "Not converged",
+                "Stopped before the tolerance; the mesh was changed only with Keep Unconverged Result",
+            ),
             ("CANCELLED", "Cancelled", "Cancelled; the mesh was left as it was"),
             ("ERROR", "Error", "Failed; the mesh was left as it was"),
         ),

@@ -1,8 +1,10 @@
 """Selection to fairing region, without bpy (numpy only).
 
 Turns a face selection on a triangle mesh into what ``geofair.fair`` needs: the
-mask of free vertices, the G1 boundary around them with its prescribed normals,
-and, for reporting and tests, the boundary loops.
+mask of free vertices, the G1 boundary around them with its prescribed normals
+(:func:`boundary_normals`: the library's estimate, ``geofair.boundary_normals``,
+except at vertices without an unselected face), and, for reporting and tests,
+the boundary loops.
 
 Conventions: ``V  #V×3 float64`` vertex positions, ``T  #T×3 int`` triangles,
 consistently oriented (counter-clockwise seen from the outside), so the cross
@@ -51,9 +53,13 @@ class Region:
             selected and they are not on the open mesh border.
         boundary: ``(n,)`` bool, the G1 boundary: fixed vertices that share a
             face with a free vertex.
-        boundary_normals: ``(n, 3)`` float64, unit normals at boundary rows,
-            zero elsewhere. Area-weighted normal of the unselected faces at the
-            vertex; of the selected faces where there is no unselected face.
+        keeps_normal: ``(n,)`` bool, the boundary vertices without an unselected
+            face (on the open border, next to a hidden face, or pinned): no fixed
+            surface around them to estimate a normal from, so they keep their
+            current one.
+        current_normals: ``(n, 3)`` float64, at ``keeps_normal`` rows the
+            area-weighted normal of the (selected) faces at the vertex, unit
+            length (zero where those faces are degenerate); zero elsewhere.
         border_fixed: ``(n,)`` bool, vertices with all faces selected that were
             kept fixed because they lie on the open mesh border.
         hidden_fixed: ``(n,)`` bool, vertices with all their present faces
@@ -69,7 +75,8 @@ class Region:
 
     free: np.ndarray
     boundary: np.ndarray
-    boundary_normals: np.ndarray
+    keeps_normal: np.ndarray
+    current_normals: np.ndarray
     border_fixed: np.ndarray
     hidden_fixed: np.ndarray
     pinned: np.ndarray
@@ -155,11 +162,11 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
     next to a free vertex are G1 boundary vertices whose normal comes from the
     present faces at them.
 
-    Boundary normals: the area-weighted normal of the present unselected faces
-    at the vertex. A fixed vertex with every present face selected (on the open
-    border, next to an absent face, or pinned inside the region) has no
-    unselected face: it keeps the area-weighted normal of its selected faces,
-    its current vertex normal.
+    Boundary normals are not computed here but by :func:`boundary_normals`,
+    except at a fixed vertex with every present face selected (on the open
+    border, next to an absent face, or pinned inside the region): it has no
+    unselected face and keeps the area-weighted normal of its selected faces,
+    its current vertex normal (``current_normals``).
 
     Args:
         vertices: ``(n, 3)`` float vertex positions.
@@ -174,9 +181,8 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
 
     Raises:
         NothingSelectedError: no present triangle is selected.
-        RegionError: no free vertex, a selected part with no fixed boundary (the
-            whole closed mesh, or a whole closed piece of it), or a boundary
-            normal that cannot be computed (degenerate faces).
+        RegionError: no free vertex, or a selected part with no fixed boundary
+            (the whole closed mesh, or a whole closed piece of it).
     """
     vertices = np.asarray(vertices, dtype=np.float64)
     triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
@@ -216,27 +222,57 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
     closed = WHOLE_MESH_SELECTED if selected.all() and not on_border.any() else WHOLE_CLOSED_PART
     _check_every_part_has_boundary(triangles, free, boundary, closed)
 
-    cross = face_cross_products(vertices, triangles)
-    outside_normal = _vertex_sums(n, triangles[~selected], cross[~selected])
-    inside_normal = _vertex_sums(n, triangles[selected], cross[selected])
-    use_inside = boundary & (selected_at == faces_at)
-    normals = np.where(use_inside[:, None], inside_normal, outside_normal)
-    normals[~boundary] = 0.0
-    length = np.linalg.norm(normals, axis=1)
-    degenerate = boundary & ~(length > 0.0)
-    if degenerate.any():
-        raise RegionError(f"{np.count_nonzero(degenerate)} boundary vertices have no usable normal (degenerate faces)")
-    normals[boundary] /= length[boundary, None]
+    keeps_normal = boundary & (selected_at == faces_at)
+    current = _vertex_sums(n, triangles[selected], face_cross_products(vertices, triangles)[selected])
+    current[~keeps_normal] = 0.0
+    length = np.linalg.norm(current, axis=1)
+    usable = length > 0.0
+    current[usable] /= length[usable, None]
 
     return Region(
         free=free,
         boundary=boundary,
-        boundary_normals=normals,
+        keeps_normal=keeps_normal,
+        current_normals=current,
         border_fixed=border_fixed,
         hidden_fixed=hidden_fixed,
         pinned=pinned,
         region_triangles=triangles[in_region],
     )
+
+
+def boundary_normals(fairing_region, vertices, triangles, estimate):
+    """The unit normals ``geofair.fair`` is given at the G1 boundary.
+
+    The library's estimate from the fixed surface around the region (a
+    least-squares quadric through the fixed vertices within two rings, error
+    O(h²); see ``geofair.boundary_normals``), except at the ``keeps_normal``
+    vertices, which have no unselected face and keep their current normal.
+
+    Args:
+        fairing_region: the :class:`Region` of ``vertices`` and ``triangles``.
+        vertices: ``(n, 3)`` float64 vertex positions.
+        triangles: ``(T, 3)`` int triangles that take part (the present ones).
+        estimate: ``geofair.boundary_normals``: ``(vertices, triangles, free)`` to
+            ``(n, 3)`` unit rows at G1 boundary vertices, zero rows where it has
+            no surrounding triangle to estimate from.
+
+    Returns:
+        ``(n, 3)`` float64, unit rows at boundary vertices, zero elsewhere.
+
+    Raises:
+        RegionError: a boundary normal that cannot be computed (degenerate faces).
+    """
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    normals = np.array(estimate(vertices, triangles, fairing_region.free), dtype=np.float64)
+    keeps = fairing_region.keeps_normal
+    normals[keeps] = fairing_region.current_normals[keeps]
+    normals[~fairing_region.boundary] = 0.0
+    degenerate = fairing_region.boundary & ~(np.linalg.norm(normals, axis=1) > 0.0)
+    if degenerate.any():
+        raise RegionError(f"{np.count_nonzero(degenerate)} boundary vertices have no usable normal (degenerate faces)")
+    return normals
 
 
 def region_triangles(triangles, free):

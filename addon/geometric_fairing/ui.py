@@ -77,10 +77,11 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
         status = layout.row()
         status.alert = last.status in ("ERROR", "NOT_CONVERGED")
         status.label(text=f"{last.object_name}: {_status_text(last)}", icon=icon[last.status])
-        if last.status == "ERROR":
+        if last.status in ("ERROR", "NOT_CONVERGED"):  # not converged: whether the result was kept, and why not
             for line in _wrap(last.message, 48):
                 layout.label(text=line)
-            return
+            if last.status == "ERROR":
+                return
         if last.not_faired:
             box = layout.box()
             box.alert = True

@@ -1,7 +1,8 @@
-// libFuzzer target for the library's entry points: geofair::fair, mean_curvature and
-// intrinsic_delaunay_laplacian must either return finite geometry (fair: with the fixed
-// vertices untouched), or throw one of the two documented exceptions. Anything else (a
-// crash, a sanitizer report, another exception, NaN in the result) is a bug.
+// libFuzzer target for the library's entry points: geofair::fair, mean_curvature,
+// intrinsic_delaunay_laplacian and estimate_boundary_normals must either return finite
+// geometry (fair: with the fixed vertices untouched; boundary normals: unit or zero rows),
+// or throw one of the two documented exceptions. Anything else (a crash, a sanitizer
+// report, another exception, NaN in the result) is a bug.
 //
 // Input layout (little-endian bytes, all wrapped into range): n_vertices (1 byte, 3..66),
 // n_triangles (1 byte, 1..128), options (1 byte: inner, outer fairness, levels, normal
@@ -10,6 +11,7 @@
 #include "geofair/fairing.h"
 #include "geofair/intrinsic_delaunay.h"
 #include "geofair/mean_curvature.h"
+#include "geofair/region.h"
 
 #include <cmath>
 #include <cstddef>
@@ -55,6 +57,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!std::isfinite(L.valuePtr()[k])) std::abort();
   } catch (const geofair::InvalidInputError&) {
   } catch (const geofair::SolverError&) {
+  }
+
+  // Boundary normals: every row a unit vector or zero (the positions are finite).
+  try {
+    const geofair::Positions N = geofair::estimate_boundary_normals(V, F, free);
+    for (int v = 0; v < nv; ++v) {
+      const double len = N.row(v).norm();
+      if (!std::isfinite(len) || (len != 0.0 && std::abs(len - 1.0) > 1e-9)) std::abort();
+    }
+  } catch (const geofair::InvalidInputError&) {
   }
 
   geofair::FairingOptions options;

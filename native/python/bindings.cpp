@@ -262,8 +262,11 @@ free : (n,) bool array, True where a vertex may move. Each free vertex must be s
     by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
     vertex form the G1 boundary.
 boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
-    prescribed unit normals (other rows are ignored). None: the area-weighted normal of the
-    triangles at that vertex that contain no free vertex (the surrounding surface).
+    prescribed unit normals (other rows are ignored); one whose dot product with the
+    estimate of geofair.boundary_normals is negative is rejected (flipped normals or
+    faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
+    least-squares quadric through the fixed vertices around it (error O(h²); earlier
+    releases took the one-sided area-weighted normal, O(h)).
 inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
     vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
     of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
@@ -477,7 +480,7 @@ singular.)doc");
           const Positions normals = Positions::Zero(V.rows(), 3);
           Positions fake = normals;
           fake.col(2).setOnes();  // normals are not used by the hierarchy
-          const FairingRegion region = extract_region(V, F, mask, &fake);
+          const FairingRegion region = extract_region(V, F, mask, &fake, /*check_orientation=*/false);
           Positions X(region.n, 3);
           for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
           const int n = levels > 0 ? levels : default_levels(region.n_free);
@@ -512,6 +515,63 @@ Measured on the input smoothed by 10 sweeps of the uniform Laplacian (fair() smo
 inner fairness weights).
 
 Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "boundary_normals",
+      [](const py::object& vertices, const py::object& faces, const py::object& free,
+         const std::string& method) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        const BoundaryNormalEstimate estimate = parse<BoundaryNormalEstimate>(
+            method, "method",
+            {{"quadric", BoundaryNormalEstimate::Quadric}, {"area", BoundaryNormalEstimate::Area}});
+        py::gil_scoped_release release;
+        Positions N = estimate_boundary_normals(V, F, mask, estimate);
+        for (Eigen::Index v = 0; v < N.rows(); ++v)
+          if (!N.row(v).allFinite())
+            throw InvalidInputError("boundary_normals: the normal of G1 boundary vertex " +
+                                    std::to_string(v) +
+                                    " is not finite (a vertex of its surrounding triangles has "
+                                    "a non-finite coordinate)");
+        return N;
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+      py::arg("method") = "quadric",
+      R"doc(The unit normals fair() prescribes at the G1 boundary when it is given no
+boundary_normals: estimated from the fixed surface around the free region (beyond the
+paper; Schneider & Kobbelt 2001, section 7.5, average the outside triangles' normals).
+
+The G1 boundary is the set of fixed vertices that share a triangle with a free vertex; a
+vertex's surrounding triangles are its triangles without a free vertex (the positions of
+free vertices, which fairing replaces, never enter).
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, consistently oriented triangles.
+free : (n,) bool array, True where a vertex may move.
+method : "quadric" (default): the tangent plane of a least-squares paraboloid
+    z = a x + b y + c x² + d xy + e y² through the vertex, fitted to the fixed vertices
+    within two rings reached through surrounding triangles, in the frame of the "area"
+    normal and refitted once in the fitted normal's frame; error O(h²) for edge length h on
+    a smooth surface (falls back to "area" where the fit is ill-conditioned: fewer than 6
+    samples, condition number above 1e6, e.g. only two straight rows of fixed vertices, or
+    a tilt of 45° or more). "area": the area-weighted normal of the surrounding
+    triangles, one-sided, error O(h) (fair()'s estimate before this release). Measured in
+    tests/test_boundary_normals.py.
+
+Returns
+-------
+(n, 3) float64: unit normals at G1 boundary vertices, oriented like the faces (positive
+dot product with the surrounding triangles' normal); zero rows at all other vertices and at
+G1 boundary vertices without a surrounding triangle (where the free region reaches the
+mesh border: fair() without boundary_normals raises there) or with only degenerate ones.
+
+Raises
+------
+ValueError for invalid input (shapes, dtypes, indices, a non-finite vertex of a
+surrounding triangle).)doc");
 
   m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
         py::arg("normals") = py::none(), py::arg("normal_weighting") = "quadric",

@@ -4,7 +4,11 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <Eigen/Dense>
+
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 
 namespace geofair {
@@ -28,6 +32,54 @@ void silence_openmesh() {
 struct FanEdge {
   int from, to, across;
 };
+
+// Orthonormal basis (bx, by) of the plane with unit normal n.
+void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
+  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  bx = n.cross(helper).normalized();
+  by = n.cross(bx);
+}
+
+// Fewest samples, and largest condition number of the column-equilibrated normal equations,
+// with which the quadric fit of a boundary normal is trusted (estimate_boundary_normals).
+constexpr int kMinQuadricSamples = 6;
+constexpr double kMaxQuadricCondition = 1e6;
+
+// Normal of the tangent plane of the least-squares paraboloid z = a x + b y + c x² + d xy + e y²
+// through the origin, in the frame of the unit normal n, fitted to the offsets d (samples
+// minus the vertex, in units of their rms distance), each equation weighted by 1/|d|².
+// False where the fit is ill-conditioned or tilts the plane by 45° or more.
+bool fit_tangent_plane(const std::vector<Vec3>& offsets, const Vec3& n, Vec3& out) {
+  Vec3 bx, by;
+  tangent_basis(n, bx, by);
+  using Vec5 = Eigen::Matrix<double, 5, 1>;
+  using Mat5 = Eigen::Matrix<double, 5, 5>;
+  Mat5 M = Mat5::Zero();
+  Vec5 rhs = Vec5::Zero();
+  for (const Vec3& d : offsets) {
+    const double dd = d.squaredNorm();
+    const double w = 1.0 / dd;
+    const double x = d.dot(bx), y = d.dot(by), z = d.dot(n);
+    Vec5 row;
+    row << x, y, x * x, x * y, y * y;
+    row *= w;
+    M.noalias() += row * row.transpose();
+    rhs += row * (w * z);
+  }
+  // Equilibrate the columns, then judge the conditioning by the eigenvalues.
+  const Vec5 diag = M.diagonal();
+  if (!(diag.minCoeff() > 0.0) || !diag.allFinite()) return false;
+  const Vec5 s = diag.cwiseSqrt().cwiseInverse();
+  const Mat5 Ms = s.asDiagonal() * M * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Mat5> eigen(Ms, Eigen::EigenvaluesOnly);
+  const Vec5 lambda = eigen.eigenvalues();  // ascending
+  if (!(lambda(0) > lambda(4) / kMaxQuadricCondition)) return false;
+  const Vec5 c = s.asDiagonal() * Ms.ldlt().solve(s.asDiagonal() * rhs);
+  const double a = c(0), b = c(1);
+  if (!(a * a + b * b < 1.0)) return false;
+  out = (n - a * bx - b * by).normalized();
+  return out.allFinite();
+}
 
 }  // namespace
 
@@ -123,8 +175,106 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
   return r;
 }
 
+Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
+                                    const std::vector<bool>& free, BoundaryNormalEstimate method,
+                                    const char* caller) {
+  const int nv = int(V.rows());
+  if (int(free.size()) != nv)
+    throw InvalidInputError(prefix(caller) + "free has " + std::to_string(free.size()) +
+                            " entries for " + std::to_string(nv) + " vertices");
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (F(f, c) < 0 || F(f, c) >= nv)
+        throw InvalidInputError(prefix(caller) + "triangle " + std::to_string(f) +
+                                " has vertex index " + std::to_string(F(f, c)) +
+                                ", out of range [0, " + std::to_string(nv) + ")");
+  // G1 boundary: fixed vertices of triangles with a free vertex. Surrounding triangles:
+  // those without a free vertex, as vertex -> triangle lists (CSR).
+  std::vector<std::uint8_t> g1(nv, 0);
+  std::vector<int> start(nv + 1, 0);
+  auto has_free = [&](Eigen::Index f) { return free[F(f, 0)] || free[F(f, 1)] || free[F(f, 2)]; };
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    if (has_free(f)) {
+      for (int c = 0; c < 3; ++c)
+        if (!free[F(f, c)]) g1[F(f, c)] = 1;
+    } else {
+      for (int c = 0; c < 3; ++c) ++start[F(f, c) + 1];
+    }
+  }
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> incident(start[nv]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      if (!has_free(f))
+        for (int c = 0; c < 3; ++c) incident[fill[F(f, c)]++] = int(f);
+  }
+
+  Positions normals = Positions::Zero(nv, 3);
+  std::vector<int> stamp(nv, -1);  // the vertex whose samples last took this one
+  std::vector<int> first_ring;
+  std::vector<Vec3> offsets;
+  for (int v = 0; v < nv; ++v) {
+    if (!g1[v]) continue;
+    const Vec3 q = V.row(v);
+    Vec3 sum = Vec3::Zero();
+    for (int k = start[v]; k < start[v + 1]; ++k) {
+      const int f = incident[k];
+      const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+      sum += (b - a).cross(c - a);
+    }
+    const double len = sum.norm();
+    if (!std::isfinite(len)) {
+      normals.row(v).setConstant(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    if (!(len > 0.0)) continue;  // no surrounding triangle, or only degenerate ones
+    const Vec3 n0 = sum / len;
+    normals.row(v) = n0;
+    if (method == BoundaryNormalEstimate::Area) continue;
+
+    // Samples: the vertices of the surrounding triangles at v, and of the triangles
+    // without a free vertex at those.
+    first_ring.clear();
+    offsets.clear();
+    stamp[v] = v;
+    bool finite = true;
+    auto take = [&](int w) {
+      if (stamp[w] == v) return false;
+      stamp[w] = v;
+      const Vec3 d = V.row(w).transpose() - q;
+      if (!d.allFinite()) finite = false;
+      offsets.push_back(d);
+      return true;
+    };
+    for (int k = start[v]; k < start[v + 1]; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (take(F(incident[k], c))) first_ring.push_back(F(incident[k], c));
+    for (int w : first_ring)
+      for (int k = start[w]; k < start[w + 1]; ++k)
+        for (int c = 0; c < 3; ++c) take(F(incident[k], c));
+    if (!finite || int(offsets.size()) < kMinQuadricSamples) continue;
+    double mean_dd = 0.0;
+    for (const Vec3& d : offsets) mean_dd += d.squaredNorm();
+    const double unit = std::sqrt(mean_dd / double(offsets.size()));
+    if (!(unit > 0.0) || !std::isfinite(unit)) continue;
+    bool coincident = false;
+    for (Vec3& d : offsets) {
+      d /= unit;
+      if (!(d.squaredNorm() > 0.0)) coincident = true;
+    }
+    if (coincident) continue;
+    // Fit in the frame of n0, then once more in the frame of the fitted normal.
+    Vec3 n1, n2;
+    if (!fit_tangent_plane(offsets, n0, n1) || !fit_tangent_plane(offsets, n1, n2)) continue;
+    if (!(n2.dot(n0) > 0.0)) continue;
+    normals.row(v) = n2;
+  }
+  return normals;
+}
+
 FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                             const Positions* boundary_normals) {
+                             const Positions* boundary_normals, bool check_orientation) {
   const char* fn = "fair";
   const int nv = int(V.rows());
   if (int(free.size()) != nv)
@@ -182,26 +332,23 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
                               " lies on the mesh border (its triangles do not close around "
                               "it); fix it or give it as a G1 boundary vertex");
 
-  // G1 boundary normals: prescribed, or from the surrounding surface.
+  // G1 boundary normals: prescribed (checked against the surface's orientation), or
+  // estimated from the surrounding surface.
   const int nb = region.n - region.n_free;
   region.g1_normals.resize(nb, 3);
-  if (boundary_normals) {
-    if (boundary_normals->rows() != nv)
-      throw InvalidInputError(prefix(fn) + "boundary_normals has " +
-                              std::to_string(boundary_normals->rows()) + " rows for " +
-                              std::to_string(nv) + " vertices");
-    for (int b = 0; b < nb; ++b) region.g1_normals.row(b) = boundary_normals->row(region.global[region.n_free + b]);
-  } else {
-    region.g1_normals.setZero();
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
-      if (free[a] || free[b] || free[c]) continue;
-      if (local[a] < 0 && local[b] < 0 && local[c] < 0) continue;
-      const Vec3 pa = V.row(a), pb = V.row(b), pc = V.row(c);
-      const Vec3 cr = (pb - pa).cross(pc - pa);
-      for (int v : {a, b, c})
-        if (local[v] >= region.n_free) region.g1_normals.row(local[v] - region.n_free) += cr;
-    }
+  if (boundary_normals && boundary_normals->rows() != nv)
+    throw InvalidInputError(prefix(fn) + "boundary_normals has " +
+                            std::to_string(boundary_normals->rows()) + " rows for " +
+                            std::to_string(nv) + " vertices");
+  Positions estimate;
+  if (!boundary_normals || check_orientation)
+    estimate = estimate_boundary_normals(V, F, free, BoundaryNormalEstimate::Quadric, fn);
+  for (int b = 0; b < nb; ++b) {
+    const int v = region.global[region.n_free + b];
+    if (boundary_normals)
+      region.g1_normals.row(b) = boundary_normals->row(v);
+    else
+      region.g1_normals.row(b) = estimate.row(v);
   }
   for (int b = 0; b < nb; ++b) {
     const int v = region.global[region.n_free + b];
@@ -214,6 +361,18 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
       if (std::abs(len - 1.0) > 1e-6)
         throw InvalidInputError(prefix(fn) + "boundary_normals[" + std::to_string(v) +
                                 "] is not a unit vector (length " + std::to_string(len) + ")");
+      if (check_orientation) {
+        const Vec3 e = estimate.row(v);
+        const double dot = n.dot(e) / len;
+        if (e.allFinite() && e.squaredNorm() > 0.0 && dot < 0.0) {
+          char text[32];
+          std::snprintf(text, sizeof text, "%.2f", dot);
+          throw InvalidInputError(prefix(fn) + "boundary_normals[" + std::to_string(v) +
+                                  "] points against the surface's orientation (dot product " +
+                                  text + " with the normal of its surrounding triangles); "
+                                  "flip it or the faces");
+        }
+      }
     } else if (!(len > 0.0)) {
       throw InvalidInputError(prefix(fn) + "G1 boundary vertex " + std::to_string(v) +
                               " has no surrounding triangle without a free vertex to take its "

@@ -5,6 +5,10 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
 - Bad input, each with its exact report, ``{'CANCELLED'}`` and the mesh (positions,
   UVs, selection) byte-identical: nothing selected; only vertices; only edges; the
   whole closed mesh selected; a whole closed part (a sphere beside a grid) selected.
+- An unconverged solve (Max Iterations 1): ``{'CANCELLED'}`` with the residual and the
+  tolerance in the error, the mesh byte-identical and no undo step; with *Keep Unconverged
+  Result* ticked the mesh changes and a warning gives the residual. ``fair_object`` raises
+  ``NotConvergedError`` unless ``keep_unconverged=True``.
 - A failure inside the compiled solver, simulated by replacing the loaded module's
   ``fair`` with one that raises (RuntimeError, ValueError, and an unexpected
   MemoryError), and a real one (a NaN vertex that the native code rejects): the
@@ -13,8 +17,13 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
   it (the failed run added no undo step).
 """
 
+import contextlib
+import ctypes
+import os
 import pathlib
+import re
 import sys
+import tempfile
 import types
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
@@ -187,6 +196,114 @@ def check_solver_failure(addon, obj, error, expected):
     print("ok: an error after a run leaves the faired mesh; undo returns exactly to the state before that run")
 
 
+UNCONVERGED = re.compile(
+    r"Error: Geometric Fairing: Fairing did not converge \(residual (\d(\.\d)?(e-?\d+)?), tolerance 1e-4\): the mesh "
+    r"is unchanged\. Tick 'Keep Unconverged Result' to apply it anyway\."
+)
+
+
+@contextlib.contextmanager
+def printed():
+    """Collect what is printed to the standard output (also by Blender's C code: its reports) in a ``with`` block.
+
+    In background mode an operator's WARNING or INFO report is only printed ("Warning: ..."); yields a list
+    that holds the text once the block ends.
+    """
+    libc = ctypes.CDLL(None)
+    text = []
+    sys.stdout.flush()
+    libc.fflush(None)
+    saved = os.dup(1)
+    with tempfile.TemporaryFile() as file:
+        os.dup2(file.fileno(), 1)
+        try:
+            yield text
+        finally:
+            sys.stdout.flush()
+            libc.fflush(None)
+            os.dup2(saved, 1)
+            os.close(saved)
+            file.seek(0)
+            text.append(file.read().decode())
+            print(text[0], end="")
+
+
+def check_unconverged(addon, obj):
+    """Max Iterations 1 stops unconverged: CANCELLED with the residual, mesh and undo history untouched."""
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bpy.ops.ed.undo_push(message="selected the brow (unconverged)")
+    before = edit_state(obj)
+    result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1)
+    match = UNCONVERGED.fullmatch(report)
+    assert result == {"CANCELLED"} and match, (result, report)
+    assert edit_state(obj) == before, "an unconverged run changed the mesh"
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert last.status == "NOT_CONVERGED" and last.iterations >= 1, (last.status, last.iterations)
+    assert f"Error: Geometric Fairing: {last.message}" == report, last.message
+    assert abs(float(match.group(1)) / last.residual - 1) < 0.06 and last.residual > 1e-4, last.residual
+    print(f"ok: an unconverged solve -> CANCELLED, mesh unchanged: {report}")
+
+    # No undo step: after a run and an unconverged one, one undo goes back to the state before the run.
+    result, report = run_fairing(inner_fairness="CONFORMAL")
+    assert result == {"FINISHED"}, report
+    after = edit_state(obj)
+    assert after["co"] != before["co"]
+    result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1)
+    assert result == {"CANCELLED"} and UNCONVERGED.fullmatch(report) and edit_state(obj) == after, report
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before, "undo after the unconverged run did not go back past the run before it"
+    print("ok: the unconverged run added no undo step")
+
+    # Keep Unconverged Result: written, with a warning that gives the residual.
+    with printed() as output:
+        result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1, keep_unconverged=True)
+    assert result == {"FINISHED"} and report == "", (result, report)
+    kept = edit_state(obj)
+    assert kept["co"] != before["co"] and kept["co"] != after["co"], "the kept result is not the unconverged one"
+    assert {k: v for k, v in kept.items() if k != "co"} == {k: v for k, v in before.items() if k != "co"}
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert last.status == "NOT_CONVERGED" and "NOT converged, result kept" in last.message, last.message
+    residual = addon.fairing.short_number(last.residual)
+    expected = (
+        f"Warning: Geometric Fairing: did not converge (residual {residual}, tolerance 1e-4), unconverged result "
+        f"kept: {last.message}"
+    )
+    assert expected in output[0].splitlines(), (expected, output)
+    print(f"ok: Keep Unconverged Result -> FINISHED, mesh changed, warning: {expected}")
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before
+    rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties["keep_unconverged"]
+    assert rna.name == "Keep Unconverged Result" and rna.default is False, (rna.name, rna.default)
+
+
+def check_fair_object_unconverged(addon, obj):
+    """fair_object raises NotConvergedError (mesh unchanged) unless keep_unconverged=True."""
+    bpy.ops.object.mode_set(mode="OBJECT")
+    co = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    obj.data.vertices.foreach_get("co", co)
+    try:
+        addon.fair_object(obj, inner_fairness="CONFORMAL", max_iterations=1)
+    except addon.NotConvergedError as error:
+        assert isinstance(error, RuntimeError) and error.report.discarded and not error.report.changed
+        assert str(error).startswith("Fairing did not converge (residual ") and str(error).endswith(
+            "tolerance 1e-4): the mesh is unchanged. Pass keep_unconverged=True to apply it anyway."
+        ), error
+    else:
+        raise AssertionError("fair_object did not raise NotConvergedError")
+    after = np.empty_like(co)
+    obj.data.vertices.foreach_get("co", after)
+    assert after.tobytes() == co.tobytes()
+    assert bpy.context.window_manager.geometric_fairing.last_run.status == "NOT_CONVERGED"
+    report = addon.fair_object(obj, inner_fairness="CONFORMAL", max_iterations=1, keep_unconverged=True)
+    assert not report.converged and report.changed, report
+    obj.data.vertices.foreach_get("co", after)
+    assert after.tobytes() != co.tobytes()
+    obj.data.vertices.foreach_set("co", co)
+    obj.data.update()
+    print("ok: fair_object raises NotConvergedError, mesh unchanged; keep_unconverged=True writes the result")
+    bpy.ops.object.mode_set(mode="EDIT")
+
+
 def check_native_rejects(obj):
     """A real rejection by the compiled module: a free vertex whose position is NaN."""
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
@@ -249,6 +366,7 @@ def main():
     obj = add_subdivided_suzanne()
     bpy.ops.object.mode_set(mode="EDIT")
     check_bad_selections(obj)
+    check_unconverged(addon, obj)
     check_solver_failure(
         addon, obj, RuntimeError("fair: diverged (simulated)"), "Error: Geometric Fairing: fair: diverged (simulated)"
     )
@@ -258,6 +376,7 @@ def main():
     check_solver_failure(addon, obj, MemoryError("simulated"), "Error: Geometric Fairing: MemoryError: simulated")
     check_native_rejects(obj)
     check_fair_object_failure(addon, obj)
+    check_fair_object_unconverged(addon, obj)
     assert isinstance(addon.native.geofair, types.ModuleType)
     disable_addon()
     print("check_errors: all checks passed")
