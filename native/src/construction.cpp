@@ -250,7 +250,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     ++iterations_;
     const double trial = evaluate(X);
     const double trial_merit = merit();
-    if (!(trial_merit < current_merit) || !std::isfinite(trial)) {
+    if (!(trial_merit < kMeritGrowth * current_merit) || !std::isfinite(trial)) {
       X = before;
       residual = evaluate(X);
       sigma = std::max(kShiftIncrease * sigma, kShiftStart);

@@ -201,7 +201,7 @@ struct NewtonRun {
 NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
-                           const Positions* X_linear, int& newton_iterations, Phases& phases) {
+                           int& newton_iterations, Phases& phases) {
   // The finest level's construction does not depend on the hierarchy: it is set up, with
   // the symbolic analysis of its Newton preconditioner, on another thread while this one
   // decimates and solves the coarser levels (100000-vertex cap: 0.38 s of set-up and 0.8-1 s
@@ -237,9 +237,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     VertexSplits level_splits;
     std::vector<double> level_weights;
     if (l == 0) {
-      Y = X_linear ? gather(*X_linear, lr.global)
-                   : bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global),
-                                              kNewtonInitialMeshResidual);
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kNewtonInitialMeshResidual);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
@@ -298,6 +296,20 @@ std::string scientific(double x) {
 FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                     const Positions* boundary_normals, const FairingOptions& options);
 
+// The residual (see fair) of the input positions themselves; the largest finite double where
+// it is not finite (degenerate triangles), so that a result never carries NaN or ∞.
+double input_residual(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                      const Positions* boundary_normals, const FairingOptions& options) {
+  FairingRegion region = extract_region(V, F, free, boundary_normals);
+  const Positions X0 = gather(V, region.global);
+  std::iota(region.global.begin(), region.global.end(), 0);
+  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
+  Construction construction(region, inner_fairness_weights(region, X0, options.inner_fairness),
+                            options, L);
+  const double residual = construction.evaluate(X0);
+  return std::isfinite(residual) ? residual : std::numeric_limits<double>::max();
+}
+
 }  // namespace
 
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
@@ -325,7 +337,19 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     }
     return true;
   };
-  FairingResult result = solve(V, F, free, boundary_normals, timed);
+  FairingResult result;
+  try {
+    result = solve(V, F, free, boundary_normals, timed);
+  } catch (const SolverError& error) {
+    // Auto's last resort, the paper's iteration, diverged: an unconverged result (the input)
+    // rather than an exception; an explicitly chosen iteration raises.
+    if (options.iteration != Iteration::Auto) throw;
+    result = FairingResult{};
+    result.vertices = V;
+    result.residual = input_residual(V, F, free, boundary_normals, options);
+    result.message = std::string(error.what()) + "; the input is returned unchanged";
+    return result;
+  }
   const std::string figures =
       "residual " + scientific(result.residual) + ", tolerance " + scientific(options.tolerance);
   if (result.converged)
@@ -378,8 +402,6 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   const bool newton = options.iteration != Iteration::Paper;
   if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
     const int levels = options.levels > 0 ? options.levels : newton_levels(region);
-    Positions X_linear;
-    const bool have_linear = surrounding_bilaplacian(V, F, region, X_linear);
     // The hierarchy first; if a level fails there, the finest level alone.
     const std::vector<int> attempts =
         levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
@@ -389,7 +411,7 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
       bool failed = false;
       try {
         run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
-                               have_linear ? &X_linear : nullptr, newton_iterations, phases);
+                               newton_iterations, phases);
       } catch (const SolverError&) {
         if (options.iteration == Iteration::Newton && last) throw;
         failed = true;

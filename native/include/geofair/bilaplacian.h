@@ -37,21 +37,6 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
                                    const InnerFairnessWeights& lambda, const Positions& X,
                                    double relative_residual);
 
-/// The linear initial mesh the way CGAL's and pmp's `fair` compute it (beyond the paper):
-/// Δ²x = 0 at the free vertices with the cotangent Laplacian of the ORIGINAL mesh V, tangent
-/// continuity from the fixed vertices beyond the G1 boundary (the Laplacian of a boundary
-/// vertex sees its whole one-ring in V, not the one-sided ring of the region). Solved as the
-/// least-squares problem min Σ_r |(L x)_r|² / A_r over the region's vertices r (A_r the
-/// barycentric area): the normal equations are symmetric positive definite, one CHOLMOD
-/// factorization for the three coordinates. The boundary normals do not enter; the
-/// intrinsic iteration imposes them.
-/// \param V, F   the caller's whole mesh (only the triangles at region vertices are read)
-/// \param Y      out: #region×3 positions, free rows solved, boundary rows from V
-/// \return false (Y unspecified) if a triangle at the region is degenerate or the
-///         factorization fails; the caller then uses bilaplacian_initial_mesh.
-bool surrounding_bilaplacian(const Positions& V, const Triangles& F, const FairingRegion& region,
-                             Positions& Y);
-
 /// Conjugate-gradient iterations of bilaplacian_initial_mesh at most before it falls back
 /// to sparse LU (the preconditioned matrix is the identity plus a term of rank at most the
 /// number of boundary vertices next to free ones; 32-46 were needed on the disturbed caps).

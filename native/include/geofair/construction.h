@@ -57,7 +57,8 @@ class Construction {
   /// vertices from one inexact Newton step (NewtonStep, with the products of the exact
   /// Jacobian), scaled so that no vertex moves by more than kNewtonStep mean distances to
   /// its neighbours, globalized by pseudo-transient continuation (Kelley & Keyes 1998): the
-  /// first step is Newton's; a step that does not lower merit() is taken back and the next
+  /// first step is Newton's; a step that raises merit() by more than kMeritGrowth is taken
+  /// back and the next
   /// solves (J + σ M) t = −d instead (an implicit Euler step of the flow ∂t/∂τ = −M⁻¹ d,
   /// M_i = Σ_j |w_ij| / h_i², about J's diagonal), σ starting at kShiftStart and growing by
   /// kShiftIncrease per taken-back step; an accepted step scales σ by the merit's ratio
@@ -199,6 +200,10 @@ constexpr double kPolishContraction = 1.0;
 /// The forward difference of run_newton's Jacobian products moves the vertices by at most
 /// this fraction of L (the region's diagonal).
 constexpr double kProductStep = 1e-7;
+/// run_newton takes a step back when it raises the merit by more than this factor: Newton's
+/// method converges non-monotonically on rough inputs (the disturbed caps' levels), so a
+/// moderate rise is kept.
+constexpr double kMeritGrowth = 4.0;
 /// Pseudo-transient continuation of run_newton: the shift σ after the first rejected step
 /// (dimensionless; M is about J's diagonal) ...
 constexpr double kShiftStart = 1e-2;

@@ -66,9 +66,7 @@ struct FairingResult {
 /// With options.iteration = Auto (the default) or Newton, the same hierarchy is solved by
 /// Newton's method level by level instead (nested iteration; Construction::run_newton,
 /// newton_step.h, globalized by pseudo-transient continuation): the base level from the
-/// linear initial mesh of surrounding_bilaplacian (cotangent weights of the original, tangent
-/// continuity from the fixed ring beyond the boundary; bilaplacian_initial_mesh where that
-/// fails), each finer level from the
+/// linear initial mesh, each finer level from the
 /// prolongation of the coarser solution, its tangential relaxation and one local step of
 /// the construction above; the same discrete equations (12), all normal
 /// offsets per step from one inexact Newton step with the exact Jacobian's products. Its
@@ -113,11 +111,14 @@ struct FairingResult {
 /// \param free    #V flags, true where a vertex may move; every free vertex must be
 ///                surrounded by triangles (not on the mesh border)
 /// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
-///                for the area-weighted normal of the surrounding triangles without a free
-///                vertex
-/// The whole call stops unconverged once options.time_limit is spent (result.message).
+///                for estimate_boundary_normals (region.h) of the surrounding surface
 ///
-/// \throw InvalidInputError for invalid input (see extract_region); SolverError if a
+/// The whole call stops unconverged once options.time_limit is spent (result.message). With
+/// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
+/// the reason in result.message) instead of throwing.
+///
+/// \throw InvalidInputError for invalid input (see extract_region); SolverError (not with
+///        Auto's iteration, see above) if a
 ///        linear solve fails or the iteration diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options);

@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'cotangent_laplacian', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -69,6 +69,43 @@ class FairingResult:
         """
         Region vertices (free and G1 boundary) on each level, coarsest first.
         """
+def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, method: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    The unit normals fair() prescribes at the G1 boundary when it is given no
+    boundary_normals: estimated from the fixed surface around the free region (beyond the
+    paper; Schneider & Kobbelt 2001, section 7.5, average the outside triangles' normals).
+    
+    The G1 boundary is the set of fixed vertices that share a triangle with a free vertex; a
+    vertex's surrounding triangles are its triangles without a free vertex (the positions of
+    free vertices, which fairing replaces, never enter).
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, consistently oriented triangles.
+    free : (n,) bool array, True where a vertex may move.
+    method : "quadric" (default): the tangent plane of a least-squares paraboloid
+        z = a x + b y + c x² + d xy + e y² through the vertex, fitted to the fixed vertices
+        within two rings reached through surrounding triangles, in the frame of the "area"
+        normal and refitted once in the fitted normal's frame; error O(h²) for edge length h on
+        a smooth surface (falls back to "area" where the fit is ill-conditioned: fewer than 6
+        samples, condition number above 1e6, e.g. only two straight rows of fixed vertices, or
+        a tilt of 45° or more). "area": the area-weighted normal of the surrounding
+        triangles, one-sided, error O(h) (fair()'s estimate before this release). Measured in
+        tests/test_boundary_normals.py.
+    
+    Returns
+    -------
+    (n, 3) float64: unit normals at G1 boundary vertices, oriented like the faces (positive
+    dot product with the surrounding triangles' normal); zero rows at all other vertices and at
+    G1 boundary vertices without a surrounding triangle (where the free region reaches the
+    mesh border: fair() without boundary_normals raises there) or with only degenerate ones.
+    
+    Raises
+    ------
+    ValueError for invalid input (shapes, dtypes, indices, a non-finite vertex of a
+    surrounding triangle).
+    """
 def cotangent_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse.csr_matrix:
     """
     The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
@@ -96,8 +133,11 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
         vertex form the G1 boundary.
     boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
-        prescribed unit normals (other rows are ignored). None: the area-weighted normal of the
-        triangles at that vertex that contain no free vertex (the surrounding surface).
+        prescribed unit normals (other rows are ignored); one whose dot product with the
+        estimate of geofair.boundary_normals is negative is rejected (flipped normals or
+        faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
+        least-squares quadric through the fixed vertices around it (error O(h²); earlier
+        releases took the one-sided area-weighted normal, O(h)).
     inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
         vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
         of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
