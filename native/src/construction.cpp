@@ -227,11 +227,11 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     }
     // Pseudo-transient continuation: the step solves (J + σ M) t = −d, an implicit Euler
     // step of the flow ∂t/∂τ = −M⁻¹ d with σ = 1/Δτ; σ = 0 is Newton's step. A step that
-    // does not lower the merit is taken back and σ raised; accepted steps lower σ with the
-    // merit (switched evolution relaxation), so close to the solution the steps are
-    // Newton's and converge quadratically.
+    // raises the merit by more than kMeritGrowth is taken back and σ raised; accepted steps
+    // scale σ by the merit's ratio (switched evolution relaxation), so close to the solution
+    // the steps are Newton's and converge quadratically.
     d0 = dirichlet_.defects(H_);
-    for (int i = 0; i < nf; ++i) {
+    for (int i = 0; i < nf && sigma > 0.0; ++i) {
       double sum_w = 0.0;
       for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
         sum_w += std::abs(dirichlet_.weights()[k]);
@@ -254,7 +254,6 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       X = before;
       residual = evaluate(X);
       sigma = std::max(kShiftIncrease * sigma, kShiftStart);
-      ++report.rejected;
       if (sigma > kShiftMax) {
         report.stalled = true;
         report.iterations = k + 1;

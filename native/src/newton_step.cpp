@@ -44,18 +44,16 @@ NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
   A_.resize(nf, nf);
   A_.setFromTriplets(pattern.begin(), pattern.end());
   A_.makeCompressed();
+  // The index of entry (i, c) in A's values.
+  auto entry = [&](int i, int c) {
+    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
+    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
+    return int(std::lower_bound(begin, end, i) - A_.innerIndexPtr());
+  };
   term_entry_.reserve(pattern.size());
-  for_each_term([&](int i, int c) {
-    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
-    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
-    term_entry_.push_back(int(std::lower_bound(begin, end, i) - A_.innerIndexPtr()));
-  });
+  for_each_term([&](int i, int c) { term_entry_.push_back(entry(i, c)); });
   diagonal_entry_.resize(nf);
-  for (int c = 0; c < nf; ++c) {
-    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
-    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
-    diagonal_entry_[c] = int(std::lower_bound(begin, end, c) - A_.innerIndexPtr());
-  }
+  for (int c = 0; c < nf; ++c) diagonal_entry_[c] = entry(c, c);
 }
 
 void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,

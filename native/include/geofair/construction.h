@@ -20,7 +20,6 @@ struct IterationReport {
   bool converged = false;  ///< residual <= tolerance
   bool cancelled = false;  ///< the progress callback asked to stop
   bool stalled = false;    ///< run_newton: no halving of the residual in kNewtonPatience steps
-  int rejected = 0;        ///< run_newton: steps taken back (they raised the merit)
   /// run_newton's wall-clock seconds: the tangential relaxations before the steps, the
   /// polishes, and the rest (the Newton steps and their evaluations).
   double relax_seconds = 0.0, polish_seconds = 0.0, step_seconds = 0.0;
