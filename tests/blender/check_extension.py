@@ -113,7 +113,7 @@ def main():
         vertices=mesh.vertices,
         triangles=mesh.triangles[run.present_triangles],
         free=fairing_region.free,
-        boundary_normals=fairing_region.boundary_normals,
+        boundary_normals=run.boundary_normals,
         options=json.dumps(dataclasses.asdict(options)),
         module=str(module_file),
         blender=bpy.app.version_string,
