@@ -102,7 +102,7 @@ constexpr double kTimeLimitPerFree = 2e-4;
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
 
 /// Options of geofair::fair. Defaults follow the paper except normal_weighting (Quadric; the
-/// paper's is Area), see README "Accuracy".
+/// paper's is Area), see docs/ACCURACY_AND_SPEED.md.
 struct FairingOptions {
   InnerFairness inner_fairness = InnerFairness::Uniform;
   OuterFairness outer_fairness = OuterFairness::Intrinsic;

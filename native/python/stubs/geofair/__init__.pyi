@@ -147,13 +147,13 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         clamped, so vertices land where the harmonic map puts them also on meshes of obtuse
         triangles; identical to "conformal" on a mesh that needs no intrinsic flip. On rough
         inputs (noise as large as the features) it can stall where "conformal" converges; see
-        the README, "Negative cotangent weights").
+        docs/ACCURACY_AND_SPEED.md, "Negative cotangent weights").
     outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
         of section 7.4 alone, for comparison).
     normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent
         plane of a least-squares quadric through the one-ring, consistent on irregular meshes),
         "area" (the paper's choice, section 6: sum of face cross products), "angle" (Thürmer &
-        Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in the README.
+        Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in docs/ACCURACY_AND_SPEED.md.
     tolerance : stop when the residual is at most this (dimensionless). The residual is
         L * max_i |Hbar_i - H_i| over the free vertices: how far the mean curvature H_i
         deviates from the cotangent-weighted mean Hbar_i = Σ_j w_ij H_j / Σ_j w_ij of its
@@ -189,7 +189,7 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
         start. The LU factors of the Newton steps take memory, growing faster than the vertex
         count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
-        README (Speed): the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
+        docs/ACCURACY_AND_SPEED.md: the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
         3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
         of paper iterations (which do not converge at 100000).
     damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
