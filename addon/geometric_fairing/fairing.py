@@ -35,12 +35,12 @@ from . import mesh_io, metrics, native, overlays, properties, region
 class FairingOptions:
     """Options of a run, named and valued like the operator's properties."""
 
-    inner_fairness: str = "UNIFORM"
-    outer_fairness: str = "INTRINSIC"
+    inner_fairness: str = properties.DEFAULTS["inner_fairness"]
+    outer_fairness: str = properties.DEFAULTS["outer_fairness"]
     tolerance: float = properties.DEFAULTS["tolerance"]
     max_iterations: int = properties.DEFAULTS["max_iterations"]
     levels: int = properties.DEFAULTS["levels"]
-    iteration: str = "AUTO"
+    iteration: str = properties.DEFAULTS["iteration"]
     region_group: str = ""
     pin_group: str = ""
     use_hidden: bool = False

@@ -8,6 +8,8 @@ given from the panel. So the preferences are the defaults of both.
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
+from . import native
+
 INNER_FAIRNESS_ITEMS = (
     (
         "UNIFORM",
@@ -55,8 +57,18 @@ ITERATION_ITEMS = (
     ),
 )
 
-# Defaults when the add-on's preferences are not available (imported by a script without enabling it).
-DEFAULTS = {"tolerance": 1e-4, "max_iterations": 20000, "levels": 0}
+# The library's defaults (geofair.defaults()) where the preferences are not available (imported by a
+# script without enabling the add-on). Without the compiled module nothing can be faired and the
+# panel shows why; the properties then start at their lower bounds.
+_LIBRARY = native.geofair.defaults() if native.geofair is not None else {}
+DEFAULTS = {
+    "inner_fairness": _LIBRARY.get("inner_fairness", INNER_FAIRNESS_ITEMS[0][0]).upper(),
+    "outer_fairness": _LIBRARY.get("outer_fairness", OUTER_FAIRNESS_ITEMS[0][0]).upper(),
+    "tolerance": _LIBRARY.get("tolerance", 1e-15),
+    "max_iterations": _LIBRARY.get("max_iterations", 1),
+    "levels": _LIBRARY.get("levels", 0),
+    "iteration": _LIBRARY.get("iteration", ITERATION_ITEMS[0][0]).upper(),
+}
 OPTION_NAMES = (
     "inner_fairness",
     "outer_fairness",
@@ -75,7 +87,7 @@ def _inner_fairness(**options):
         name="Inner Fairness",
         description="Where the vertices sit on the faired surface",
         items=INNER_FAIRNESS_ITEMS,
-        default="UNIFORM",
+        default=DEFAULTS["inner_fairness"],
         **options,
     )
 
@@ -85,7 +97,7 @@ def _outer_fairness(**options):
         name="Outer Fairness",
         description="Which surface is computed",
         items=OUTER_FAIRNESS_ITEMS,
-        default="INTRINSIC",
+        default=DEFAULTS["outer_fairness"],
         **options,
     )
 
@@ -116,8 +128,8 @@ def _max_iterations(**options):
 def _levels(**options):
     return IntProperty(
         name="Levels",
-        description="Levels of the progressive-mesh multigrid: 0 picks the number from the region size (one level up "
-        "to 1000 free vertices), 1 solves the region as one mesh",
+        description="Levels of the progressive-mesh multigrid: 0 picks the number from the region size and the "
+        "solver, 1 solves the region as one mesh",
         default=DEFAULTS["levels"],
         min=0,
         max=12,
@@ -130,7 +142,7 @@ def _iteration(**options):
         name="Solver",
         description="How the fairing equations are solved (advanced; every choice solves the same equations)",
         items=ITERATION_ITEMS,
-        default="AUTO",
+        default=DEFAULTS["iteration"],
         **options,
     )
 

@@ -78,9 +78,24 @@ std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
   return std::vector<bool>(c.data(), c.data() + n);
 }
 
+// The Python names of the options' values, one table per enum: parse() reads them, name()
+// writes them (defaults(), the signature of fair).
 template <class Enum>
-Enum parse(const std::string& value, const char* name,
-           std::initializer_list<std::pair<const char*, Enum>> choices) {
+using Choices = std::initializer_list<std::pair<const char*, Enum>>;
+const Choices<InnerFairness> kInnerFairnessNames{{"uniform", InnerFairness::Uniform},
+                                                 {"conformal", InnerFairness::Conformal},
+                                                 {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}};
+const Choices<OuterFairness> kOuterFairnessNames{{"intrinsic", OuterFairness::Intrinsic},
+                                                 {"bilaplacian", OuterFairness::Bilaplacian}};
+const Choices<NormalWeighting> kNormalWeightingNames{{"area", NormalWeighting::Area},
+                                                     {"angle", NormalWeighting::Angle},
+                                                     {"max", NormalWeighting::Max},
+                                                     {"quadric", NormalWeighting::Quadric}};
+const Choices<Iteration> kIterationNames{
+    {"auto", Iteration::Auto}, {"newton", Iteration::Newton}, {"paper", Iteration::Paper}};
+
+template <class Enum>
+Enum parse(const std::string& value, const char* name, Choices<Enum> choices) {
   std::string allowed;
   for (const auto& [key, e] : choices) {
     if (value == key) return e;
@@ -89,19 +104,51 @@ Enum parse(const std::string& value, const char* name,
   throw InvalidInputError(std::string(name) + " must be one of " + allowed + ", got '" + value + "'");
 }
 
+template <class Enum>
+const char* name(Enum value, Choices<Enum> choices) {
+  for (const auto& [key, e] : choices)
+    if (e == value) return key;
+  return "";
+}
+
 NormalWeighting parse_weighting(const std::string& s) {
-  return parse<NormalWeighting>(s, "normal_weighting",
-                                {{"area", NormalWeighting::Area},
-                                 {"angle", NormalWeighting::Angle},
-                                 {"max", NormalWeighting::Max},
-                                 {"quadric", NormalWeighting::Quadric}});
+  return parse(s, "normal_weighting", kNormalWeightingNames);
 }
 
 InnerFairness parse_inner_fairness(const std::string& s) {
-  return parse<InnerFairness>(s, "inner_fairness",
-                              {{"uniform", InnerFairness::Uniform},
-                               {"conformal", InnerFairness::Conformal},
-                               {"conformal_intrinsic", InnerFairness::ConformalIntrinsic}});
+  return parse(s, "inner_fairness", kInnerFairnessNames);
+}
+
+// The defaults of fair's options: FairingOptions{}, the one source (types.h).
+py::dict defaults_py() {
+  const FairingOptions o;
+  py::dict d;
+  d["inner_fairness"] = name(o.inner_fairness, kInnerFairnessNames);
+  d["outer_fairness"] = name(o.outer_fairness, kOuterFairnessNames);
+  d["normal_weighting"] = name(o.normal_weighting, kNormalWeightingNames);
+  d["tolerance"] = o.tolerance;
+  d["max_iterations"] = o.max_iterations;
+  d["damping"] = o.damping;
+  d["cg_iterations"] = o.cg_iterations;
+  d["levels"] = o.levels;
+  d["iteration"] = name(o.iteration, kIterationNames);
+  d["time_limit"] = py::none();
+  d["time_limit_base"] = kTimeLimitBase;
+  d["time_limit_per_free_vertex"] = kTimeLimitPerFree;
+  return d;
+}
+
+// fair's docstring with the automatic time limit's figures filled in from types.h.
+std::string fair_doc(std::string doc) {
+  const auto replace = [&doc](const std::string& key, const std::string& value) {
+    for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
+  };
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", kTimeLimitBase);
+  replace("{time_limit_base}", text);
+  std::snprintf(text, sizeof text, "%g", kTimeLimitPerFree * 1e3);
+  replace("{time_limit_per_free_ms}", text);
+  return doc;
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
@@ -122,13 +169,9 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   }
   FairingOptions options;
   options.inner_fairness = parse_inner_fairness(inner_fairness);
-  options.outer_fairness = parse<OuterFairness>(
-      outer_fairness, "outer_fairness",
-      {{"intrinsic", OuterFairness::Intrinsic}, {"bilaplacian", OuterFairness::Bilaplacian}});
+  options.outer_fairness = parse(outer_fairness, "outer_fairness", kOuterFairnessNames);
   options.normal_weighting = parse_weighting(normal_weighting);
-  options.iteration = parse<Iteration>(
-      iteration, "iteration",
-      {{"auto", Iteration::Auto}, {"newton", Iteration::Newton}, {"paper", Iteration::Paper}});
+  options.iteration = parse(iteration, "iteration", kIterationNames);
   options.tolerance = tolerance;
   options.max_iterations = max_iterations;
   options.damping = damping;
@@ -242,14 +285,19 @@ PYBIND11_MODULE(geofair, m) {
                ", residual=" + std::to_string(r.residual) + ")";
       });
 
-  m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
-        py::arg("boundary_normals") = py::none(), py::arg("inner_fairness") = "uniform",
-        py::arg("outer_fairness") = "intrinsic", py::arg("normal_weighting") = "quadric",
-        py::arg("tolerance") = 1e-4, py::arg("max_iterations") = 20000,
-        py::arg("damping") = 0.9, py::arg("cg_iterations") = 10, py::arg("levels") = 0,
-        py::arg("iteration") = "auto", py::arg("progress") = py::none(),
-        py::arg("time_limit") = py::none(),
-        R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
+  m.def("defaults", &defaults_py,
+        R"doc(The defaults of geofair.fair's options, the library's one source of them.
+
+Returns
+-------
+dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
+"tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
+"damping" (float), "time_limit" (None: automatic), and the automatic time limit of
+iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
+per free vertex).)doc");
+
+  const FairingOptions d;
+  static const std::string fair_docstring = fair_doc(R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
 condition (fixed positions and unit normals) at the fixed vertices next to free ones.
 
@@ -330,8 +378,8 @@ levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times
     "paper": one level up to 1000 free vertices and
     about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
     multigrid cycles on the coarser ones.
-time_limit : seconds (float) the whole call may take, or None (default): 5 s plus 0.2 ms
-    per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
+time_limit : seconds (float) the whole call may take, or None (default): {time_limit_base} s plus
+    {time_limit_per_free_ms} ms per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
     max_iterations); float("inf") for no limit. Once spent, the result is returned with
     converged=False and a message saying so (the input positions if no level finished).
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
@@ -348,6 +396,16 @@ Raises
 ------
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
+  m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+        py::arg("boundary_normals") = py::none(),
+        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
+        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
+        fair_docstring.c_str());
 
   m.def(
       "cotangent_laplacian",

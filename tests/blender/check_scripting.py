@@ -233,12 +233,27 @@ def check_without_registering(folder):
     print(f"ok: fair_object with the add-on disabled: {report.summary()}")
 
 
+def check_defaults(addon):
+    """The operator's, the panel's and fair_object's defaults are the library's (geofair.defaults())."""
+    library = addon.native.geofair.defaults()
+    options = addon.FairingOptions()
+    operator = bpy.ops.mesh.geometric_fairing.get_rna_type().properties
+    for name in ("inner_fairness", "outer_fairness", "tolerance", "max_iterations", "levels", "iteration"):
+        value = library[name].upper() if isinstance(library[name], str) else library[name]
+        assert getattr(options, name) == value, (name, getattr(options, name), value)
+        # Blender stores a FloatProperty in single precision.
+        stored = np.float32(value) if isinstance(value, float) else value
+        assert operator[name].default == stored, (name, operator[name].default, value)
+    print(f"ok: defaults are the library's: {options}")
+
+
 def main():
     folder, _ = parse_args()
     print(f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {folder}")
     bpy.ops.wm.read_factory_settings(use_empty=True)
     addon = enable_addon(folder)
     assert callable(addon.fair_object)
+    check_defaults(addon)
     obj = add_subdivided_suzanne()
     check_regions(addon, obj)
     check_cancel_by_callback(addon, obj)

@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -118,6 +118,18 @@ def cotangent_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse
     
     Raises ValueError for invalid input.
     """
+def defaults() -> dict:
+    """
+    The defaults of geofair.fair's options, the library's one source of them.
+    
+    Returns
+    -------
+    dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
+    "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
+    "damping" (float), "time_limit" (None: automatic), and the automatic time limit of
+    iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
+    per free vertex).
+    """
 def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
@@ -201,8 +213,8 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         "paper": one level up to 1000 free vertices and
         about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
         multigrid cycles on the coarser ones.
-    time_limit : seconds (float) the whole call may take, or None (default): 5 s plus 0.2 ms
-        per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
+    time_limit : seconds (float) the whole call may take, or None (default): 5 s plus
+        0.2 ms per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
         max_iterations); float("inf") for no limit. Once spent, the result is returned with
         converged=False and a message saying so (the input positions if no level finished).
     progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;

@@ -1,0 +1,84 @@
+// Moreton–Séquin mean curvature with the spiral samples (Schneider & Kobbelt 2001,
+// section 6, eqs. (8)-(11), section 6.2).
+#include "geofair/mean_curvature.h"
+#include "meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace geofair {
+namespace {
+
+// Max |H − 1/r| over the vertices within `radius` of the axis, with the exact normals.
+double sphere_error(const testing::Mesh& m, double r, double radius, bool exact_normals = true) {
+  const Positions N = testing::sphere_normals(m.V);
+  const Eigen::VectorXd H = mean_curvature(m.V, m.F, exact_normals ? &N : nullptr);
+  const std::vector<bool> in = testing::inside(m.V, radius);
+  double error = 0.0;
+  for (int v = 0; v < m.V.rows(); ++v)
+    if (in[v]) error = std::max(error, std::abs(H(v) - 1.0 / r));
+  return error;
+}
+
+TEST(MeanCurvature, ZeroOnAPlane) {
+  const testing::Mesh m = testing::planar_grid(6, 0.3);
+  const Eigen::VectorXd H = mean_curvature(m.V, m.F, nullptr);
+  EXPECT_LT(H.cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(MeanCurvature, SignFollowsTheNormals) {
+  const double r = 3.0;
+  const testing::Mesh m = testing::onto_sphere(testing::planar_grid(8), r);
+  const Positions N = testing::sphere_normals(m.V), inward = -N;
+  const int centre = 4 * 9 + 4;
+  EXPECT_NEAR(mean_curvature(m.V, m.F, &N)(centre), 1.0 / r, 1e-3);
+  EXPECT_NEAR(mean_curvature(m.V, m.F, &inward)(centre), -1.0 / r, 1e-3);
+}
+
+TEST(MeanCurvature, ExactOnASphereWithExactNormals) {
+  // Every sample of eq. (8) lies on the sphere, and the circle through q_i and q_j that
+  // touches the tangent plane at q_i is a circle of the sphere: κ̃_j = 1/r for every j.
+  const double r = 3.0;
+  EXPECT_LT(sphere_error(testing::onto_sphere(testing::planar_grid(8, 0.2), r), r, 0.6), 1e-12);
+}
+
+TEST(MeanCurvature, QuadricNormalsAreConsistent) {
+  // With the default (quadric) normals instead of exact ones H still converges.
+  const double r = 3.0;
+  const double coarse =
+      sphere_error(testing::onto_sphere(testing::planar_grid(8, 0.2), r), r, 0.6, false);
+  const double fine =
+      sphere_error(testing::onto_sphere(testing::planar_grid(16, 0.2), r), r, 0.6, false);
+  EXPECT_LT(fine, coarse / 2.0);
+  EXPECT_LT(fine, 0.01 / r);
+}
+
+TEST(MeanCurvature, ValenceFourUsesTheSpiralSamples) {
+  // The centres of split quads have valence 4 with samples on two lines (Lemma 1). The
+  // spiral samples of section 6.2 lie on the sphere (the plane E cuts it in a circle that
+  // touches both tangent planes), so H stays exact; midpoints of the ring edges would not.
+  const double r = 3.0;
+  const testing::Mesh m = testing::onto_sphere(testing::centred_quads(8), r);
+  EXPECT_LT(sphere_error(m, r, 0.6), 1e-9);
+}
+
+TEST(MeanCurvature, ValenceThreeUsesTheSpiralSamples) {
+  const double r = 3.0;
+  const testing::Mesh m = testing::onto_sphere(testing::split_centroids(testing::planar_grid(8)), r);
+  EXPECT_LT(sphere_error(m, r, 0.6), 1e-9);
+}
+
+TEST(SpiralSample, LiesOnTheCircleThroughTwoPointsWithTheirNormals) {
+  // Both circles of section 6.2 are the circle itself when a, b and their normals come
+  // from one circle: the sample is its point halfway between them.
+  const double r = 2.0, angle = 0.7;
+  const Vec3 a(r, 0, 0), b(r * std::cos(angle), r * std::sin(angle), 0);
+  const Vec3 p = spiral_sample(a, a / r, b, b / r, (a + b).normalized());
+  EXPECT_NEAR(p.norm(), r, 1e-12);
+  EXPECT_NEAR(std::atan2(p.y(), p.x()), angle / 2.0, 1e-12);
+  EXPECT_NEAR(p.z(), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace geofair
