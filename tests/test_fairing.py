@@ -112,6 +112,11 @@ def test_message_says_how_the_solve_ended():
     r = fair(s, max_iterations=2)
     assert r.message.startswith("did not converge within max_iterations (residual ")
     assert "tolerance 1.0e-04" in r.message
+    # An unconverged uniform solve points to conformal inner fairness; a converged one or a
+    # conformal one does not.
+    assert "conformal inner fairness converges on more meshes" in r.message
+    assert "conformal" not in fair(s).message
+    assert "conformal" not in fair(s, max_iterations=2, inner_fairness="conformal").message
 
 
 @pytest.mark.parametrize("iteration", ["auto", "paper"])

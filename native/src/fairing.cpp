@@ -360,6 +360,12 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.message = "cancelled (" + figures + ")";
   else
     result.message = "did not converge within max_iterations (" + figures + ")";
+  // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
+  // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
+  if (!result.converged && !user_cancelled && options.inner_fairness == InnerFairness::Uniform &&
+      options.outer_fairness == OuterFairness::Intrinsic)
+    result.message += "; uniform inner fairness can degenerate the triangles of an irregular "
+                      "region, conformal inner fairness converges on more meshes";
   return result;
 }
 
