@@ -123,7 +123,8 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
 }
 
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
-                                         int iteration_offset, bool polish, bool prolongated) {
+                                         int iteration_offset, bool polish, bool prolongated,
+                                         int patience) {
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
@@ -219,7 +220,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     report.residual = residual;
     report.converged = residual <= tolerance;
     if (residual < 0.5 * best) best = residual, best_at = k;
-    report.stalled = k - best_at >= kNewtonPatience;
+    report.stalled = k - best_at >= patience;
     if (report.converged || report.stalled || k >= max_iterations) break;
     if (options_.progress && !source_ && !options_.progress(iteration_offset + k, residual)) {
       report.cancelled = true;

@@ -170,14 +170,28 @@ struct LevelSolution {
 // s); below 2 × this one level is solved (2000-vertex cap: 5 steps, the same time as two
 // levels).
 constexpr int kNewtonMinBaseFree = 700;
-// Coarse levels of the Newton hierarchy stop after this many steps, converged or not: they
-// only start the next level, whose own steps decide the result.
+// Steps of a coarse level of the Newton hierarchy at most: it only starts the next level.
 constexpr int kCoarseNewtonSteps = 30;
 
 int newton_levels(const FairingRegion& region) {
   int levels = 1;
   for (double n = region.n_free / 4.0; n >= kNewtonMinBaseFree; n /= 4.0) ++levels;
   return levels;
+}
+
+// The inner fairness weights of a coarse level of the Newton hierarchy, whose vertex
+// distribution only starts the next level. Conformal ones: those of the original mesh at
+// the level's connectivity (the collapses keep the vertices, so that is the original mesh
+// replayed alongside). Uniform: the conformal weights of the smoothed copy Xs, as on the
+// paper's coarse levels. The uniform weights of a decimated level place its vertices
+// unlike the uniform weights of the finest level, whose relaxation then has to move them
+// by many edge lengths after the prolongation (docs/REAL_MESHES.md, "Regular caps").
+InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Positions& X0,
+                                          const Positions& Xs, InnerFairness inner) {
+  if (inner == InnerFairness::Uniform)
+    return ring_inner_fairness_weights(level.rings, gather(Xs, level.global),
+                                       InnerFairness::Conformal);
+  return inner_fairness_weights(level, gather(X0, level.global), inner);
 }
 
 // The outcome of newton_multigrid: the result without its vertices, the region's positions.
@@ -191,12 +205,12 @@ struct NewtonRun {
 // nested iteration with Newton steps as the solver of every level): the base level from
 // the linear Δ²f = 0 initial mesh, each finer level from the prolongation of the coarser
 // solution (multigrid.h, prolongate), each with the tangential relaxation first
-// (Construction::run_newton). Every level uses the requested
-// inner fairness with the weights of the original mesh at that level's connectivity (the
-// collapses keep the vertices, so that is the original mesh replayed alongside). Coarse
-// levels stop at a looser tolerance or after kCoarseNewtonSteps. `newton_iterations`
-// accumulates the steps of all levels, `phases` the wall time of its phases. With levels = 1 it is the single-level Newton
-// iteration from the linear initial mesh.
+// (Construction::run_newton). The finest level uses the requested inner fairness, the
+// coarse levels coarse_level_weights. Coarse levels stop at a looser tolerance, after
+// kCoarseNewtonSteps or after kCoarseNewtonPatience steps without progress; one that ends
+// unconverged ends the run unconverged. `newton_iterations` accumulates the steps of all
+// levels, `phases` the wall time of its phases. With levels = 1 it is the single-level
+// Newton iteration from the linear initial mesh.
 // \throw SolverError if a level diverges or its Newton system is singular.
 NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
@@ -230,8 +244,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const FairingRegion& lr =
         regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
     InnerFairnessWeights coarse_lambda =
-        finest ? InnerFairnessWeights{}
-               : inner_fairness_weights(lr, gather(X0, lr.global), options.inner_fairness);
+        finest ? InnerFairnessWeights{} : coarse_level_weights(lr, X0, Xs, options.inner_fairness);
     const InnerFairnessWeights& lambda = finest ? lambda_finest : coarse_lambda;
     Positions Y;
     VertexSplits level_splits;
@@ -259,12 +272,21 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, kCoarseNewtonSteps);
     const IterationReport report =
-        construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0);
+        construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
+                                finest ? kNewtonPatience : kCoarseNewtonPatience);
     laps.lap();
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
     phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
     phases.emplace_back(level_phase(l, "polishes"), report.polish_seconds);
     newton_iterations += report.iterations;
+    if (!finest && !report.converged && !report.cancelled) {
+      // A coarse level that did not converge would start the next one from a worse mesh
+      // than its own linear initial mesh: the hierarchy is abandoned (the caller solves
+      // the finest level alone).
+      result.residual = report.residual;
+      result.converged = false;
+      break;
+    }
     if (!finest) coarser_lambda = construction.lambda();
     solution.store(lr, Y, construction);
     result.iterations_per_level.push_back(report.iterations);

@@ -19,11 +19,18 @@ struct IterationReport {
   double residual = 0.0;   ///< L·max|H̄ − H| of the final mesh (see fairing.h)
   bool converged = false;  ///< residual <= tolerance
   bool cancelled = false;  ///< the progress callback asked to stop
-  bool stalled = false;    ///< run_newton: no halving of the residual in kNewtonPatience steps
+  bool stalled = false;    ///< run_newton: no halving of the residual in `patience` steps
   /// run_newton's wall-clock seconds: the tangential relaxations before the steps, the
   /// polishes, and the rest (the Newton steps and their evaluations).
   double relax_seconds = 0.0, polish_seconds = 0.0, step_seconds = 0.0;
 };
+
+/// run_newton gives up when the residual has not halved in this many steps ...
+constexpr int kNewtonPatience = 20;
+/// ... and on the coarse levels of a hierarchy in this many: there a level that converges
+/// does so in a few steps, and one that crawls is better abandoned for the single level
+/// (docs/REAL_MESHES.md, "Regular caps").
+constexpr int kCoarseNewtonPatience = 4;
 
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix
 /// S and the CG solver, reused across iterations.
@@ -73,7 +80,7 @@ class Construction {
   /// move a vertex by more than kPolishedMove mean distances to its neighbours (predicted
   /// from the last one's move by the quadratic convergence, kPolishContraction), at most
   /// kNewtonPolishes times.
-  /// Stops like run(), and also when the residual has not halved in kNewtonPatience
+  /// Stops like run(), and also when the residual has not halved in `patience`
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
   /// linearization can fail to contract.
   /// \throw SolverError if the iteration diverges or the Newton system is singular.
@@ -92,9 +99,12 @@ class Construction {
   /// fairness the 13000-vertex cap's went 91 → 690 (also with coupling factors: 414).
   /// Not on the linear initial mesh, whose error is smooth: the single-level 2000-vertex cap
   /// took 6 steps with it instead of 5.
+  ///
+  /// `patience`: the number of steps without a halving of the residual after which the run
+  /// stops as stalled (kNewtonPatience; coarse levels of a hierarchy kCoarseNewtonPatience).
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
                              int iteration_offset = 0, bool polish = true,
-                             bool prolongated = false);
+                             bool prolongated = false, int patience = kNewtonPatience);
 
   /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
   /// preconditioner (NewtonStep::analyze), which depends only on the mesh. fair() calls it
@@ -172,8 +182,7 @@ constexpr double kNewtonStep = 4.0;
 /// an early single-level Newton iteration: 13000: 13 Newton steps instead of 16 without
 /// them; 100000: 28 steps and 25 s instead of 58 steps and 42 s.
 constexpr int kNewtonRelaxations = 8;
-/// run_newton gives up when the residual has not halved in this many steps.
-constexpr int kNewtonPatience = 20;
+
 /// Tangential solves of run_newton at convergence, at most (see run_newton) ... After the
 /// prolongation to the finest level a vertex starts up to 3-8 mean distances from inner
 /// fairness (disturbed caps of 13000 and 100000 free vertices), so the first solve or two
