@@ -112,6 +112,6 @@ def test_failing_hierarchy_is_abandoned_early(inner):
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], inner_fairness=inner, time_limit=60.0)
     assert r.converged and r.iteration == "newton", r.message
-    assert r.newton_iterations - r.iterations <= 10, (r.newton_iterations, r.iterations)
+    assert r.newton_iterations - r.iterations <= 20, (r.newton_iterations, r.iterations)
     assert realmesh.new_folds(v, r.vertices, f, free) == 0
     assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-5

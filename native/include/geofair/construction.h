@@ -30,7 +30,7 @@ constexpr int kNewtonPatience = 20;
 /// ... and on the coarse levels of a hierarchy in this many: there a level that converges
 /// does so in a few steps, and one that crawls is better abandoned for the single level
 /// (docs/REAL_MESHES.md, "Regular caps").
-constexpr int kCoarseNewtonPatience = 4;
+constexpr int kCoarseNewtonPatience = 8;
 
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix
 /// S and the CG solver, reused across iterations.
