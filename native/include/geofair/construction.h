@@ -27,8 +27,8 @@ struct IterationReport {
 
 /// run_newton gives up when the residual has not halved in this many steps ...
 constexpr int kNewtonPatience = 20;
-/// ... and on the coarse levels of a hierarchy in this many: there a level that converges
-/// does so in a few steps, and one that crawls is better abandoned for the single level
+/// ... and on the coarse levels of a hierarchy in this many: a coarse level only starts the
+/// next, and one that has stopped making progress is better abandoned for the single level
 /// (docs/REAL_MESHES.md, "Regular caps").
 constexpr int kCoarseNewtonPatience = 8;
 
