@@ -39,6 +39,18 @@ inline Mesh planar_grid(int n, double jitter = 0.0) {
   return m;
 }
 
+/// A regular hexagon of unit circumradius in the plane z = 0 around a centre vertex (id 0)
+/// raised to z = `apex_height`: six triangles (0, k, k+1).
+inline Mesh hexagon_fan(double apex_height = 0.0) {
+  Mesh m;
+  m.V.resize(7, 3);
+  m.V.row(0) << 0, 0, apex_height;
+  for (int k = 0; k < 6; ++k) m.V.row(k + 1) << std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0;
+  m.F.resize(6, 3);
+  for (int k = 0; k < 6; ++k) m.F.row(k) << 0, k + 1, (k + 1) % 6 + 1;
+  return m;
+}
+
 /// Adds a vertex at the centroid of every triangle and splits the triangle into three:
 /// the new vertices have valence 3.
 inline Mesh split_centroids(const Mesh& in) {

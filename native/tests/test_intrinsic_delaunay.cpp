@@ -4,19 +4,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 namespace geofair {
 namespace {
 
 TEST(IntrinsicDelaunay, DelaunayMeshNeedsNoFlipAndKeepsTheCotangentLaplacian) {
   // A low pyramid over a regular hexagon: every angle acute, so no edge needs a flip.
-  testing::Mesh m;
-  m.V.resize(7, 3);
-  m.V.row(0) << 0, 0, 0.3;
-  for (int k = 0; k < 6; ++k) m.V.row(k + 1) << std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0;
-  m.F.resize(6, 3);
-  for (int k = 0; k < 6; ++k) m.F.row(k) << 0, k + 1, (k + 1) % 6 + 1;
+  const testing::Mesh m = testing::hexagon_fan(0.3);
   int flips = -1;
   const SparseRowMatrix L = intrinsic_delaunay_laplacian(m.V, m.F, &flips);
   EXPECT_EQ(flips, 0);

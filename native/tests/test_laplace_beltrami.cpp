@@ -9,19 +9,9 @@
 namespace geofair {
 namespace {
 
-// A regular hexagon around a centre vertex: every spoke is opposite two 60° angles.
-testing::Mesh hexagon_fan() {
-  testing::Mesh m;
-  m.V.resize(7, 3);
-  m.V.row(0) << 0, 0, 0;
-  for (int k = 0; k < 6; ++k) m.V.row(k + 1) << std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0;
-  m.F.resize(6, 3);
-  for (int k = 0; k < 6; ++k) m.F.row(k) << 0, k + 1, (k + 1) % 6 + 1;
-  return m;
-}
-
 TEST(CotangentLaplacian, RegularHexagonHasWeightsTwoCot60) {
-  const testing::Mesh m = hexagon_fan();
+  // Every spoke is opposite two 60° angles.
+  const testing::Mesh m = testing::hexagon_fan();
   const SparseRowMatrix L = cotangent_laplacian(m.V, m.F);
   for (int k = 1; k <= 6; ++k) EXPECT_NEAR(L.coeff(0, k), 2.0 / std::sqrt(3.0), 1e-14);
   EXPECT_NEAR(L.coeff(0, 0), -12.0 / std::sqrt(3.0), 1e-13);
