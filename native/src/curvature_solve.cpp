@@ -1,23 +1,43 @@
 // Local (Gauss–Seidel) and global (preconditioned CG) steps of section 7.1.
 #include "geofair/curvature_solve.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <limits>
 
 namespace geofair {
 
-void gauss_seidel_sweep(const SparseRowMatrix& S, const Eigen::VectorXd& b, Eigen::VectorXd& H) {
-  const int* outer = S.outerIndexPtr();
-  const int* inner = S.innerIndexPtr();
-  const double* values = S.valuePtr();
-  for (Eigen::Index i = 0; i < S.rows(); ++i) {
-    double diag = 0.0, sum = b(i);
-    for (int p = outer[i]; p < outer[i + 1]; ++p) {
-      if (inner[p] == i)
-        diag = values[p];
-      else
-        sum -= values[p] * H(inner[p]);
-    }
-    if (diag != 0.0) H(i) = sum / diag;
+void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                        bool forward, int blocks) {
+  const int n = int(A.rows());
+  const double* value = A.valuePtr();
+  const int* column = A.innerIndexPtr();
+  const int* outer = A.outerIndexPtr();
+  blocks = std::clamp(blocks, 1, std::max(1, n / 2));
+  // First row of block k: whole 2×2 blocks (even boundaries) to each block of rows.
+  auto first_row = [&](int k) {
+    return k == blocks ? n : 2 * int(std::int64_t(n / 2) * k / blocks);
+  };
+  Eigen::VectorXd start;
+  if (blocks > 1) start = x;  // one block reads only its own rows
+#pragma omp parallel for schedule(static, 1) if (blocks > 1)
+  for (int block = 0; block < blocks; ++block) {
+    const int lo = first_row(block), hi = first_row(block + 1);
+    auto relax_row = [&](int r) {
+      double sum = b(r), diagonal = 0.0;
+      for (int p = outer[r]; p < outer[r + 1]; ++p) {
+        const int c = column[p];
+        if (c == r)
+          diagonal = value[p];
+        else
+          sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
+      }
+      if (diagonal != 0.0) x(r) = sum / diagonal;
+    };
+    if (forward)
+      for (int r = lo; r < hi; ++r) relax_row(r);
+    else
+      for (int r = hi; r-- > lo;) relax_row(r);
   }
 }
 

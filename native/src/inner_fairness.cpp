@@ -2,6 +2,7 @@
 // intrinsic Delaunay triangulation (Bobenko & Springborn 2007), and the global tangential step.
 #include "geofair/inner_fairness.h"
 
+#include "geofair/curvature_solve.h"
 #include "geofair/intrinsic_delaunay.h"
 #include "geofair/laplace_beltrami.h"
 
@@ -311,44 +312,6 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
 
 namespace {
 
-// One hybrid Gauss–Seidel sweep on A x = b, forward or backward: Gauss–Seidel within each of
-// kTwoGridBlocks blocks of rows (one above kParallelMin unknowns), which read the other
-// blocks' values of the start of the sweep. The blocks are fixed, so the result does not
-// depend on the threads that sweep them.
-void gauss_seidel_sweep(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
-                        const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) {
-  const int n = int(A.rows());
-  const double* value = A.valuePtr();
-  const int* column = A.innerIndexPtr();
-  const int* outer = A.outerIndexPtr();
-  const int blocks = n > kParallelMin ? kTwoGridBlocks : 1;
-  // First row of block k: whole 2×2 blocks (even boundaries) to each block of rows.
-  auto first_row = [&](int k) {
-    return k == blocks ? n : 2 * int(std::int64_t(n / 2) * k / blocks);
-  };
-  Eigen::VectorXd start;
-  if (blocks > 1) start = x;  // one block reads only its own rows
-#pragma omp parallel for schedule(static, 1) if (blocks > 1)
-  for (int block = 0; block < blocks; ++block) {
-    const int lo = first_row(block), hi = first_row(block + 1);
-    auto relax_row = [&](int r) {
-      double sum = b(r), diagonal = 1.0;
-      for (int p = outer[r]; p < outer[r + 1]; ++p) {
-        const int c = column[p];
-        if (c == r)
-          diagonal = value[p];
-        else
-          sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
-      }
-      x(r) = sum / diagonal;
-    };
-    if (forward)
-      for (int r = lo; r < hi; ++r) relax_row(r);
-    else
-      for (int r = hi; r-- > lo;) relax_row(r);
-  }
-}
-
 // x ≈ A⁻¹ b by kTwoGridSweeps Gauss–Seidel sweeps on A, forward, then the correction
 // P coarse⁻¹ Pᵀ of the residual, then as many sweeps backward.
 template <class CoarseSolve>
@@ -356,10 +319,11 @@ Eigen::VectorXd two_grid_cycle(const Eigen::SparseMatrix<double, Eigen::RowMajor
                                const Eigen::SparseMatrix<double>& P, const Eigen::VectorXd& b,
                                const CoarseSolve& coarse_solve) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
-  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, true);
+  const int blocks = A.rows() > kParallelMin ? kTwoGridBlocks : 1;
+  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, true, blocks);
   const Eigen::VectorXd residual = b - A * x;
   x += P * coarse_solve(Eigen::VectorXd(P.transpose() * residual));
-  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, false);
+  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, false, blocks);
   return x;
 }
 

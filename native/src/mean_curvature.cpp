@@ -9,13 +9,6 @@
 namespace geofair {
 namespace {
 
-// Orthonormal basis (bx, by) of the plane with unit normal n.
-void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
-  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  bx = n.cross(helper).normalized();
-  by = n.cross(bx);
-}
-
 // Accumulates the normal equations (11) of the least-squares fit (9), (10).
 struct NormalEquations {
   Vec3 p, n, bx, by;

@@ -1,6 +1,8 @@
 // One-rings from OpenMesh's half-edge structure, and extraction of the fairing region.
 #include "geofair/region.h"
 
+#include "geofair/mean_curvature.h"
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -32,13 +34,6 @@ void silence_openmesh() {
 struct FanEdge {
   int from, to, across;
 };
-
-// Orthonormal basis (bx, by) of the plane with unit normal n.
-void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
-  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  bx = n.cross(helper).normalized();
-  by = n.cross(bx);
-}
 
 // Fewest samples, and largest condition number of the column-equilibrated normal equations,
 // with which the quadric fit of a boundary normal is trusted (estimate_boundary_normals).

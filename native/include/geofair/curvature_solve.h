@@ -12,8 +12,15 @@
 
 namespace geofair {
 
-/// One Gauss–Seidel sweep on S H = b, in place (the local step). H is #V_I.
-void gauss_seidel_sweep(const SparseRowMatrix& S, const Eigen::VectorXd& b, Eigen::VectorXd& H);
+/// One Gauss–Seidel sweep on A x = b, in place: the construction's local step on S H = b
+/// (forward, one block), and the smoother of the tangential solves' two-grid
+/// preconditioner (inner_fairness.cpp). Rows are relaxed in order (`forward`) or in reverse;
+/// with `blocks` > 1 the rows are cut into that many fixed blocks of whole row pairs, swept
+/// in parallel, each block reading the others' values of the start of the sweep (a hybrid
+/// Gauss–Seidel: the result does not depend on the threads). A row without a diagonal
+/// entry, or with a zero one, keeps its value.
+void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                        bool forward = true, int blocks = 1);
 
 /// The global step: `iterations` conjugate-gradient iterations with a diagonal (Jacobi)
 /// preconditioner on S H = b, starting from H, in place.

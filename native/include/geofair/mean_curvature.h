@@ -11,7 +11,17 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 namespace geofair {
+
+/// An orthonormal basis (bx, by) of the plane with unit normal n, with bx × by = n: the
+/// tangent-plane frame of eqs. (9), (10) and of the quadric normal fits.
+inline void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
+  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  bx = n.cross(helper).normalized();
+  by = n.cross(bx);
+}
 
 /// Unit normal of vertex i from the triangles of its one-ring, weighted as requested.
 /// Returns the zero vector if the triangles are degenerate (no defined normal).
