@@ -144,6 +144,11 @@ def short_number(x):
     return mantissa if int(exponent) == 0 else f"{mantissa}e{int(exponent)}"
 
 
+# After an unconverged uniform solve: uniform inner fairness can degenerate the triangles of an irregular region.
+CONFORMAL_HINT = "Conformal inner fairness converges on more meshes."
+KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
+
+
 class NotConvergedError(RuntimeError):
     """The solve stopped before the residual reached the tolerance, and the result was not kept.
 
@@ -151,7 +156,7 @@ class NotConvergedError(RuntimeError):
         report: the run's :class:`FairingReport` (``discarded`` set; the mesh is unchanged).
     """
 
-    def __init__(self, report, hint="Pass keep_unconverged=True to apply it anyway."):
+    def __init__(self, report, hint=KEEP_UNCONVERGED_HINT):
         self.report = report
         super().__init__(
             f"Fairing did not converge (residual {short_number(report.residual)}, tolerance "
@@ -536,7 +541,8 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run.solve()
         report = run.finish()
         if report.discarded:
-            raise NotConvergedError(report)
+            uniform = run_options.inner_fairness == "UNIFORM"
+            raise NotConvergedError(report, (CONFORMAL_HINT + " " if uniform else "") + KEEP_UNCONVERGED_HINT)
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise

@@ -254,6 +254,14 @@ def check_unconverged(addon, obj):
     assert edit_state(obj) == before, "undo after the unconverged run did not go back past the run before it"
     print("ok: the unconverged run added no undo step")
 
+    # After an unconverged uniform run the report points to conformal inner fairness.
+    result, report = run_fairing(inner_fairness="UNIFORM", max_iterations=1)
+    assert result == {"CANCELLED"} and edit_state(obj) == before, (result, report)
+    assert report.endswith(
+        "the mesh is unchanged. Conformal inner fairness converges on more meshes. Tick 'Keep Unconverged Result' "
+        "to apply it anyway."
+    ), report
+
     # Keep Unconverged Result: written, with a warning that gives the residual.
     with printed() as output:
         result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1, keep_unconverged=True)
@@ -287,6 +295,15 @@ def check_fair_object_unconverged(addon, obj):
         assert isinstance(error, RuntimeError) and error.report.discarded and not error.report.changed
         assert str(error).startswith("Fairing did not converge (residual ") and str(error).endswith(
             "tolerance 1e-4): the mesh is unchanged. Pass keep_unconverged=True to apply it anyway."
+        ), error
+    else:
+        raise AssertionError("fair_object did not raise NotConvergedError")
+    try:
+        addon.fair_object(obj, inner_fairness="UNIFORM", max_iterations=1)
+    except addon.NotConvergedError as error:
+        assert str(error).endswith(
+            "the mesh is unchanged. Conformal inner fairness converges on more meshes. Pass keep_unconverged=True to "
+            "apply it anyway."
         ), error
     else:
         raise AssertionError("fair_object did not raise NotConvergedError")
