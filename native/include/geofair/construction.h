@@ -91,14 +91,8 @@ class Construction {
   /// the relaxation and the first Newton step: the "smooth the level" after the
   /// prolongation. The prolongation leaves errors of the size of an edge at the new
   /// vertices, where H is far from linear in their offsets; the local step, which solves
-  /// for each vertex's H on its own, takes them out. Measured on the disturbed 100000-vertex
-  /// cap's finest level: residual 5.0 → 2.2 (0.08 s), then 2 Newton steps (residuals 1.6e-2,
-  /// 1.8e-5) instead of 3 (1.8e-2, 2.4e-4, 2.5e-8); on the 13000-vertex cap 2.8 → 1.4, the
-  /// same 2 steps, final residual 2.3e-5 instead of 8.4e-5; 30000 and 50000: 2 steps
-  /// instead of 3. The step is kept only if it lowers the residual: with conformal inner
-  /// fairness the 13000-vertex cap's went 91 → 690 (also with coupling factors: 414).
-  /// Not on the linear initial mesh, whose error is smooth: the single-level 2000-vertex cap
-  /// took 6 steps with it instead of 5.
+  /// for each vertex's H on its own, takes them out. The step is kept only if it lowers the
+  /// residual. Not on the linear initial mesh, whose error is smooth (docs/NEWTON.md).
   ///
   /// `patience`: the number of steps without a halving of the residual after which the run
   /// stops as stalled (kNewtonPatience; coarse levels of a hierarchy kCoarseNewtonPatience).
@@ -171,39 +165,24 @@ class Construction {
 /// changes slowly; one refresh costs about three iterations.
 constexpr int kCouplingRefresh = 16;
 /// Newton steps (run_newton) move no vertex by more than this many mean distances to its
-/// neighbours. Measured on the disturbed 13000-vertex cap with an early Newton iteration
-/// (one level, fixed-normal Jacobian refactorized every step; steps to residual 1e-4): 1:
-/// 24, 2: 16, 4: 15. With the exact Jacobian's products on two levels the limit cuts only
-/// the base level's first steps (100000-vertex cap: 5 of its 8).
+/// neighbours (docs/NEWTON.md).
 constexpr double kNewtonStep = 4.0;
 /// run_newton's tangential solves (TangentialSolver::relax) before the first Newton step, at
-/// most. Disturbed caps of 13000 and 100000 free vertices: two on the base levels (the
-/// stretch limit not reached), three on the finest (the first two cut by it). Measured with
-/// an early single-level Newton iteration: 13000: 13 Newton steps instead of 16 without
-/// them; 100000: 28 steps and 25 s instead of 58 steps and 42 s.
+/// most: more than one where the stretch limit cuts a solve short (docs/NEWTON.md).
 constexpr int kNewtonRelaxations = 8;
 
-/// Tangential solves of run_newton at convergence, at most (see run_newton) ... After the
-/// prolongation to the finest level a vertex starts up to 3-8 mean distances from inner
-/// fairness (disturbed caps of 13000 and 100000 free vertices), so the first solve or two
-/// are cut short by the stretch limit; then they converge quadratically with turning
-/// tangent planes: 4 solves on the 13000- and 100000-vertex caps (the last moving < 1e-4
-/// mean distances). With fixed planes each removed only about two thirds of the distance,
-/// and the 4800-vertex cap on two levels needed 8 (with 4 the tangential part of the
-/// uniform Laplacian stayed at 1.30e-4 mean distances against 1.15e-4 on one level).
+/// Tangential solves of run_newton at convergence, at most (see run_newton; the first are
+/// cut short by the stretch limit after a prolongation, then they converge quadratically:
+/// docs/NEWTON.md) ...
 constexpr int kNewtonPolishes = 8;
 /// ... repeated while the last one moved a vertex by more than this many mean distances to
-/// its neighbours. Measured on the disturbed 1200-vertex cap (uniform inner fairness,
-/// tolerance 1e-5): after a single solve the tangential part of the uniform Laplacian was
-/// up to 7.4e-4 mean distances, against 4.6e-4 for the paper's iteration, and the vertices
-/// lay 4.9e-5 of the patch size (tangentially) from the paper's solution.
+/// its neighbours: one solve leaves inner fairness less exact than the paper's iteration
+/// does (docs/NEWTON.md).
 constexpr double kPolishedMove = 1e-3;
 /// The polishes converge quadratically (turning tangent planes): after a move δ (in mean
 /// distances) the next moves about kPolishContraction · δ², and run_newton stops polishing
-/// once that is within kPolishedMove (δ ≤ 0.032) instead of polishing until a move itself is.
-/// Measured on the disturbed caps, the move after a polish of δ: 13000 vertices δ = 4.2e-3,
-/// then 1.2e-6 (0.07 δ²); 100000: 9.0e-3, then 3.7e-6 (0.05 δ²); the factor 1 leaves a
-/// margin of 14 over both (the second polishes took 0.045 and 0.4 s).
+/// once that is within kPolishedMove (δ ≤ 0.032) instead of polishing until a move itself
+/// is (the factor leaves a margin over the measured contraction, docs/NEWTON.md).
 constexpr double kPolishContraction = 1.0;
 /// The forward difference of run_newton's Jacobian products moves the vertices by at most
 /// this fraction of L (the region's diagonal).

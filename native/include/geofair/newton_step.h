@@ -75,9 +75,7 @@ namespace geofair {
 /// needs more than half of them refactorizes its preconditioner at the next step.
 constexpr int kNewtonKrylovIterations = 30;
 /// GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ of a step (P: the preconditioner
-/// below; an inexact Newton step). Disturbed caps, Newton steps (base + finest level): 1e-3
-/// gave 5 (2000), 4 + 4 (13000) and 6 on one level of the 13000-vertex cap; 1e-2 gave 6,
-/// 5 + 5 and 10.
+/// below; an inexact Newton step; docs/NEWTON.md).
 constexpr double kNewtonKrylovTolerance = 1e-3;
 /// The preconditioner of a shifted step (NewtonStep::solve) is refactorized when the shift σ
 /// differs from the factorized one by more than this factor (dimensionless, > 1) ...
@@ -104,15 +102,9 @@ constexpr double kShiftNegligible = 1e-3;
 /// factorized at the first step and again only after a step whose GMRES needed more than
 /// half of its iterations or failed.
 ///
-/// Why the products of the exact Jacobian (measured on the disturbed 13000-vertex cap): the
-/// fixed-normal matrix alone predicts the change of the defects so badly in the first
-/// steps that the predicted and the actual change point apart (cosine −0.5 to −0.8); near
-/// the solution it stays 15–20% off (the quadric normal tilts with the neighbours, which
-/// that matrix ignores) and Newton's method converged only linearly, by 0.3–0.5 per step:
-/// 13 steps. With the exact products and the tangential relaxation moved out of the Newton
-/// steps (construction.h, run_newton) it converges quadratically (residual 0.57, 6e-3,
-/// 4e-7) with 4–5 GMRES iterations per step on the factorization of the first step
-/// (measured with a GMRES that stopped at 1e-2 of the unpreconditioned residual).
+/// Why the products of the exact Jacobian: the fixed-normal matrix ignores how the quadric
+/// normal tilts with the neighbours, and Newton's method on it alone converged only
+/// linearly; with the exact products it converges quadratically (docs/NEWTON.md).
 class NewtonStep {
  public:
   explicit NewtonStep(const FairingRegion& region);
