@@ -42,14 +42,11 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
 /// number of boundary vertices next to free ones; 32-46 were needed on the disturbed caps).
 constexpr int kBilaplacianIterations = 300;
 /// Relative residual of a linear initial mesh that the paper's iteration refines: its
-/// errors lie far below the distance the iteration moves the vertices. (At 1e-5 the
-/// disturbed 13000-vertex cap's multigrid took 9325/1110/540/100 iterations per level
-/// instead of 6578/880/350/100: that iteration is sensitive to its start.)
+/// errors lie far below the distance the iteration moves the vertices, and that iteration
+/// is sensitive to its start (docs/DESIGN_NOTES.md).
 constexpr double kInitialMeshResidual = 1e-8;
-/// ... and of the base level that Newton's method refines (fairing.cpp, newton_multigrid).
-/// Disturbed caps: the same steps per level (5; 4/2; 8/2) and results to 2e-12 (2000 and
-/// 13000: conformal as well) with 14, 14 and 20 conjugate-gradient iterations instead of
-/// 21, 20 and 31 at 1e-8 (100000-vertex cap: the base level's initial mesh 0.73 -> 0.58 s).
+/// ... and of the base level that Newton's method refines (fairing.cpp, newton_multigrid):
+/// the same steps and results with fewer conjugate-gradient iterations (docs/DESIGN_NOTES.md).
 constexpr double kNewtonInitialMeshResidual = 1e-5;
 /// Relative residual where the linear solution is the result (OuterFairness::Bilaplacian):
 /// that of a direct solve.

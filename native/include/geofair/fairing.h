@@ -85,9 +85,8 @@ struct FairingResult {
 /// valences and the ratio of free to boundary vertices in bounds (progressive_mesh.h); the
 /// coarse levels use discrete-conformal weights of that copy whatever the inner fairness,
 /// because uniform weights pull free vertices against a boundary that is denser than the
-/// coarse interior (on the base mesh of the 20000-vertex cap: 6–7 boundary neighbours,
-/// H = −17 instead of 1 at vertices on the sphere, the construction stalls at residual 1e8);
-/// only the finest level's inner fairness decides the result. The coarse levels stop at a
+/// coarse interior (docs/DESIGN_NOTES.md); only the finest level's inner fairness decides
+/// the result. The coarse levels stop at a
 /// 10 times looser tolerance.
 ///
 /// Residual: L · max_i |H̄_i − H_i| over the free vertices, with H̄_i = Σ_j w_ij H_j /
@@ -97,14 +96,10 @@ struct FairingResult {
 /// Σ_j w_ij with Δ_B of eq. (5), A_i the 1-disk area: about h²|Δ_B H| for edge length h.
 /// It is dimensionless (the same tolerance means the same on a mesh scaled by any factor),
 /// zero exactly when S H = b, and it asks the same local smoothness of H at any resolution.
-/// (The residual L³ max|Δ_B H| used before asks (L/h)² times more of a fine
-/// mesh than of a coarse one: on the 13000-vertex cap with Max's normals, where the sphere
-/// is the exact discrete solution, the default tolerance then left a radial error of 2e-11
-/// after 1460 iterations of the finest level and 24000 on the coarser ones; now 6e-6 after
-/// 110 and 5600.) Smooth errors are removed by the coarse levels, whose tolerance is 10
-/// times looser; on a single level the same tolerance leaves a larger
-/// smooth error (3e-5 on the 400-vertex cap with Max's normals), still below the
-/// discretization error of the paper's area normals there (a few 1e-3).
+/// (L³ max|Δ_B H| would ask (L/h)² times more of a fine mesh than of a coarse one;
+/// docs/DESIGN_NOTES.md.) Smooth errors are removed by the coarse levels, whose tolerance
+/// is 10 times looser; on a single level the same tolerance leaves a larger smooth error,
+/// still below the discretization error of the paper's area normals.
 ///
 /// \param V       #V×3 positions, finite where used
 /// \param F       #F×3 triangles, consistently oriented, manifold in the region

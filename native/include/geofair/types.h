@@ -87,10 +87,7 @@ enum class Iteration {
 };
 
 /// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
-/// threads' start-up costs more than they save. bench/speed.py's caps on two threads
-/// (median of 5 runs): with 2000, the 2000-vertex cap (2158 region vertices) took 0.154 s
-/// against 0.136 s on one thread; with 2500 it takes 0.129 s and the 13000-vertex cap,
-/// whose base level has 3627, 0.665 s (with 5000: 0.739 s).
+/// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).
 constexpr int kParallelMin = 2500;
 
 /// The automatic time limit of fair (FairingOptions::time_limit < 0): this many seconds ...

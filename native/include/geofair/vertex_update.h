@@ -45,14 +45,11 @@ double update_free_vertices(const FairingRegion& region, const InnerFairnessWeig
 /// neighbours' H stayed fixed; ρ_i says how much faster the defect of the discrete
 /// eq. (12) really changes. ρ_i ≈ 1.2 on a regular mesh, up to ≈ 2 on irregular ones.
 ///
-/// Why (measured, Schneider & Kobbelt's update has no such factor): next to a G1 boundary
-/// vertex whose one-sided fan is thin (its only free neighbour 6°–20° off the boundary
-/// line, as uniform inner fairness places it on a coarse level with a dense boundary), the
-/// least-squares fit (11) is nearly singular in the inward direction (Lemma 1). H of that
-/// boundary vertex then reacts 10× more strongly to the free neighbour than the
-/// neighbour's own H (dH_b/dt ≈ −3.5e4 vs H′ ≈ 3.3e3 on the 277-vertex base mesh of a
-/// 2000-vertex cap), so ρ reaches 13; with s·ρ > 2 the update overshoots and the vertex
-/// oscillates (the paper's "alternating between two positions", section 7.5).
+/// Why (beyond Schneider & Kobbelt's update): next to a G1 boundary vertex whose one-sided
+/// fan is thin, the least-squares fit (11) is nearly singular in the inward direction
+/// (Lemma 1), H of that boundary vertex reacts far more strongly to the free neighbour than
+/// the neighbour's own H, and with s·ρ > 2 the update overshoots and the vertex oscillates
+/// (the paper's "alternating between two positions", section 7.5; docs/DESIGN_NOTES.md).
 ///
 /// \param weights w_ij per ring slot of the free vertices (DirichletMatrix::weights)
 /// \param H       #region mean curvatures of the positions X with normals N
