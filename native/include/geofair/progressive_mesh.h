@@ -31,20 +31,17 @@ struct ProgressiveMesh {
   std::vector<VertexSplits> splits;
 };
 
-/// Number of levels picked for a region with `n_free` free vertices: one level up to 1000
-/// free vertices (a single level converges there within a few thousand iterations, about
-/// 3 s: measured on caps, multigrid saves 0.1 s at 300 and 1.7 s at 1000 free vertices);
-/// above, the vertex count grows 4× per level and the base mesh keeps at most about 250
-/// free vertices.
+/// Number of levels picked for a region with `n_free` free vertices (the paper's iteration):
+/// one level up to 1000 free vertices, where a single level converges within a few thousand
+/// iterations (docs/DESIGN_NOTES.md); above, the vertex count grows 4× per level and the base
+/// mesh keeps at most about 250 free vertices.
 int default_levels(int n_free);
 
 /// The copy of X (#region×3) the hierarchy is measured on: kHierarchySmoothing Jacobi sweeps
 /// q ← (q + Σ_j λ_ij q_j)/2 of the free vertices with the inner-fairness weights λ
 /// (inner_fairness_weights of the region; nullptr: uniform). The fairing moves the vertices that way, and on a
 /// noisy input (normal noise comparable to the edge length) the raw positions make the
-/// quality and flip tests meaningless: measured on the 2000-vertex cap disturbed as in the
-/// tests, the hierarchy measured on the raw input has 6 and 20 triangles folded over on its
-/// coarse levels, measured on this copy none.
+/// quality and flip tests meaningless and fold coarse triangles (docs/DESIGN_NOTES.md).
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
                               const InnerFairnessWeights* lambda);
 
@@ -63,22 +60,10 @@ struct Decimation {
 constexpr Decimation kPaperDecimation{};
 
 /// The hierarchy of Newton's method on the levels (fairing.cpp; beyond the paper): the
-/// boundary coarsened, free valences 4..10, valences 3 and 4 collapsed first. Measured on
-/// the disturbed caps (bench/speed.py), Newton steps per level coarsest first:
-/// - With the boundary locked, a level keeps every boundary vertex, so coarse levels join a
-///   dense boundary to a sparse interior by fans of long triangles; Newton's method diverged
-///   there from the linear initial mesh unless a level kept 8 free vertices per boundary
-///   vertex (a base of 25000 free vertices for the 100000-vertex cap: 8 + 2 steps; at
-///   1000000 the base of 62000 never converged).
-/// - Coarsening the boundary with valences 5..8 left clusters of small triangles where
-///   every collapse broke a valence limit: the 100000-vertex cap's base of 1500 free vertices
-///   stalled at residual 100-400 (H up to ±50 on the unit sphere at the clusters).
-/// - Valences 4..10 removed the clusters, but vertices of valence 3 of the input survived
-///   into coarse levels (longer edges, collapsed late) and held the largest defects after
-///   each prolongation (residual 22-59, one extra step per level).
-/// - Low valences first: residual 4-6 after every prolongation, 3 + 2 + 2 + 2 steps on 4
-///   levels of the 100000-vertex cap, 3 + 2 + 2 on 3 levels of the 13000-vertex cap; every
-///   level of the 1000000-vertex cap (6 levels) converges in 2-3 steps.
+/// boundary coarsened (a locked boundary joins a dense boundary to a sparse interior by
+/// fans of long triangles), free valences 4..10, valences 3 and 4 collapsed first (they
+/// hold the largest defects after a prolongation when they survive into coarse levels);
+/// docs/DESIGN_NOTES.md.
 constexpr Decimation kNewtonDecimation{true, 4, 10, true};
 
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
@@ -91,13 +76,9 @@ constexpr Decimation kNewtonDecimation{true, 4, 10, true};
 /// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
 /// come back if that leaves nothing to coarsen or the mesh cannot be decimated that far).
 ///
-/// Why the two limits (measured on the 20000-vertex cap; the boundary is never coarsened):
-/// a base mesh of 126 free and 480 boundary vertices is mostly thin boundary fans, where
-/// the construction ends in a limit cycle; and without the valence limits 3% of the free
-/// vertices of the coarse levels have valence 3 and 15% valence 4 (the fine mesh: none
-/// and 1%), where the spiral-sample estimate of H is far off on a coarse level (H = 5..10
-/// on the unit sphere) and the multigrid cycles stall (residual 8e-2 after 20000
-/// iterations of the finest level, against converged after 1200 with the limits).
+/// Why the two limits: a base mesh of mostly thin boundary fans ends the construction in a
+/// limit cycle, and at coarse vertices of valence 3 and 4 the spiral-sample estimate of H is
+/// far off, so the multigrid cycles stall (docs/DESIGN_NOTES.md).
 ///
 /// With rules.coarsen_boundary (kNewtonDecimation) the G1 boundary is coarsened too: a
 /// boundary vertex may collapse along the region's border into its neighbour on the same
