@@ -141,12 +141,7 @@ constexpr int kTwoGridSweeps = 2;
 constexpr int kTwoGridBlocks = 2;
 constexpr int kTwoGridIterations = 40;
 /// ... and GMRES's relative residual there. A solve's error only leaves the next polish
-/// a little more to do (run_newton polishes until the moves vanish). Measured on the
-/// 100000-vertex cap: 5 iterations per solve (four solves) instead of 6-7 at 1e-4 and
-/// 12-13 at 1e-8, the same Newton steps, polishes and residual, final vertices within
-/// 2e-9 of those at 1e-4 (13000-vertex cap: 4e-9); finest relaxations 0.98 -> 0.85 s,
-/// polishes 0.24 -> 0.21 s (medians of 5 interleaved runs; 1e-8 -> 1e-4 had saved 2.7 ->
-/// 1.8 s). At 1e-2 (3-4 iterations) the 100000-vertex cap needed another polish.
+/// a little more to do (run_newton polishes until the moves vanish; docs/DESIGN_NOTES.md).
 constexpr double kTwoGridTolerance = 1e-3;
 
 /// The global step of inner fairness (beyond the paper, measured below): moves every free
@@ -204,9 +199,8 @@ class TangentialSolver {
   /// the tangent bases, P_ic T_iᵀ T_c). A_c is the coarser level's own linearized system
   /// (fixed tangent planes, weights coarse.lambda) in the tangent bases T_c of its vertices
   /// here: the operator rediscretized on the coarse mesh, 1-ring sparse, rather than the
-  /// Galerkin product P̃ᵀ A P̃, whose stencil is wider. Measured on the 100000-vertex cap
-  /// (49992 coarse unknowns): the same GMRES iterations per solve (6, 7, 7, 6 to 1e-4),
-  /// operator 0.13 → 0.016 s, its LU 0.71 → 0.23 s. A_c (with `coarser` below: the next
+  /// Galerkin product P̃ᵀ A P̃, whose stencil is wider: as good a preconditioner, cheaper
+  /// to build and factorize (docs/DESIGN_NOTES.md). A_c (with `coarser` below: the next
   /// coarser system) is factorized at the first relax and, with `lagged`, kept for the
   /// next ones. If GMRES does not converge in
   /// kTwoGridIterations, the system is factorized.
@@ -215,11 +209,8 @@ class TangentialSolver {
   /// `coarse`, its `vertex` column ids of `coarse`), or empty. With it the coarse-grid
   /// correction is not A_c's LU but a cycle of the same kind on A_c around the LU of the
   /// next coarser level's system (in the tangent bases here): a three-grid cycle, which
-  /// factorizes a system 4 times smaller. Measured (interleaved runs of the same build with
-  /// and without): the same 5 GMRES iterations per solve on the 100000-vertex cap's finest
-  /// level, its relaxations 1.17 -> 0.82 s and polish 0.42 -> 0.35 s; 1000000-vertex cap:
-  /// finest relaxations 20-25 -> 17 s (no factorization of 500000 unknowns), peak memory
-  /// 7.48 -> 7.03 GiB; 13000: finest relaxations 0.12 -> 0.09 s (medians of 5).
+  /// factorizes a system 4 times smaller, with the same GMRES iterations
+  /// (docs/DESIGN_NOTES.md).
   void set_coarse_space(CoarseSpace coarse, CoarseSpace coarser = {}) {
     coarse_ = std::move(coarse);
     coarser_ = std::move(coarser);

@@ -36,20 +36,14 @@ constexpr int kThreadedBlasMin = 50000;
 /// Newton preconditioners analyzed ahead (PatternLU::analyze, Construction::prepare_newton)
 /// with at least this many unknowns take METIS's nested dissection ordering. Only the
 /// finest level's is analyzed ahead, on the second thread during the decimation, where the
-/// ordering's cost is hidden. Measured, finest Newton steps and whole fair() call against
-/// AMD (medians of interleaved runs): 13000-vertex cap 0.27-0.32 -> 0.22-0.27 s, 0.744 ->
-/// 0.682 s (9 pairs); 30000: 0.81-1.07 -> 0.74-0.81 s, 2.06 -> 1.99 s (5 pairs); 5000: no
-/// difference (0.309 against 0.312 s, 7 pairs). The coarse levels keep AMD: analyzed on
-/// the critical path, METIS cost more than it saved (100000-vertex cap's 25000-vertex
-/// level: +0.23-0.30 s of ordering, -0.1 s of Newton steps; 1000000's 250000: +3.9 s,
-/// -1.4 s).
+/// ordering's cost is hidden; the coarse levels keep AMD, analyzed on the critical path,
+/// where METIS cost more than it saved (docs/DESIGN_NOTES.md).
 constexpr int kNestedDissectionMin = 10000;
 
 /// PatternLU factorizes systems of at least this many unknowns with UMFPACK's long-index
 /// interface (umfpack_dl_*): with int indices its workspace is addressed in int units, and
-/// the factorization of the 1000000-vertex cap's finest Newton preconditioner failed for
-/// lack of them. Below, int indices: on the 100000-vertex cap the long ones made the
-/// factorization 1.12 -> 1.48 s and a solve about 20% slower.
+/// large factorizations (the 1000000-vertex cap's finest Newton preconditioner) failed for
+/// lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
 constexpr int kWideIndexMin = 500000;
 
 /// The BLAS threads of a factorization of n unknowns (see BlasThreads).
@@ -70,10 +64,7 @@ class PatternLU {
   /// the pattern may be given before the matrix is known (fair() analyzes the finest
   /// level's Newton preconditioner on its second thread during the decimation). With
   /// `nested_dissection` the ordering is METIS's nested dissection instead of UMFPACK's
-  /// default (AMD): slower to compute, but less fill. Newton preconditioner of the
-  /// disturbed 100000-vertex cap (99982 unknowns, 1.9M entries): analysis 0.13-0.18 s
-  /// (AMD) against 0.78-0.98 s (METIS), numeric factorization 1.2-1.5 s against 0.9-1.2 s,
-  /// a solve 51-57 ms against 40-53 ms.
+  /// default (AMD): slower to compute, but less fill (docs/DESIGN_NOTES.md).
   void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
     wide_ = pattern.rows() >= kWideIndexMin;
     wide_ ? wide_factors_.analyze(pattern, nested_dissection)
