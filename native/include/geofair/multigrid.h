@@ -31,14 +31,11 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 ///  3. outer fairness is restored: each new vertex moves along its normal onto the surface
 ///     predicted by the tangent planes and mean curvatures of its split ring, the average of
 ///     t_j = (−⟨q_i − q_j, n_j⟩ − H_j/2 · |q_i − q_j|²_tangential) / ⟨n_i, n_j⟩.
-/// Deviation from the paper, measured on the 2000-vertex cap (uniform weights on every
-/// level, Max's normals): step 2 moves the old
-/// vertices too, but only within the coarse surface's tangent plane, kept on its osculating
-/// paraboloid q = p + d − H/2 |d|² n (with the normal turned to n + H d); the paper relaxes
-/// them in space and step 3 runs the construction on D(q_i). That moved the coarse vertices
-/// off the coarse solution by 4e-2 (radial error) and the local construction did not bring
-/// them back (5e-2 after it); now they stay within 2e-5, the new vertices start within 5e-3
-/// (first level) and 1.4e-3 (second), and no triangle folds over.
+/// Deviation from the paper: step 2 moves the old vertices too, but only within the coarse
+/// surface's tangent plane, kept on its osculating paraboloid q = p + d − H/2 |d|² n (with
+/// the normal turned to n + H d); the paper relaxes them in space and step 3 runs the
+/// construction on D(q_i), which moved the coarse vertices off the coarse solution
+/// (docs/DESIGN_NOTES.md).
 ///
 /// \param level    the finer level's region
 /// \param splits   the level's vertex splits, in level-local ids
@@ -93,8 +90,7 @@ struct MultigridLevel {
 /// Nonlinear multigrid cycles (full approximation scheme, Brandt 1977) on the levels
 /// 0 .. l of a hierarchy. Beyond the paper, which only iterates each level after the
 /// prolongation: on the finer levels the construction's local vertex update removes smooth
-/// errors at a rate that falls like 1/#V_I, so with the residual tolerance of fair() the
-/// finest level needed 5000 iterations on the 2000-vertex cap however well it was started.
+/// errors at a rate that falls like 1/#V_I (docs/DESIGN_NOTES.md).
 ///
 /// A cycle on level l (tangential: inner fairness on; coarse problems: normal moves only):
 ///  1. kSmoothing iterations of the construction on level l;
@@ -108,14 +104,9 @@ struct MultigridLevel {
 ///  4. kSmoothing iterations again. A correction that leaves the residual above the one
 ///     before it is undone (and smoothing repeated without it), one whose coarse problem
 ///     diverges is dropped; then the level's corrections are damped and paused for a while
-///     (measured: on the 1200-vertex cap with conformal weights of a noisy input, some
-///     corrections of the finest level are 10 times the error; undoing them alone left
-///     the finest level at 6300 iterations, single level 3700).
+///     (on a noisy input some corrections are many times the error; docs/DESIGN_NOTES.md).
 /// The normal-only coarse problems correct the smooth error of the shape; the tangential
-/// one is the global inner-fairness step's (inner_fairness.h). Measured on the
-/// 2000-vertex cap (uniform weights, area normals): the finest level converges in 280
-/// iterations instead of 6600 on a single level, the 20000-vertex cap in 1200 (a single
-/// level had not converged after 200000).
+/// one is the global inner-fairness step's (inner_fairness.h); docs/DESIGN_NOTES.md.
 class Multigrid {
  public:
   /// \param levels  coarsest first; kept by reference (a deque: the constructions refer to
@@ -152,8 +143,7 @@ class Multigrid {
 constexpr double kMinCorrection = 1.0 / 16;
 constexpr int kMaxSkip = 15;
 
-/// Smoothing iterations before and after each coarse-grid correction (measured on the
-/// 2000-vertex cap and catenoid: 10 takes 15-20% less time than 25).
+/// Smoothing iterations before and after each coarse-grid correction (docs/DESIGN_NOTES.md).
 constexpr int kSmoothing = 10;
 /// Base level of a cycle: iterate until the residual fell by this factor ... (a cheaper
 /// base solve, 0.2 or 50 iterations, needs more cycles and costs more on the 20000 cap)
