@@ -71,12 +71,10 @@ struct FairingResult {
 /// the construction above; the same discrete equations (12), all normal
 /// offsets per step from one inexact Newton step with the exact Jacobian's products. Its
 /// hierarchy coarsens the G1 boundary too (kNewtonDecimation in progressive_mesh.h), so the
-/// base level can be small: the disturbed 13000-, 100000- and 1000000-vertex caps run on
-/// 3, 4 and 6 levels with 2-3 steps on each, where the paper's iteration takes thousands
-/// (and had not finished the 1000000-vertex cap after 27 minutes). Where a coarse level
-/// fails the finest level is solved alone; where that stalls or fails (measured on regions
-/// of real meshes whose linear initial mesh is far from the solution and folded at the
-/// boundary), Auto starts over with the paper's steps below; Paper runs them alone.
+/// base level can be small, with a few steps on each level where the paper's iteration
+/// takes thousands (docs/NEWTON.md, README). Where a coarse level fails the finest level is
+/// solved alone; where that stalls or fails, Auto starts over with the paper's steps below;
+/// Paper runs them alone.
 ///
 /// Beyond the paper, each justified by measurement where it is implemented: the vertex
 /// update divides its step by a measured coupling factor (vertex_update.h); global

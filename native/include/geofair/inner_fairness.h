@@ -65,18 +65,11 @@ struct InnerFairnessWeights {
 /// Clamping stays only where the triangulation cannot help: border edges of the region
 /// (between two G1 boundary vertices: one triangle, never flipped; they enter only the
 /// one-sided Laplacian of G1 boundary vertices in the linear initial mesh, bilaplacian.h),
-/// and round-off (the flips stop at cot α + cot β ≥ −1e-12). Not what Conformal does,
-/// measured: the harmonic map of a rough original (noise as large as the features) onto
-/// the smooth faired surface can bring two vertices within 0.14 mean edge lengths of each
-/// other (0.23 with clamping), and the construction does not converge there: the pair
-/// oscillates along the normal, their normal offset flipping sign between iterations
-/// (±0.027 against a tangential distance of 0.011 on the first cap). 3 of 4 noisy
-/// 600-vertex caps stop at residuals of 0.1–60 after 5000 iterations, the first also with
-/// damping 0.5 or 0.25, 30 CG iterations, coupling factors refreshed every iteration, or
-/// |t| limited to half the smallest tangential distance to a neighbour; with Conformal
-/// all four converge in 1200–2100 iterations. The sphere positions of that harmonic map
-/// satisfy the discrete equations (H = 1 to 1e-3): a limit of the iteration, not of the
-/// weights.
+/// and round-off (the flips stop at cot α + cot β ≥ −1e-12). Not what Conformal does: the
+/// harmonic map of a rough original (noise as large as the features) onto the smooth
+/// faired surface can bring two vertices much closer than an edge length, where the
+/// construction oscillates and stalls (a limit of the iteration, not of the weights;
+/// docs/DESIGN_NOTES.md).
 ///
 /// A vertex whose weights all vanish falls back to uniform weights over its neighbours.
 /// \throw InvalidInputError as intrinsic_delaunay (not for a valid region).
@@ -158,8 +151,7 @@ constexpr double kTwoGridTolerance = 1e-3;
 /// plane of unit normal n_i; boundary vertices do not move). `iterations` BiCGSTAB
 /// iterations (the system is not symmetric for λ_ij ≠ λ_ji) from u = 0, then
 /// q_i ← q_i + s T_i u_i with |T_i u_i| limited to half the mean distance to the neighbours.
-/// Mirrors the paper's global CG step for H~ (section 7.1). Measured on the 2000-vertex cap
-/// with multigrid: the fine level needs 550 instead of 3250 iterations.
+/// Mirrors the paper's global CG step for H~ (section 7.1); docs/DESIGN_NOTES.md.
 class TangentialSolver {
  public:
   /// \param rings    one-rings of the region (the step length limit uses them)
