@@ -195,8 +195,8 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         level's size), repeated while the next one would move a vertex by more than 1e-3 mean
         neighbour distances (predicted from the last move by the quadratic convergence), at
         most 8 times (the steps go on where one raised the residual). A level stops when the
-        residual has not halved in 20 steps; where a coarse level fails, the finest level is
-        solved alone.
+        residual has not halved in 20 steps (a coarse level in 8); where a coarse level does
+        not converge, the finest level is solved alone.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
         start. The LU factors of the Newton steps take memory, growing faster than the vertex
