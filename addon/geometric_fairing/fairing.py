@@ -144,9 +144,14 @@ def short_number(x):
     return mantissa if int(exponent) == 0 else f"{mantissa}e{int(exponent)}"
 
 
-# After an unconverged uniform solve: uniform inner fairness can degenerate the triangles of an irregular region.
 CONFORMAL_HINT = "Conformal inner fairness converges on more meshes."
 KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
+
+
+def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT):
+    """What to try after an unconverged run that was not kept: Conformal after Uniform (uniform inner
+    fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), then ``keep_hint``."""
+    return (CONFORMAL_HINT + " " if inner_fairness == "UNIFORM" else "") + keep_hint
 
 
 class NotConvergedError(RuntimeError):
@@ -541,8 +546,7 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run.solve()
         report = run.finish()
         if report.discarded:
-            uniform = run_options.inner_fairness == "UNIFORM"
-            raise NotConvergedError(report, (CONFORMAL_HINT + " " if uniform else "") + KEEP_UNCONVERGED_HINT)
+            raise NotConvergedError(report, unconverged_hint(run_options.inner_fairness))
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise

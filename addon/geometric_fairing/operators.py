@@ -51,12 +51,6 @@ TOGGLE_ITEMS = (
 UNCONVERGED_HINT = "Tick 'Keep Unconverged Result' to apply it anyway."
 
 
-def unconverged_hint(inner_fairness):
-    """What to try after an unconverged run that was not kept: Conformal after Uniform (uniform inner
-    fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), and the option to keep it."""
-    return (fairing.CONFORMAL_HINT + " " if inner_fairness == "UNIFORM" else "") + UNCONVERGED_HINT
-
-
 _running = None  # the FairingBatch of the modal operator while it solves
 
 
@@ -229,7 +223,7 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         reports, errors = batch.finish()
         options = batch.runs[0].options
         # An unconverged result that was not kept: that object is not faired, like one that failed.
-        hint = unconverged_hint(options.inner_fairness)
+        hint = fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT)
         not_kept = [(report.object_name, fairing.NotConvergedError(report, hint)) for report in reports]
         not_kept = [(name, error) for name, error in not_kept if error.report.discarded]
         reports = [report for report in reports if not report.discarded]
