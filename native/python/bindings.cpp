@@ -138,16 +138,24 @@ py::dict defaults_py() {
   return d;
 }
 
-// fair's docstring with the automatic time limit's figures filled in from types.h.
+// fair's docstring with the figures of the automatic time limit (types.h) and of Newton's
+// method (construction.h) filled in from their constants.
 std::string fair_doc(std::string doc) {
   const auto replace = [&doc](const std::string& key, const std::string& value) {
     for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
   };
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", kTimeLimitBase);
-  replace("{time_limit_base}", text);
-  std::snprintf(text, sizeof text, "%g", kTimeLimitPerFree * 1e3);
-  replace("{time_limit_per_free_ms}", text);
+  const auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return std::string(text);
+  };
+  replace("{time_limit_base}", number(kTimeLimitBase));
+  replace("{time_limit_per_free_ms}", number(kTimeLimitPerFree * 1e3));
+  replace("{newton_step}", number(kNewtonStep));
+  replace("{polished_move}", number(kPolishedMove));
+  replace("{polishes}", number(kNewtonPolishes));
+  replace("{patience}", number(kNewtonPatience));
+  replace("{coarse_patience}", number(kCoarseNewtonPatience));
   return doc;
 }
 
@@ -352,15 +360,15 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     tangential solves. Per step one inexact Newton step: GMRES on the products of the
     exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
     recomputed; forward differences), preconditioned by the sparse LU factorization of a
-    fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
+    fixed-normal Jacobian of an earlier step; steps limited to {newton_step} mean neighbour distances
     per vertex. At convergence of the finest level tangential solves restore inner
     fairness (linearized with the turn of the tangent planes, so that repeated solves
     converge quadratically; above the base level by GMRES on a two-grid preconditioner with
     the next coarser level, three-grid with the next two, without a factorization at the
-    level's size), repeated while the next one would move a vertex by more than 1e-3 mean
+    level's size), repeated while the next one would move a vertex by more than {polished_move} mean
     neighbour distances (predicted from the last move by the quadratic convergence), at
-    most 8 times (the steps go on where one raised the residual). A level stops when the
-    residual has not halved in 20 steps (a coarse level in 8); where a coarse level does
+    most {polishes} times (the steps go on where one raised the residual). A level stops when the
+    residual has not halved in {patience} steps (a coarse level in {coarse_patience}); where a coarse level does
     not converge, the finest level is solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the

@@ -192,7 +192,7 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         fairness (linearized with the turn of the tangent planes, so that repeated solves
         converge quadratically; above the base level by GMRES on a two-grid preconditioner with
         the next coarser level, three-grid with the next two, without a factorization at the
-        level's size), repeated while the next one would move a vertex by more than 1e-3 mean
+        level's size), repeated while the next one would move a vertex by more than 0.001 mean
         neighbour distances (predicted from the last move by the quadratic convergence), at
         most 8 times (the steps go on where one raised the residual). A level stops when the
         residual has not halved in 20 steps (a coarse level in 8); where a coarse level does
