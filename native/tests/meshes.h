@@ -91,8 +91,9 @@ inline Mesh centred_quads(int n) {
   return m;
 }
 
-/// Lifts a planar mesh in the unit square onto the upper hemisphere of radius r by
-/// the vertical projection z = sqrt(r² − x² − y²) (the faces then face outward).
+/// Lifts a planar mesh inside the disc of radius r (the grids' [−1, 1]² for r > √2) onto the
+/// upper hemisphere of radius r by the vertical projection z = sqrt(r² − x² − y²) (the faces
+/// then face outward).
 inline Mesh onto_sphere(Mesh m, double r) {
   for (int v = 0; v < m.V.rows(); ++v) {
     const double x = m.V(v, 0), y = m.V(v, 1);
