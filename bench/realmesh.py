@@ -1,18 +1,20 @@
 """Real-mesh benchmark and corpus: geofair.fair on regions of real meshes, Blender primitives and the paper's scenes.
 
-For each case and inner fairness prints one row: the case name, free vertices, inner
-fairness, "inval" (seeds drawn before this one whose region was invalid input: redrawn),
-the outcome (yes = converged, no = not converged, timeout, error, invalid), new folds
-(edges with a free endpoint whose two triangles' normals have a negative dot product after
-fairing but not before), the wall time of the fair() call alone, the final residual, the
-iteration used ("newton" or "paper" with the result's iteration count; "+Nn": Newton
-steps), and for sphere caps the max radial error | |q| - 1 | over the free vertices; then
-the error message or the result's ``reason`` where there is one. Fixed vertices must come
-back bit-identical: a violation is printed as "!!! FIXED VERTICES CHANGED". At the end,
-per inner fairness: cases, converged without new folds (count and %), not converged,
-converged with new folds, timeouts, errors, median and max time of the finished solves
-per size class (free vertices <= 150, <= 1,500, <= 15,000, more) and how many cases of at
-most 10,000 free vertices took more than 10 s (timeouts included).
+For each case and inner fairness prints one row: the case name, free vertices, the
+region's topology (disc, annulus or other), inner fairness, "inval" (seeds drawn before
+this one whose region was invalid input: redrawn), the outcome (yes = converged, no = not
+converged, timeout, error, invalid), new folds (edges with a free endpoint whose two
+triangles' normals have a negative dot product after fairing but not before), the wall
+time of the fair() call alone, the final residual, the iteration used ("newton" or "paper"
+with the result's iteration count; "+Nn": Newton steps), and for sphere caps the max
+radial error | |q| - 1 | over the free vertices; then the error message or the result's
+``reason`` where there is one. Fixed vertices must come back bit-identical: a violation is
+printed as "!!! FIXED VERTICES CHANGED". At the end, per inner fairness: cases, converged
+without new folds (count and %, and by the region's topology: disc, annulus, other; see
+region_topology), not converged, converged with new folds, timeouts, errors, median and
+max time of the finished solves per size class (free vertices <= 150, <= 1,500, <= 15,000,
+more) and how many cases of at most 10,000 free vertices took more than 10 s (timeouts
+included).
 
     PYTHONPATH=build/python python3 bench/realmesh.py [--quick] [--large] [--only SUBSTRING]
         [--inner uniform,conformal] [--timeout SECONDS] [--cache DIR] [--json FILE]
@@ -326,6 +328,30 @@ def region_problem(faces, free):
     return None
 
 
+def region_topology(faces, free):
+    """Topology of the region (the triangles with a free vertex): (kind, Euler
+    characteristic V - E + F, boundary loops), kind "disc" (one loop, χ = 1), "annulus"
+    (two loops, χ = 0: a tube or a ring) or "other" (more loops, or handles). Loops are
+    the connected components of the border edges (two loops touching at a vertex count
+    as one)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    reg = np.asarray(faces, np.int64)[np.asarray(free)[faces].any(axis=1)]
+    e = np.sort(np.concatenate([reg[:, [0, 1]], reg[:, [1, 2]], reg[:, [2, 0]]]), axis=1)
+    uniq, count = np.unique(e, axis=0, return_counts=True)
+    chi = len(np.unique(reg)) - len(uniq) + len(reg)
+    border = uniq[count == 1]
+    loops = 0
+    if len(border):
+        n = len(free)
+        graph = coo_matrix((np.ones(len(border)), (border[:, 0], border[:, 1])), shape=(n, n))
+        _, label = connected_components(graph, directed=False)
+        loops = len(np.unique(label[border[:, 0]]))
+    kind = {(1, 1): "disc", (2, 0): "annulus"}.get((loops, chi), "other")
+    return kind, int(chi), loops
+
+
 def _vertex_sums(faces, values, n):
     return np.stack([np.bincount(faces.ravel(), np.repeat(values[:, c], 3), minlength=n) for c in range(3)], 1)
 
@@ -613,6 +639,7 @@ def fixed_changed(before, after, free):
 
 def make_row(desc, meta, inner, n_free, out, before, after, faces, free):
     row = {"case": desc["name"], "free": n_free, "inner": inner, "invalid": meta.get("invalid", 0)}
+    row["topology"], row["euler"], row["loops"] = region_topology(faces, free)
     row.update(out)
     if after is not None:
         row["new_folds"] = new_folds(before, after, faces, free)
@@ -627,7 +654,7 @@ def _fmt(x, spec, width):
 
 
 HEADER = (
-    f"{'case':<30} {'free':>6} {'inner':<9} {'inval':>5} {'conv':<7} {'folds':>5} {'time [s]':>8} "
+    f"{'case':<30} {'free':>6} {'region':<7} {'inner':<9} {'inval':>5} {'conv':<7} {'folds':>5} {'time [s]':>8} "
     f"{'residual':>8} {'iteration':<20} {'radial':>8}  note"
 )
 
@@ -642,7 +669,8 @@ def format_row(row):
     if row.get("fixed_changed"):
         note = f"!!! FIXED VERTICES CHANGED: {row['fixed_changed']} !!! " + note
     return (
-        f"{row['case']:<30} {row['free']:>6} {row['inner']:<9} {row['invalid']:>5} {row['status']:<7} "
+        f"{row['case']:<30} {row['free']:>6} {row.get('topology', ''):<7} {row['inner']:<9} "
+        f"{row['invalid']:>5} {row['status']:<7} "
         f"{_fmt(row.get('new_folds'), 'd', 5)} {_fmt(row.get('seconds'), '.2f', 8)} "
         f"{_fmt(row.get('residual'), '.1e', 8)} {it:<20} {_fmt(row.get('radial_error'), '.1e', 8)}  {note}"
     ).rstrip()
@@ -674,7 +702,13 @@ def summary(rows, inners, timeout):
             f"errors {count['error']}, invalid input {count['invalid']}"
             + (f", !!! FIXED VERTICES CHANGED in {fixed}" if fixed else "")
         )
-        parts = []
+        by_kind = []
+        for kind in ("disc", "annulus", "other"):
+            ks = [r for r in rs if r.get("topology") == kind]
+            if ks:
+                ok = sum(r["status"] == "yes" and r.get("new_folds") == 0 and not r.get("fixed_changed") for r in ks)
+                by_kind.append(f"{kind} {ok} of {len(ks)}")
+        parts = ["regions by topology, converged without new folds: " + ", ".join(by_kind)] if by_kind else []
         for i, (_, label) in enumerate(SIZE_CLASSES):
             ts = [r["seconds"] for r in rs if size_class(r["free"]) == i and r["status"] in ("yes", "no")]
             n = sum(size_class(r["free"]) == i for r in rs)

@@ -115,3 +115,29 @@ def test_failing_hierarchy_is_abandoned_early(inner):
     assert r.newton_iterations - r.iterations <= 20, (r.newton_iterations, r.iterations)
     assert realmesh.new_folds(v, r.vertices, f, free) == 0
     assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-5
+
+
+def test_region_topology_tells_discs_from_tubes_and_handles():
+    # The benchmark's success table is split by the region's topology (disc, annulus,
+    # other): a strip of a triangulated grid, the same grid closed into a tube, and the tube
+    # with its two ends joined (a torus: no border) are told apart by χ and the loops.
+    rows, cols = 4, 6
+    idx = np.arange(rows * cols).reshape(rows, cols)
+
+    def grid(wrap_cols, wrap_rows):
+        faces = []
+        for i in range(rows - (0 if wrap_rows else 1)):
+            for j in range(cols - (0 if wrap_cols else 1)):
+                a, b = idx[i, j], idx[i, (j + 1) % cols]
+                c, d = idx[(i + 1) % rows, j], idx[(i + 1) % rows, (j + 1) % cols]
+                faces += [(a, b, d), (a, d, c)]
+        return np.array(faces)
+
+    free = np.ones(rows * cols, bool)
+    assert realmesh.region_topology(grid(False, False), free) == ("disc", 1, 1)
+    assert realmesh.region_topology(grid(True, False), free) == ("annulus", 0, 2)
+    assert realmesh.region_topology(grid(True, True), free) == ("other", 0, 0)
+    # Only the triangles with a free vertex count: the first column alone is a disc again.
+    first = np.zeros(rows * cols, bool)
+    first[idx[:, 0]] = True
+    assert realmesh.region_topology(grid(False, False), first)[0] == "disc"
