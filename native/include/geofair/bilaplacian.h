@@ -39,7 +39,7 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
 
 /// Conjugate-gradient iterations of bilaplacian_initial_mesh at most before it falls back
 /// to sparse LU (the preconditioned matrix is the identity plus a term of rank at most the
-/// number of boundary vertices next to free ones; 32-46 were needed on the disturbed caps).
+/// number of boundary vertices next to free ones, so CG needs about that many).
 constexpr int kBilaplacianIterations = 300;
 /// Relative residual of a linear initial mesh that the paper's iteration refines: its
 /// errors lie far below the distance the iteration moves the vertices, and that iteration

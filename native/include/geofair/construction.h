@@ -188,8 +188,8 @@ constexpr double kPolishContraction = 1.0;
 /// this fraction of L (the region's diagonal).
 constexpr double kProductStep = 1e-7;
 /// run_newton takes a step back when it raises the merit by more than this factor: Newton's
-/// method converges non-monotonically on rough inputs (the disturbed caps' levels), so a
-/// moderate rise is kept.
+/// method converges non-monotonically on rough inputs (docs/REAL_MESHES.md, after the first
+/// round's table), so a moderate rise is kept.
 constexpr double kMeritGrowth = 4.0;
 /// Pseudo-transient continuation of run_newton: the shift σ after the first rejected step
 /// (dimensionless; M is about J's diagonal) ...

@@ -99,8 +99,8 @@ constexpr double kMaxStretch = 0.5;
 /// derivative D_i times the normal part ℓ_i of the Laplacian vector: diagonal blocks
 /// I + ℓ_i D_i), Newton's linearization. ℓ_i D_i is of order (h·κ)²/2, as small as the
 /// smallest eigenvalues of the fixed-plane system on a smooth surface: without it repeated
-/// solves reduce the distance to inner fairness only by a constant factor (about 1/3 per
-/// solve on the disturbed caps), with it quadratically.
+/// solves reduce the distance to inner fairness only by a constant factor, with it
+/// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
 enum class TangentPlanes { Fixed, Turning };
 
 /// TangentialSolver's systems: the turn of the tangent plane ℓ_i D_i is left out of a
@@ -128,16 +128,16 @@ struct CoarseSpace {
 constexpr int kTwoGridSweeps = 2;
 /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
 /// blocks' values from the start of the sweep (hybrid Gauss–Seidel), one thread per block
-/// above kParallelMin unknowns. Fixed, so results do not depend on the thread count.
-/// 100k cap (199984 unknowns): 1, 2, 4 blocks all take 6, 7, 7, 6 GMRES iterations (to
-/// 1e-4); finest relaxations 1.61 -> 1.41 s with 2 blocks on 2 cores (medians of 5).
+/// above kParallelMin unknowns. Fixed, so results do not depend on the thread count
+/// (docs/DESIGN_NOTES.md, "kTwoGridBlocks").
 constexpr int kTwoGridBlocks = 2;
+/// ... and GMRES's iteration limit there.
 constexpr int kTwoGridIterations = 40;
 /// ... and GMRES's relative residual there. A solve's error only leaves the next polish
 /// a little more to do (run_newton polishes until the moves vanish; docs/DESIGN_NOTES.md).
 constexpr double kTwoGridTolerance = 1e-3;
 
-/// The global step of inner fairness (beyond the paper, measured below): moves every free
+/// The global step of inner fairness (beyond the paper): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
 /// vanishes at all free vertices at once, instead of one vertex at a time.
 ///

@@ -56,8 +56,7 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
 /// none of those in its ring, the mean of its ring's rows. Columns: the coarser level's free
 /// vertices, in increasing level-local id. The coarse space of the finest level's tangential
 /// solves (TangentialSolver::set_coarse_space); the replayed splits of prolongate
-/// interpolate too, but their rows fill up (on the 13000-vertex cap 10.7 coarse vertices
-/// per row against 1.7). The levels are those of the progressive mesh of section 7.4.
+/// interpolate too, but their rows fill up (docs/DESIGN_NOTES.md, "coarse_space"). The levels are those of the progressive mesh of section 7.4.
 /// \param level    the finer level's region
 /// \param splits   its vertex splits, in level-local ids
 /// \param coarser  the coarser level's region (its `global` ids and those of `level` are
@@ -146,7 +145,7 @@ constexpr int kMaxSkip = 15;
 /// Smoothing iterations before and after each coarse-grid correction (docs/DESIGN_NOTES.md).
 constexpr int kSmoothing = 10;
 /// Base level of a cycle: iterate until the residual fell by this factor ... (a cheaper
-/// base solve, 0.2 or 50 iterations, needs more cycles and costs more on the 20000 cap)
+/// base solve needs more cycles and costs more: docs/DESIGN_NOTES.md, "The cycles' base")
 constexpr double kBaseReduction = 0.05;
 /// ... or this many iterations.
 constexpr int kBaseIterations = 200;

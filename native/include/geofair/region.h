@@ -97,8 +97,7 @@ enum class BoundaryNormalEstimate {
 /// weighted by 1/|p − q|²); the normal is that of the fitted plane, (n0 − a b_x − b b_y)/|…|,
 /// and the fit is repeated once in that normal's frame. Taylor's theorem makes the error
 /// O(h²) on a smooth surface wherever the samples determine the five coefficients
-/// (measured in tests/test_boundary_normals.py: order 2 to 3 on sphere and cylinder
-/// patches and Blender's UV sphere, against order 1 for Area). Falls back to n0 where the
+/// (tests/test_boundary_normals.py asserts the order on spheres and cylinders). Falls back to n0 where the
 /// fit is ill-conditioned: fewer than 6 samples, a sample that is not finite, a condition
 /// number above 1e6 of the column-equilibrated 5×5 normal equations (for instance all
 /// samples on two straight rows, where y and y² cannot be told apart), a fitted plane

@@ -14,11 +14,8 @@ namespace geofair {
 ///
 /// fair() runs on one BLAS thread and gives OpenBLAS the solve's threads only for the
 /// factorizations of at least kThreadedBlasMin unknowns (PatternLU::factorize, the linear
-/// initial mesh). OpenBLAS's threads wait for work by spinning, which takes the cores from
-/// the OpenMP loops between the BLAS calls: median of 5 interleaved runs of
-/// bench/speed.py's caps, OpenBLAS's default (2 threads) against one thread: 2000 free
-/// vertices 0.225 against 0.117 s, 13000 0.795 against 0.646 s; at 100000, whose
-/// factorizations have large dense fronts, one thread was slower (9.71 against 9.42 s).
+/// initial mesh): OpenBLAS's threads wait for work by spinning, which takes the cores from
+/// the OpenMP loops between the BLAS calls (docs/DESIGN_NOTES.md, "BLAS threads").
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);
@@ -42,8 +39,7 @@ constexpr int kNestedDissectionMin = 10000;
 
 /// PatternLU factorizes systems of at least this many unknowns with UMFPACK's long-index
 /// interface (umfpack_dl_*): with int indices its workspace is addressed in int units, and
-/// large factorizations (the 1000000-vertex cap's finest Newton preconditioner) failed for
-/// lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
+/// large factorizations failed for lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
 constexpr int kWideIndexMin = 500000;
 
 /// The BLAS threads of a factorization of n unknowns (see BlasThreads).
