@@ -107,9 +107,10 @@ enum class TangentPlanes { Fixed, Turning };
 /// diagonal block where its norm reaches this (it is about (h·κ)²/2 for edge length h and
 /// curvature κ: larger only on a noisy mesh, where the linearization means nothing).
 constexpr double kMaxTurn = 0.5;
-/// TangentialSolver::relax with `lagged`: GMRES's relative residual, and its iteration
-/// limit on a lagged factorization.
+/// TangentialSolver::relax with `lagged`: GMRES's relative residual (dimensionless) on a
+/// lagged factorization ...
 constexpr double kLaggedTangentialTolerance = 1e-8;
+/// ... and its iteration limit there; beyond it the system is factorized anew.
 constexpr int kLaggedTangentialIterations = 20;
 
 /// Interpolation of corrections from a coarser level (multigrid.h, coarse_space):
@@ -124,7 +125,7 @@ struct CoarseSpace {
 };
 
 /// TangentialSolver::relax with a coarse space: Gauss–Seidel sweeps before and after the
-/// coarse-grid correction of the two-grid preconditioner, and GMRES's iteration limit.
+/// coarse-grid correction of the two-grid preconditioner ...
 constexpr int kTwoGridSweeps = 2;
 /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
 /// blocks' values from the start of the sweep (hybrid Gauss–Seidel), one thread per block

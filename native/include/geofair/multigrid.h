@@ -138,8 +138,9 @@ class Multigrid {
 /// After an undone correction a level's corrections are damped by 2 (down to
 /// kMinCorrection) and, after r undone in a row, paused for 2^(r−1) − 1 cycles (at most
 /// kMaxSkip): a correction that does not help costs its coarse problem and kSmoothing
-/// iterations, a paused cycle nothing extra.
+/// iterations, a paused cycle nothing extra. The smallest damping factor (dimensionless) ...
 constexpr double kMinCorrection = 1.0 / 16;
+/// ... and the longest pause, in cycles.
 constexpr int kMaxSkip = 15;
 
 /// Smoothing iterations before and after each coarse-grid correction (docs/DESIGN_NOTES.md).
