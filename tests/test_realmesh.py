@@ -141,3 +141,19 @@ def test_region_topology_tells_discs_from_tubes_and_handles():
     first = np.zeros(rows * cols, bool)
     first[idx[:, 0]] = True
     assert realmesh.region_topology(grid(False, False), first)[0] == "disc"
+
+
+def test_auto_converges_by_newton_from_the_paper_iterate():
+    # A disc on CGAL's bear where Newton's method from the linear initial mesh does not
+    # converge, and neither does the paper's iteration within the time limit; Newton's method
+    # from the paper's iterate does ("auto"): converged, no fold, the fixed vertices kept.
+    desc = next(d for d in realmesh.cases() if d["name"] == "cgal/bear/1000/s0")
+    case = realmesh.load_case(desc)
+    v, f, free, bn = case["vertices"], case["faces"], case["free"], case["boundary_normals"]
+    newton = geofair.fair(v, f, free, boundary_normals=bn, iteration="newton")
+    assert not newton.converged
+    r = geofair.fair(v, f, free, boundary_normals=bn, time_limit=60.0)
+    assert r.converged and "from the paper's iterate" in r.message, r.message
+    assert r.iteration == "paper" and r.newton_iterations > newton.newton_iterations
+    assert np.array_equal(r.vertices[~free], v[~free])
+    assert realmesh.new_folds(v, r.vertices, f, free) == 0

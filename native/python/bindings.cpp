@@ -139,7 +139,7 @@ py::dict defaults_py() {
 }
 
 // fair's docstring with the figures of the automatic time limit (types.h) and of Newton's
-// method (construction.h) filled in from their constants.
+// method (construction.h, fairing.h) filled in from their constants.
 std::string fair_doc(std::string doc) {
   const auto replace = [&doc](const std::string& key, const std::string& value) {
     for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
@@ -156,6 +156,10 @@ std::string fair_doc(std::string doc) {
   replace("{polishes}", number(kNewtonPolishes));
   replace("{patience}", number(kNewtonPatience));
   replace("{coarse_patience}", number(kCoarseNewtonPatience));
+  replace("{attempt_first}", number(kNewtonAttemptFirst));
+  replace("{attempt_first_2}", number(2 * kNewtonAttemptFirst));
+  replace("{attempt_first_4}", number(4 * kNewtonAttemptFirst));
+  replace("{attempt_steps}", number(kNewtonAttemptSteps));
   return doc;
 }
 
@@ -372,8 +376,11 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     not converge, the finest level is solved alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
-    start. The LU factors of the Newton steps take memory, growing faster than the vertex
-    count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
+    start, with Newton's method tried from the paper's iterate after {attempt_first},
+    {attempt_first_2}, {attempt_first_4}, ... iterations of the finest level (at most
+    {attempt_steps} steps or {patience} without halving the residual each); the
+    first attempt that converges ends the solve (.message says after how many). The LU
+    factors of the Newton steps take memory, growing faster than the vertex count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
     docs/ACCURACY_AND_SPEED.md: the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
     3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
     of paper iterations (which do not converge at 100000).

@@ -305,6 +305,72 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
   return run;
 }
 
+// Newton's method from the iterates of the paper's iteration on the finest level.
+class NewtonAttempts {
+ public:
+  NewtonAttempts(const FairingRegion& level, const InnerFairnessWeights& lambda,
+                 const FairingOptions& options, double L)
+      : level_(level), lambda_(lambda), options_(options), L_(L) {}
+
+  // Runs Newton's method from a copy of Y. If it converges, Y becomes its result and
+  // `report` says so; else Y and `report` are left as they are (report.cancelled set if the
+  // progress callback stopped the attempt).
+  void try_from(Positions& Y, double tolerance, int iteration_offset, IterationReport& report) {
+    if (!construction_) construction_ = std::make_unique<Construction>(level_, lambda_, options_, L_);
+    Positions Z = Y;
+    IterationReport attempt;
+    try {
+      attempt = construction_->run_newton(Z, kNewtonAttemptSteps, tolerance, iteration_offset,
+                                          /*polish=*/true, /*prolongated=*/false, kNewtonPatience);
+    } catch (const SolverError&) {
+      return;  // diverged or singular from this iterate: the paper's iteration goes on
+    }
+    steps_ += attempt.iterations;
+    if (attempt.converged) {
+      Y = std::move(Z);
+      report.converged = true;
+      report.residual = attempt.residual;
+      converged_after_ = iteration_offset;
+    }
+    report.cancelled = report.cancelled || attempt.cancelled;
+  }
+
+  int steps() const { return steps_; }
+  // The paper iterations after which an attempt converged, or -1.
+  int converged_after() const { return converged_after_; }
+
+ private:
+  const FairingRegion& level_;
+  const InnerFairnessWeights& lambda_;
+  const FairingOptions& options_;
+  double L_;
+  std::unique_ptr<Construction> construction_;
+  int steps_ = 0, converged_after_ = -1;
+};
+
+// The paper's iteration on the finest level (`paper(budget, iteration_offset)` runs up to
+// `budget` iterations on Y and reports), in slices ending after kNewtonAttemptFirst, 2×,
+// 4×, ... iterations, with a Newton attempt from Y after each.
+template <class Paper>
+IterationReport paper_with_newton_attempts(Paper&& paper, Positions& Y, int budget,
+                                           double tolerance, int iteration_offset,
+                                           NewtonAttempts& attempts) {
+  IterationReport report;
+  int done = 0;
+  for (int next = kNewtonAttemptFirst;; next *= 2) {
+    const IterationReport slice = paper(std::min(budget, next) - done, iteration_offset + done);
+    done += slice.iterations;
+    report.residual = slice.residual;
+    report.converged = slice.converged;
+    report.cancelled = slice.cancelled;
+    if (report.converged || report.cancelled || done >= budget) break;
+    attempts.try_from(Y, tolerance, iteration_offset + done, report);
+    if (report.converged || report.cancelled) break;
+  }
+  report.iterations = done;
+  return report;
+}
+
 }  // namespace
 
 namespace {
@@ -372,6 +438,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.message = std::string(error.what()) + "; the input is returned unchanged";
     return result;
   }
+  const std::string how = std::move(result.message);  // solve's note on the path taken, if any
   const std::string figures =
       "residual " + scientific(result.residual) + ", tolerance " + scientific(options.tolerance);
   if (result.converged)
@@ -382,6 +449,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.message = "cancelled (" + figures + ")";
   else
     result.message = "did not converge within max_iterations (" + figures + ")";
+  if (!how.empty()) result.message += "; " + how;
   // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
   // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
   if (!result.converged && !user_cancelled && options.inner_fairness == InnerFairness::Uniform &&
@@ -476,6 +544,7 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
     coarse_options.normal_weighting = NormalWeighting::Max;
   std::deque<MultigridLevel> levels_built;
   Multigrid multigrid(levels_built);
+  NewtonAttempts attempts(finest_level, lambda_finest, options, L);
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
     const bool finest = l + 1 == n_levels;
@@ -518,8 +587,14 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
       const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
       const int budget =
           finest ? options.max_iterations : std::min(options.max_iterations, kCoarseIterations);
-      report = l == 0 ? construction.run(Y, budget, tolerance, result.iterations)
-                      : multigrid.solve(l, Y, tolerance, budget, result.iterations);
+      auto paper = [&](int slice, int offset) {
+        return l == 0 ? construction.run(Y, slice, tolerance, offset)
+                      : multigrid.solve(l, Y, tolerance, slice, offset);
+      };
+      report = finest && options.iteration == Iteration::Auto
+                   ? paper_with_newton_attempts(paper, Y, budget, tolerance, result.iterations,
+                                                attempts)
+                   : paper(budget, result.iterations);
     }
     phases.emplace_back(level_phase(l, "iterations"), laps.lap());
     solution.store(lr, Y, construction);
@@ -536,6 +611,10 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   }
   for (const MultigridLevel& done : levels_built)
     result.iterations_per_level.push_back(int(done.construction->iterations()));
+  result.newton_iterations += attempts.steps();
+  if (attempts.converged_after() >= 0)
+    result.message = "Newton's method converged from the paper's iterate after " +
+                     std::to_string(attempts.converged_after()) + " iterations";
 
   result.phase_seconds = std::move(phases);
   return finish(result, solution.X);

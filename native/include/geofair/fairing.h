@@ -73,8 +73,9 @@ struct FairingResult {
 /// hierarchy coarsens the G1 boundary too (kNewtonDecimation in progressive_mesh.h), so the
 /// base level can be small, with a few steps on each level where the paper's iteration
 /// takes thousands (docs/NEWTON.md, README). Where a coarse level fails the finest level is
-/// solved alone; where that stalls or fails, Auto starts over with the paper's steps below;
-/// Paper runs them alone.
+/// solved alone; where that stalls or fails, Auto starts over with the paper's steps below,
+/// with Newton's method tried again from their iterate on the finest level
+/// (kNewtonAttemptFirst); Paper runs them alone.
 ///
 /// Beyond the paper, each justified by measurement where it is implemented: the vertex
 /// update divides its step by a measured coupling factor (vertex_update.h); global
@@ -115,5 +116,14 @@ struct FairingResult {
 ///        linear solve fails or the iteration diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options);
+
+/// Iteration::Auto, where it runs the paper's iteration: Newton's method is tried from the
+/// paper's iterate after this many iterations of the finest level and after each doubling
+/// (Newton's basin is small on real meshes, and the paper's iteration, robust but slow,
+/// leads into it: docs/REAL_MESHES.md, "Newton from the paper's iterate") ...
+constexpr int kNewtonAttemptFirst = 100;
+/// ... each attempt at most this many Newton steps (or kNewtonPatience steps without
+/// halving its residual); one that does not converge leaves the paper's iterate as it was.
+constexpr int kNewtonAttemptSteps = 60;
 
 }  // namespace geofair

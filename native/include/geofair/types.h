@@ -79,7 +79,8 @@ enum class OuterFairness {
 /// How the discrete equations (12) are solved. Both solve the same equations with the
 /// same discretization; they differ in speed and in the meshes they converge on.
 enum class Iteration {
-  Auto,    ///< Newton; where it fails to converge, the paper's iteration
+  Auto,    ///< Newton; where it fails to converge, the paper's iteration with Newton
+           ///< attempts from its iterate (fairing.h, kNewtonAttemptFirst)
   Newton,  ///< Newton's method on the normal offsets of all free vertices at once, level
            ///< by level on the progressive mesh (nested iteration, section 7.4; levels)
            ///< (Construction::run_newton, newton_step.h; beyond the paper)

@@ -199,8 +199,11 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         not converge, the finest level is solved alone.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
-        start. The LU factors of the Newton steps take memory, growing faster than the vertex
-        count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
+        start, with Newton's method tried from the paper's iterate after 100,
+        200, 400, ... iterations of the finest level (at most
+        60 steps or 20 without halving the residual each); the
+        first attempt that converges ends the solve (.message says after how many). The LU
+        factors of the Newton steps take memory, growing faster than the vertex count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
         docs/ACCURACY_AND_SPEED.md: the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
         3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
         of paper iterations (which do not converge at 100000).
