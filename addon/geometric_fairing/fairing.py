@@ -577,12 +577,8 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last.object_name = report.object_name
     last.status = "CANCELLED" if report.cancelled else ("CONVERGED" if report.converged else "NOT_CONVERGED")
     last.message = report.summary()
-    last.free_vertices = report.free_vertices
-    last.pinned_vertices = report.pinned_vertices
-    last.iterations = report.iterations
-    last.residual = report.residual
-    last.seconds = report.seconds
-    last.iteration = report.iteration
+    for figure in properties.RUN_FIGURES:
+        setattr(last, figure.name, getattr(report, figure.name))
     last.has_uv = report.uv_before is not None
     if last.has_uv:
         last.uv_triangles = report.uv_before.triangles
@@ -620,11 +616,7 @@ def store_last_runs(window_manager, options, reports, errors, message):
     else:
         last.status = "CONVERGED" if all(report.converged for report in reports) else "NOT_CONVERGED"
     last.message = message
-    last.free_vertices = sum(report.free_vertices for report in reports)
-    last.pinned_vertices = sum(report.pinned_vertices for report in reports)
-    last.iterations = sum(report.iterations for report in reports)
-    last.residual = max(report.residual for report in reports)
-    last.seconds = sum(report.seconds for report in reports)
-    last.iteration = ", ".join(sorted({report.iteration for report in reports if report.iteration}))
+    for figure in properties.RUN_FIGURES:
+        setattr(last, figure.name, figure.combine(getattr(report, figure.name) for report in reports))
     last.has_uv = False  # one object's UV figures; they do not add up
     last.not_faired = "; ".join(f"{name}: {error_text(error)}" for name, error in errors)

@@ -5,6 +5,9 @@ until they are changed in the panel; the operator takes every option it is not
 given from the panel. So the preferences are the defaults of both.
 """
 
+from collections.abc import Callable
+from dataclasses import dataclass
+
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
@@ -265,8 +268,54 @@ class FairingSettings(bpy.types.PropertyGroup):
     use_hidden: _use_hidden()
 
 
+@dataclass(frozen=True)
+class RunFigure:
+    """One figure of a run, in one place: the attribute of ``fairing.FairingReport`` of that name,
+    the property of :class:`FairingLastRun` that keeps it for the panel, and the panel's row.
+
+    Attributes:
+        name: the attribute and property name.
+        label: the panel's row label (the property's name).
+        kind: int, float or str: the property's type.
+        description: the property's tooltip.
+        combine: the figure of several objects' runs from theirs (an iterable of values).
+        text: the panel's text of a value.
+        shown: whether the panel shows a value (e.g. only non-zero counts).
+    """
+
+    name: str
+    label: str
+    kind: type
+    description: str
+    combine: Callable
+    text: Callable = str
+    shown: Callable = lambda value: True
+
+
+def _solvers(values):
+    return ", ".join(sorted({value for value in values if value}))
+
+
+# fmt: off
+RUN_FIGURES = (
+    RunFigure("free_vertices", "Free vertices", int, "Vertices that could move", sum),
+    RunFigure("pinned_vertices", "Pinned vertices", int, "Vertices of the region kept fixed by the pin group", sum,
+              shown=bool),
+    RunFigure("iterations", "Iterations", int, "Fairing iterations (all levels), or Newton steps", sum),
+    RunFigure("residual", "Residual", float, "The last normalized residual of Δ_B H = 0 (dimensionless); "
+              "the largest of several objects", max, "{:.2g}".format),
+    RunFigure("seconds", "Time", float, "Wall time of the solves, seconds", sum, "{:.2f} s".format),
+    RunFigure("iteration", "Solver", str, "The solver that produced the result: newton or paper (empty: none)",
+              _solvers, str.title, bool),
+)
+# fmt: on
+
+_PROPERTY_TYPES = {int: IntProperty, float: FloatProperty, str: StringProperty}
+
+
 class FairingLastRun(bpy.types.PropertyGroup):
-    """Figures of the last run, shown in the panel (on the window manager: not undone, not per scene)."""
+    """Figures of the last run, shown in the panel (on the window manager: not undone, not per scene);
+    those of a run's report are added from :data:`RUN_FIGURES` below."""
 
     status: EnumProperty(
         items=(
@@ -287,19 +336,19 @@ class FairingLastRun(bpy.types.PropertyGroup):
     not_faired: StringProperty(description="Objects in Edit Mode that could not be faired, with the reason")
     inner_fairness: StringProperty()
     outer_fairness: StringProperty()
-    iteration: StringProperty(description="The solver that produced the result: newton or paper (empty: none)")
-    free_vertices: IntProperty()
-    pinned_vertices: IntProperty()
-    iterations: IntProperty()
-    residual: FloatProperty()
     tolerance: FloatProperty()
-    seconds: FloatProperty(subtype="TIME_ABSOLUTE", unit="TIME_ABSOLUTE")
     has_uv: BoolProperty()
     uv_triangles: IntProperty()
     uv_before_mean: FloatProperty()
     uv_before_max: FloatProperty()
     uv_after_mean: FloatProperty()
     uv_after_max: FloatProperty()
+
+
+for _figure in RUN_FIGURES:
+    FairingLastRun.__annotations__[_figure.name] = _PROPERTY_TYPES[_figure.kind](
+        name=_figure.label, description=_figure.description
+    )
 
 
 class FairingSession(bpy.types.PropertyGroup):

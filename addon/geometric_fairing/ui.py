@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import native, overlays
+from . import native, overlays, properties
 from .operators import (
     MESH_OT_geometric_fairing,
     MESH_OT_geometric_fairing_curvature,
@@ -87,18 +87,16 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
             box.alert = True
             for line in _wrap(f"Not faired: {last.not_faired}", 48):
                 box.label(text=line)
-        free = f"{last.free_vertices}" + (f" ({last.pinned_vertices} pinned)" if last.pinned_vertices else "")
         figures = [
-            ("Free vertices", free),
-            ("Iterations", f"{last.iterations}"),
-            ("Residual", f"{last.residual:.2g}"),
+            (figure.label, figure.text(getattr(last, figure.name)))
+            for figure in properties.RUN_FIGURES
+            if figure.shown(getattr(last, figure.name))
+        ]
+        figures += [
             ("Tolerance", f"{last.tolerance:.2g}"),
-            ("Time", f"{last.seconds:.2f} s"),
             ("Inner", last.inner_fairness.title()),
             ("Outer", last.outer_fairness.title()),
         ]
-        if last.iteration:
-            figures.append(("Solver", last.iteration.title()))
         if last.has_uv:
             after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.3f} / {last.uv_after_max:.2f}"
             figures += [
