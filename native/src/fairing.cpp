@@ -312,10 +312,12 @@ class NewtonAttempts {
                  const FairingOptions& options, double L)
       : level_(level), lambda_(lambda), options_(options), L_(L) {}
 
-  // Runs Newton's method from a copy of Y. If it converges, Y becomes its result and
-  // `report` says so; else Y and `report` are left as they are (report.cancelled set if the
-  // progress callback stopped the attempt).
-  void try_from(Positions& Y, double tolerance, int iteration_offset, IterationReport& report) {
+  // Runs Newton's method from a copy of Y, the iterate after `paper_iterations` iterations of
+  // the level. If it converges, Y becomes its result and `report` says so; else Y and
+  // `report` are left as they are (report.cancelled set if the progress callback stopped
+  // the attempt).
+  void try_from(Positions& Y, double tolerance, int paper_iterations, int iteration_offset,
+                IterationReport& report) {
     if (!construction_) construction_ = std::make_unique<Construction>(level_, lambda_, options_, L_);
     Positions Z = Y;
     IterationReport attempt;
@@ -330,13 +332,13 @@ class NewtonAttempts {
       Y = std::move(Z);
       report.converged = true;
       report.residual = attempt.residual;
-      converged_after_ = iteration_offset;
+      converged_after_ = paper_iterations;
     }
     report.cancelled = report.cancelled || attempt.cancelled;
   }
 
   int steps() const { return steps_; }
-  // The paper iterations after which an attempt converged, or -1.
+  // The iterations of the level's paper iteration after which an attempt converged, or -1.
   int converged_after() const { return converged_after_; }
 
  private:
@@ -357,14 +359,14 @@ IterationReport paper_with_newton_attempts(Paper&& paper, Positions& Y, int budg
                                            NewtonAttempts& attempts) {
   IterationReport report;
   int done = 0;
-  for (int next = kNewtonAttemptFirst;; next *= 2) {
+  for (int next = kNewtonAttemptFirst;; next = next > budget / 2 ? budget : 2 * next) {
     const IterationReport slice = paper(std::min(budget, next) - done, iteration_offset + done);
     done += slice.iterations;
     report.residual = slice.residual;
     report.converged = slice.converged;
     report.cancelled = slice.cancelled;
     if (report.converged || report.cancelled || done >= budget) break;
-    attempts.try_from(Y, tolerance, iteration_offset + done, report);
+    attempts.try_from(Y, tolerance, done, iteration_offset + done, report);
     if (report.converged || report.cancelled) break;
   }
   report.iterations = done;
