@@ -194,8 +194,9 @@ InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Posi
   return inner_fairness_weights(level, gather(X0, level.global), inner);
 }
 
-// The outcome of newton_multigrid: the result without its vertices, the region's positions.
-struct NewtonRun {
+// The outcome of newton_multigrid or paper_multigrid: the result without its vertices (nor
+// its phases), the region's positions.
+struct SolveRun {
   FairingResult result;
   Positions X;
   bool cancelled = false;
@@ -212,7 +213,7 @@ struct NewtonRun {
 // levels, `phases` the wall time of its phases. With levels = 1 it is the single-level
 // Newton iteration from the linear initial mesh.
 // \throw SolverError if a level diverges or its Newton system is singular.
-NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
+SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
                            int& newton_iterations, Phases& phases) {
@@ -230,7 +231,7 @@ NewtonRun newton_multigrid(const FairingRegion& region, const FairingRegion& fin
   Positions Xs;
   const ProgressiveMesh hierarchy =
       build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation, Xs);
-  NewtonRun run;
+  SolveRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
   phases.emplace_back("hierarchy", laps.lap());
@@ -463,66 +464,48 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
 
 namespace {
 
-FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                    const Positions* boundary_normals, const FairingOptions& options) {
-#ifdef _OPENMP
-  omp_set_dynamic(0);
-  omp_set_num_threads(solve_threads());
-#endif
-  const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
-  const FairingRegion region = extract_region(V, F, free, boundary_normals);
-
-  const Positions X0 = gather(V, region.global);  // the original mesh
-  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
-  if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");
-
-  // The finest level is the region itself, with region-local ids as its "global" ids.
-  FairingRegion finest_level = region;
-  std::iota(finest_level.global.begin(), finest_level.global.end(), 0);
-  auto finish = [&](FairingResult& result, const Positions& X) {
-    result.vertices = V;
-    for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = X.row(i);
-    if (!result.vertices.allFinite())
-      throw SolverError("fair: the iteration produced non-finite positions");
-    return result;
-  };
-
-  // Inner fairness weights of the finest level (the region, from the original mesh): for
-  // Newton's method, the hierarchy and the paper's finest level alike.
-  const InnerFairnessWeights lambda_finest =
-      inner_fairness_weights(finest_level, X0, options.inner_fairness);
-
-  int newton_iterations = 0;
-  Phases phases;
-  // Auto tries Newton's method at every size: on the 1000000-vertex cap it converged in
-  // 136 s (7.4 GiB peak, the finest level's LU), where the paper's iteration had not after
-  // 27 minutes.
-  const bool newton = options.iteration != Iteration::Paper;
-  if (options.outer_fairness == OuterFairness::Intrinsic && newton) {
-    const int levels = options.levels > 0 ? options.levels : newton_levels(region);
-    // The hierarchy first; if a level fails there, the finest level alone.
-    const std::vector<int> attempts =
-        levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
-    for (const int attempt : attempts) {
-      const bool last = attempt == attempts.back();
-      NewtonRun run;
-      bool failed = false;
-      try {
-        run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
-                               newton_iterations, phases);
-      } catch (const SolverError&) {
-        if (options.iteration == Iteration::Newton && last) throw;
-        failed = true;
-      }
-      if (!failed && (run.result.converged || run.cancelled ||
-                      (options.iteration == Iteration::Newton && last))) {
-        run.result.newton_iterations = newton_iterations;
-        run.result.phase_seconds = std::move(phases);
-        return finish(run.result, run.X);
-      }
+// Newton's method as Auto and Newton run it: on the hierarchy of newton_levels levels (or
+// options.levels), then, if a level fails there, on the finest level alone. True with the
+// run in `out` where it converged or was cancelled (and with Newton, where the last attempt
+// ended); false where Auto goes on with the paper's iteration.
+// \throw SolverError with Iteration::Newton if the last attempt diverges.
+bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_level,
+                     const Positions& X0, const InnerFairnessWeights& lambda_finest,
+                     const FairingOptions& options, double L, int& newton_iterations,
+                     Phases& phases, SolveRun& out) {
+  const int levels = options.levels > 0 ? options.levels : newton_levels(region);
+  // The hierarchy first; if a level fails there, the finest level alone.
+  const std::vector<int> attempts =
+      levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
+  for (const int attempt : attempts) {
+    const bool last = attempt == attempts.back();
+    SolveRun run;
+    bool failed = false;
+    try {
+      run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
+                             newton_iterations, phases);
+    } catch (const SolverError&) {
+      if (options.iteration == Iteration::Newton && last) throw;
+      failed = true;
+    }
+    if (!failed && (run.result.converged || run.cancelled ||
+                    (options.iteration == Iteration::Newton && last))) {
+      run.result.newton_iterations = newton_iterations;
+      out = std::move(run);
+      return true;
     }
   }
+  return false;
+}
 
+// The paper's iteration (section 7) on its progressive mesh: the base level from the linear
+// initial mesh, each finer level prolongated and solved by nonlinear multigrid cycles on
+// the coarser ones; with Auto, Newton attempts from the finest level's iterate
+// (paper_with_newton_attempts). `newton_iterations`: the steps of Newton's method before.
+SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
+                          const Positions& X0, const InnerFairnessWeights& lambda_finest,
+                          const FairingOptions& options, double L, int newton_iterations,
+                          Phases& phases) {
   const int levels = options.levels > 0 ? options.levels : default_levels(region.n_free);
   Laps laps;
   Positions Xs;  // the smoothed copy the hierarchy is measured on
@@ -618,8 +601,52 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
     result.message = "Newton's method converged from the paper's iterate after " +
                      std::to_string(attempts.converged_after()) + " iterations";
 
+  SolveRun run;
+  run.result = std::move(result);
+  run.X = std::move(solution.X);
+  return run;
+}
+
+FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                    const Positions* boundary_normals, const FairingOptions& options) {
+#ifdef _OPENMP
+  omp_set_dynamic(0);
+  omp_set_num_threads(solve_threads());
+#endif
+  const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
+  const FairingRegion region = extract_region(V, F, free, boundary_normals);
+
+  const Positions X0 = gather(V, region.global);  // the original mesh
+  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
+  if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");
+
+  // The finest level is the region itself, with region-local ids as its "global" ids.
+  FairingRegion finest_level = region;
+  std::iota(finest_level.global.begin(), finest_level.global.end(), 0);
+  // Inner fairness weights of the finest level (the region, from the original mesh): for
+  // Newton's method, the hierarchy and the paper's finest level alike.
+  const InnerFairnessWeights lambda_finest =
+      inner_fairness_weights(finest_level, X0, options.inner_fairness);
+
+  int newton_iterations = 0;
+  Phases phases;
+  SolveRun run;
+  // Auto tries Newton's method at every size: on the 1000000-vertex cap it converged in
+  // 136 s (7.4 GiB peak, the finest level's LU), where the paper's iteration had not after
+  // 27 minutes.
+  const bool newton = options.outer_fairness == OuterFairness::Intrinsic &&
+                      options.iteration != Iteration::Paper;
+  if (!(newton && solve_by_newton(region, finest_level, X0, lambda_finest, options, L,
+                                  newton_iterations, phases, run)))
+    run = paper_multigrid(region, finest_level, X0, lambda_finest, options, L,
+                          newton_iterations, phases);
+  FairingResult& result = run.result;
   result.phase_seconds = std::move(phases);
-  return finish(result, solution.X);
+  result.vertices = V;
+  for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = run.X.row(i);
+  if (!result.vertices.allFinite())
+    throw SolverError("fair: the iteration produced non-finite positions");
+  return result;
 }
 
 }  // namespace
