@@ -122,67 +122,98 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
   return report;
 }
 
+void Construction::relax_before_steps(Positions& X) {
+  // Inner fairness first: the vertex distribution that satisfies it can lie many edge
+  // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
+  // do not move vertices tangentially (docs/NEWTON.md, kNewtonRelaxations). At least two
+  // direct solves (the second corrects the tangent planes of the first), more while the
+  // stretch limit cuts a solve short. The first holds the tangent planes fixed: far from
+  // inner fairness turning planes made the base level of a large hierarchy stall.
+  for (int p = 0; p < kNewtonRelaxations; ++p) {
+    evaluate(X);  // the normals at X
+    const double scale = tangential_solver_.relax(
+        lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
+    if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
+  }
+}
+
+double Construction::local_step(Positions& X, double residual) {
+  // The construction's local step (sections 7.1-7.2), with the paper's vertex update (no
+  // coupling factors) and no tangential move (the relaxation has just placed the vertices),
+  // kept if it lowers the residual.
+  const Positions before = X;
+  update_free_vertices(region_, lambda_, target_curvatures(/*global=*/false),
+                       options_.normal_weighting, options_.damping, X, N_, nullptr, nullptr,
+                       /*tangential=*/false);
+  const double smoothed = evaluate(X);
+  if (smoothed < residual) return smoothed;
+  X = before;
+  return evaluate(X);
+}
+
+double Construction::polish(Positions& X) {
+  // The tangential solve moves the vertices in their tangent planes; each is lifted back by
+  // the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_ and H_
+  // are those of X. The solve is preconditioned by the factorization of the relaxation
+  // before the steps (lagged).
+  const OneRings& rings = region_.rings;
+  const Positions before = X;
+  tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning);
+  double move = 0.0;  // the largest move, in mean distances to the neighbours
+  for (int i = 0; i < region_.n_free; ++i) {
+    const Vec3 d = (X.row(i) - before.row(i)).transpose();
+    X.row(i) -= (0.5 * H_(i) * d.squaredNorm()) * N_.row(i);
+    move = std::max(move, d.norm() / rings.mean_neighbour_distance(before, i));
+  }
+  return move;
+}
+
+void Construction::shift_mass(const Positions& X, Eigen::VectorXd& mass) const {
+  const OneRings& rings = region_.rings;
+  mass.resize(region_.n_free);
+  for (int i = 0; i < region_.n_free; ++i) {
+    double sum_w = 0.0;
+    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+      sum_w += std::abs(dirichlet_.weights()[k]);
+    const double h = rings.mean_neighbour_distance(X, i);
+    mass(i) = std::max(sum_w, 1e-12) / (h * h);
+  }
+}
+
+void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d0,
+                                    const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+  const int nf = region_.n_free;
+  const double v_max = v.cwiseAbs().maxCoeff();
+  if (!(v_max > 0.0)) {
+    out = Eigen::VectorXd::Zero(nf);
+    return;
+  }
+  const double eps = kProductStep * length_ / v_max;
+  probe_X_ = X;
+  for (int i = 0; i < nf; ++i) probe_X_.row(i) += (eps * v(i)) * N_.row(i);
+  curvatures(probe_X_, probe_N_, probe_H_);
+  probe_dirichlet_.assemble(probe_X_);
+  out = (probe_dirichlet_.defects(probe_H_) - d0) / eps;
+}
+
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
-                                         int iteration_offset, bool polish, bool prolongated,
-                                         int patience) {
+                                         int iteration_offset, bool polish_at_convergence,
+                                         bool prolongated, int patience) {
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
-  // Inner fairness first: the vertex distribution that satisfies it can lie many edge
-  // lengths from that of the initial mesh (up to 10 on the disturbed 100000-vertex cap),
-  // and of a prolongated one (up to 7: the levels' uniform weights see different meshes).
-  // Measured on the finest level of the 100000-vertex cap: relaxing before the first step
-  // took 3 Newton steps and 1 polish instead of 5 steps and 4 polishes (10.8 s instead of
-  // 14.9 s in all).
-  // At least two direct solves (the second corrects the tangent planes of the first), more
-  // while the stretch limit cuts a solve short. The first holds the tangent planes fixed:
-  // from the linear initial mesh a vertex moves up to 10 edge lengths, and with turning
-  // planes there the base level of the 100000-vertex cap (25000 free vertices) did not
-  // converge in 30 Newton steps (8 with fixed ones).
-  if (tangential_)
-    for (int p = 0; p < kNewtonRelaxations; ++p) {
-      evaluate(X);  // the normals at X
-      const double scale = tangential_solver_.relax(
-          lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
-      if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
-    }
+  if (tangential_) relax_before_steps(X);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
-  if (prolongated) {
-    // The construction's local step (sections 7.1-7.2), with the paper's vertex update (no
-    // coupling factors) and no tangential move (the relaxation has just placed the vertices),
-    // kept if it lowers the residual.
-    const Positions before = X;
-    update_free_vertices(region_, lambda_, target_curvatures(/*global=*/false),
-                         options_.normal_weighting, options_.damping, X, N_, nullptr, nullptr,
-                         /*tangential=*/false);
-    const double smoothed = evaluate(X);
-    if (smoothed < residual) {
-      residual = smoothed;
-    } else {
-      X = before;
-      residual = evaluate(X);
-    }
-  }
+  if (prolongated) residual = local_step(X, residual);
   const double first_residual = residual;
   double best = residual;
   int best_at = 0, polishes = 0;
   bool polished = false;
   Eigen::VectorXd t, d0;
-  // J v by a forward difference of the defects, everything recomputed at X + ε v N.
   auto product = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
-    const double v_max = v.cwiseAbs().maxCoeff();
-    if (!(v_max > 0.0)) {
-      out = Eigen::VectorXd::Zero(nf);
-      return;
-    }
-    const double eps = kProductStep * length_ / v_max;
-    probe_X_ = X;
-    for (int i = 0; i < nf; ++i) probe_X_.row(i) += (eps * v(i)) * N_.row(i);
-    curvatures(probe_X_, probe_N_, probe_H_);
-    probe_dirichlet_.assemble(probe_X_);
-    out = (probe_dirichlet_.defects(probe_H_) - d0) / eps;
+    jacobian_product(X, d0, v, out);
   };
   probe_N_ = N_;
   probe_H_.resize(region_.n);
@@ -191,22 +222,10 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   Eigen::VectorXd mass(nf);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, iteration_offset + k);
-    while (residual <= tolerance && tangential_ && polish && !polished) {
-      // Inner fairness at the converged shape; go on if it moved the residual up. The
-      // tangential solve moves the vertices in their tangent planes; each is lifted back
-      // by the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_
-      // and H_ are those of X: the residual was just evaluated there. The solve is
-      // preconditioned by the factorization of the relaxation before the steps (100000-vertex
-      // cap: 0.59 s instead of 0.87 s with a new one).
+    while (residual <= tolerance && tangential_ && polish_at_convergence && !polished) {
+      // Inner fairness at the converged shape; go on if it moved the residual up.
       report.step_seconds += laps.lap();
-      const Positions before = X;
-      tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning);
-      double move = 0.0;  // the largest move, in mean distances to the neighbours
-      for (int i = 0; i < nf; ++i) {
-        const Vec3 d = (X.row(i) - before.row(i)).transpose();
-        X.row(i) -= (0.5 * H_(i) * d.squaredNorm()) * N_.row(i);
-        move = std::max(move, d.norm() / rings.mean_neighbour_distance(before, i));
-      }
+      const double move = polish(X);
       // Another polish (after the steps it needs) while the next would still move a vertex
       // by more than kPolishedMove: the solves converge quadratically, so the next moves
       // about kPolishContraction · move².
@@ -232,13 +251,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     // scale σ by the merit's ratio (switched evolution relaxation), so close to the solution
     // the steps are Newton's and converge quadratically.
     d0 = dirichlet_.defects(H_);
-    for (int i = 0; i < nf && sigma > 0.0; ++i) {
-      double sum_w = 0.0;
-      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-        sum_w += std::abs(dirichlet_.weights()[k]);
-      const double h = rings.mean_neighbour_distance(X, i);
-      mass(i) = std::max(sum_w, 1e-12) / (h * h);
-    }
+    if (sigma > 0.0) shift_mass(X, mass);
     if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, {sigma, &mass}, t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
     // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.

@@ -70,8 +70,8 @@ class Construction {
   /// kShiftIncrease per taken-back step; an accepted step scales σ by the merit's ratio
   /// (switched evolution relaxation), so σ vanishes as the merit falls and the steps
   /// become Newton's again. Above kShiftMax the run stops as stalled. The tangential
-  /// (inner-fairness) relaxation is not interleaved with the
-  /// steps: if `polish` is set, where the residual reaches the tolerance one tangential
+  /// (inner-fairness) relaxation is not interleaved with the steps: if
+  /// `polish_at_convergence` is set, where the residual reaches the tolerance one tangential
   /// solve with turning tangent planes restores inner fairness (direct, or on the two-grid
   /// preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
   /// normal over its tangential move d; that changes the discretization of H, so the
@@ -97,7 +97,7 @@ class Construction {
   /// `patience`: the number of steps without a halving of the residual after which the run
   /// stops as stalled (kNewtonPatience; coarse levels of a hierarchy kCoarseNewtonPatience).
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
-                             int iteration_offset = 0, bool polish = true,
+                             int iteration_offset = 0, bool polish_at_convergence = true,
                              bool prolongated = false, int patience = kNewtonPatience);
 
   /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
@@ -140,6 +140,17 @@ class Construction {
   Eigen::VectorXd target_curvatures(bool global);
   void curvatures(const Positions& X);
   void curvatures(const Positions& X, Positions& N, Eigen::VectorXd& H) const;
+  // The parts of run_newton: the tangential solves towards inner fairness before the steps;
+  // the local step after a prolongation, kept if it lowers `residual` (returns the residual
+  // of X); one polish at a converged shape (returns the largest move in mean distances to
+  // the neighbours); the continuation's M_i = Σ_j |w_ij| / h_i² (#V_I, 1/length²); and
+  // J v by a forward difference of the defects d0 at X, everything recomputed at X + ε v N.
+  void relax_before_steps(Positions& X);
+  double local_step(Positions& X, double residual);
+  double polish(Positions& X);
+  void shift_mass(const Positions& X, Eigen::VectorXd& mass) const;
+  void jacobian_product(const Positions& X, const Eigen::VectorXd& d0, const Eigen::VectorXd& v,
+                        Eigen::VectorXd& out);
 
   const FairingRegion& region_;
   InnerFairnessWeights lambda_;
