@@ -268,9 +268,11 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
   return normals;
 }
 
-FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                             const Positions* boundary_normals, bool check_orientation) {
-  const char* fn = "fair";
+namespace {
+
+// The sizes and indices of the input (extract_region's first checks).
+void check_indices(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const char* fn) {
   const int nv = int(V.rows());
   if (int(free.size()) != nv)
     throw InvalidInputError(prefix(fn) + "free has " + std::to_string(free.size()) +
@@ -281,7 +283,13 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
         throw InvalidInputError(prefix(fn) + "triangle " + std::to_string(f) +
                                 " has vertex index " + std::to_string(F(f, c)) +
                                 ", out of range [0, " + std::to_string(nv) + ")");
+}
 
+// The region's vertices (free first, then the G1 boundary), triangles and one-rings, with
+// the checks of each free vertex (in a triangle, not on the border) and finite positions.
+FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                          const char* fn) {
+  const int nv = int(V.rows());
   // Region triangles: those with a free vertex. Their fixed vertices are the G1 boundary.
   std::vector<int> region_triangles;
   std::vector<std::uint8_t> in_region(nv, 0);
@@ -326,9 +334,15 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
       throw InvalidInputError(prefix(fn) + "free vertex " + std::to_string(region.global[i]) +
                               " lies on the mesh border (its triangles do not close around "
                               "it); fix it or give it as a G1 boundary vertex");
+  return region;
+}
 
-  // G1 boundary normals: prescribed (checked against the surface's orientation), or
-  // estimated from the surrounding surface.
+// region.g1_normals: the prescribed unit normals (checked against the surface's
+// orientation if asked) or the estimate from the surrounding surface.
+void set_g1_normals(FairingRegion& region, const Positions& V, const Triangles& F,
+                    const std::vector<bool>& free, const Positions* boundary_normals,
+                    bool check_orientation, const char* fn) {
+  const int nv = int(V.rows());
   const int nb = region.n - region.n_free;
   region.g1_normals.resize(nb, 3);
   if (boundary_normals && boundary_normals->rows() != nv)
@@ -376,6 +390,16 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
     }
     region.g1_normals.row(b) = n / len;
   }
+}
+
+}  // namespace
+
+FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                             const Positions* boundary_normals, bool check_orientation) {
+  const char* fn = "fair";
+  check_indices(V, F, free, fn);
+  FairingRegion region = region_mesh(V, F, free, fn);
+  set_g1_normals(region, V, F, free, boundary_normals, check_orientation, fn);
   return region;
 }
 
