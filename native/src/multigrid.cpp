@@ -226,6 +226,35 @@ IterationReport Multigrid::solve(int l, Positions& X, double tolerance, int max_
   return report;
 }
 
+namespace {
+
+// The defects of `level` (#level, zero at the G1 boundary) restricted to the coarser level
+// in place: the transpose of the split interpolation, last split first; a split's vertex
+// ends at zero.
+void restrict_to_coarser(const MultigridLevel& level, Eigen::VectorXd& defect) {
+  const VertexSplits& splits = level.splits;
+  for (std::size_t s = splits.size(); s-- > 0;) {
+    const int v = splits.vertex[s];
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
+      defect(splits.ring[k]) += level.weights[k] * defect(v);
+    defect(v) = 0.0;
+  }
+}
+
+// A change D (#level×3) given at the coarser level's vertices interpolated in place to the
+// vertices the splits add (the split weights, first split first).
+void interpolate_from_coarser(const MultigridLevel& level, Positions& D) {
+  const VertexSplits& splits = level.splits;
+  for (std::size_t s = 0; s < splits.size(); ++s) {
+    Vec3 d = Vec3::Zero();
+    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
+      d += level.weights[k] * D.row(splits.ring[k]).transpose();
+    D.row(splits.vertex[s]) = d;
+  }
+}
+
+}  // namespace
+
 void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top, int offset) {
   MultigridLevel& level = levels_[l];
   Construction& construction = *level.construction;
@@ -260,17 +289,10 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
     ++state.rejections;
   };
 
-  // Restrict the defects: transpose of the split interpolation, last split first.
   Eigen::VectorXd defect = Eigen::VectorXd::Zero(level.region.n);
   defect.head(nf) = construction.defects();
   if (tau) defect.head(nf) -= *tau;
-  const VertexSplits& splits = level.splits;
-  for (std::size_t s = splits.size(); s-- > 0;) {
-    const int v = splits.vertex[s];
-    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
-      defect(splits.ring[k]) += level.weights[k] * defect(v);
-    defect(v) = 0.0;
-  }
+  restrict_to_coarser(level, defect);
 
   // The coarse problem d_c(Y) = d_c(Y_c) − R d at the injected positions Y_c.
   MultigridLevel& coarse = levels_[l - 1];
@@ -300,12 +322,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   // Interpolate the coarse change to the new vertices and add it.
   Positions D = Positions::Zero(level.region.n, 3);
   for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
-  for (std::size_t s = 0; s < splits.size(); ++s) {
-    Vec3 d = Vec3::Zero();
-    for (int k = splits.offset[s]; k < splits.offset[s + 1]; ++k)
-      d += level.weights[k] * D.row(splits.ring[k]).transpose();
-    D.row(splits.vertex[s]) = d;
-  }
+  interpolate_from_coarser(level, D);
   const Positions X_pre = X;
   X.topRows(nf) += state.damping * D.topRows(nf);
   IterationReport post;
