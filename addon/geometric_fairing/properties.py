@@ -45,7 +45,8 @@ ITERATION_ITEMS = (
     (
         "AUTO",
         "Auto",
-        "Newton's method, falling back to the paper's iteration where it stalls",
+        "Newton's method, falling back to the paper's iteration where it stalls (Newton's method is tried "
+        "again from the paper's iterate)",
     ),
     (
         "NEWTON",
