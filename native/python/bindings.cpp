@@ -247,17 +247,8 @@ auto on_mesh(Function f) {
   };
 }
 
-}  // namespace
-
-PYBIND11_MODULE(geofair, m) {
-  m.doc() =
-      "Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary conditions\n"
-      "(Schneider & Kobbelt, Geometric fairing of irregular meshes for free-form surface\n"
-      "design, CAGD 18, 2001).";
-  m.attr("__version__") = GEOFAIR_VERSION;  // pyproject.toml's, through CMake
-  py::register_exception<InvalidInputError>(m, "InvalidInputError", PyExc_ValueError);
-  py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError);
-
+// geofair.FairingResult.
+void bind_result(py::module_& m) {
   py::class_<FairingResult>(m, "FairingResult", "Result of geofair.fair.")
       .def_readonly("vertices", &FairingResult::vertices,
                     "(n, 3) float64 positions; fixed rows are bit-identical to the input.")
@@ -296,7 +287,10 @@ PYBIND11_MODULE(geofair, m) {
                ", iterations=" + std::to_string(r.iterations) +
                ", residual=" + std::to_string(r.residual) + ")";
       });
+}
 
+// geofair.defaults and geofair.fair.
+void bind_fair(py::module_& m) {
   m.def("defaults", &defaults_py,
         R"doc(The defaults of geofair.fair's options, the library's one source of them.
 
@@ -421,7 +415,10 @@ RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
         py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
         py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
         fair_docstring.c_str());
+}
 
+// geofair.cotangent_laplacian, intrinsic_delaunay and intrinsic_delaunay_laplacian.
+void bind_laplacians(py::module_& m) {
   m.def(
       "cotangent_laplacian",
       on_mesh([](const Positions& V, const Triangles& F) { return cotangent_laplacian(V, F); }),
@@ -470,7 +467,10 @@ the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_lapl
 where the mesh is already intrinsically Delaunay.
 
 Raises ValueError for invalid input.)doc");
+}
 
+// geofair.relax_inner_fairness and progressive_mesh: steps of fair() on their own.
+void bind_solver_steps(py::module_& m) {
   m.def(
       "relax_inner_fairness",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
@@ -588,7 +588,10 @@ Measured on the input smoothed by 10 sweeps of the uniform Laplacian (fair() smo
 inner fairness weights).
 
 Raises ValueError for invalid input.)doc");
+}
 
+// geofair.boundary_normals and mean_curvature.
+void bind_geometry(py::module_& m) {
   m.def(
       "boundary_normals",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
@@ -669,4 +672,22 @@ oriented outward, 1/(2r) on a cylinder, 0 on a plane; 0 at vertices in no triang
 Raises
 ------
 ValueError for invalid input.)doc");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(geofair, m) {
+  m.doc() =
+      "Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary conditions\n"
+      "(Schneider & Kobbelt, Geometric fairing of irregular meshes for free-form surface\n"
+      "design, CAGD 18, 2001).";
+  m.attr("__version__") = GEOFAIR_VERSION;  // pyproject.toml's, through CMake
+  py::register_exception<InvalidInputError>(m, "InvalidInputError", PyExc_ValueError);
+  py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError);
+
+  bind_result(m);
+  bind_fair(m);
+  bind_laplacians(m);
+  bind_solver_steps(m);
+  bind_geometry(m);
 }
