@@ -16,7 +16,7 @@ max time of the finished solves per size class (free vertices <= 150, <= 1,500, 
 more) and how many cases of at most 10,000 free vertices took more than 10 s (timeouts
 included).
 
-    PYTHONPATH=build/python python3 bench/realmesh.py [--quick] [--large] [--only SUBSTRING]
+    PYTHONPATH=build/python python3 bench/realmesh.py [--quick] [--large] [--only SUBSTRING[,SUBSTRING...]]
         [--inner uniform,conformal] [--timeout SECONDS] [--cache DIR] [--json FILE]
 
 The corpus (``cases(quick, large)`` lists lightweight descriptors, ``load_case(desc)``
@@ -724,7 +724,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a small subset (<= ~1,000 free vertices)")
     parser.add_argument("--large", action="store_true", help="add icosphere 7 and the 100k regular cap")
-    parser.add_argument("--only", default=None, help="run the cases whose name contains this")
+    parser.add_argument("--only", default=None, help="the cases whose name contains any of these (comma-separated)")
     parser.add_argument("--timeout", type=float, default=60.0, help="per solve, seconds")
     parser.add_argument("--inner", default="uniform,conformal", help="inner fairness, comma-separated")
     parser.add_argument("--cache", default=DEFAULT_CACHE)
@@ -742,7 +742,7 @@ def main():
     inners = [s.strip() for s in args.inner.split(",") if s.strip()]
     descs, notes = corpus(args.quick, args.large, args.cache)
     if args.only:
-        descs = [d for d in descs if args.only in d["name"]]
+        descs = [d for d in descs if any(part in d["name"] for part in args.only.split(","))]
     threads = os.environ.get("OMP_NUM_THREADS")
     print(
         f"# geofair.fair defaults, inner fairness {', '.join(inners)}; timeout {args.timeout:.0f} s; "
