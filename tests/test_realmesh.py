@@ -88,8 +88,8 @@ def test_diverging_auto_solve_returns_the_input_unconverged():
 def test_regular_cap_converges_on_the_newton_hierarchy(inner):
     # A regular mesh: every level of Newton's hierarchy converges (no fallback to the single
     # level), and the result is the sphere. The coarse levels of a uniform solve take the
-    # conformal weights of the smoothed copy; with their own uniform weights the finest
-    # level of this cap did not converge after the prolongation.
+    # intrinsic Delaunay weights of the smoothed copy; with their own uniform weights the
+    # finest level of this cap did not converge after the prolongation.
     name = "regular/sphere_cap_13000"
     case = realmesh.load_case(next(d for d in realmesh.cases() if d["name"] == name))
     v, f, free = case["vertices"], case["faces"], case["free"]

@@ -182,15 +182,17 @@ int newton_levels(const FairingRegion& region) {
 // The inner fairness weights of a coarse level of the Newton hierarchy, whose vertex
 // distribution only starts the next level. Conformal ones: those of the original mesh at
 // the level's connectivity (the collapses keep the vertices, so that is the original mesh
-// replayed alongside). Uniform: the conformal weights of the smoothed copy Xs, as on the
-// paper's coarse levels. The uniform weights of a decimated level place its vertices
-// unlike the uniform weights of the finest level, whose relaxation then has to move them
-// by many edge lengths after the prolongation (docs/REAL_MESHES.md, "Regular caps").
+// replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of the smoothed
+// copy Xs (positive, unlike a decimated level's own cotangent weights). The uniform
+// weights of a decimated level place its vertices unlike the uniform weights of the finest
+// level, whose relaxation then has to move them by many edge lengths after the
+// prolongation; the negative cotangent weights of its obtuse triangles moved the vertices
+// of the next level by up to ten edge lengths (docs/REAL_MESHES.md, "Regular caps").
 InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Positions& X0,
                                           const Positions& Xs, InnerFairness inner) {
   if (inner == InnerFairness::Uniform)
-    return ring_inner_fairness_weights(level.rings, gather(Xs, level.global),
-                                       InnerFairness::Conformal);
+    return inner_fairness_weights(level, gather(Xs, level.global),
+                                  InnerFairness::ConformalIntrinsic);
   return inner_fairness_weights(level, gather(X0, level.global), inner);
 }
 

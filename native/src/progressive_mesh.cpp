@@ -161,7 +161,8 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
       }
       OpenMesh::Vec3d n_old, n_new;
       triangle_quality(p[0], p[1], p[2], n_old);
-      if (triangle_quality(q[0], q[1], q[2], n_new) < kMinQuality) return float(Base::ILLEGAL_COLLAPSE);
+      if (triangle_quality(q[0], q[1], q[2], n_new) < rules.min_quality)
+        return float(Base::ILLEGAL_COLLAPSE);
       if ((n_old | n_new) < 0.5 * n_old.norm() * n_new.norm()) return float(Base::ILLEGAL_COLLAPSE);
     }
     const float priority = length_priority(
@@ -190,7 +191,6 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
     }
     return true;
   }
-  static constexpr double kMinQuality = 0.25;
   MeshT& mesh_;
 };
 

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <set>
 
 namespace geofair {
@@ -65,6 +67,33 @@ TEST_P(ProgressiveMeshTest, LevelsAreNestedAndSplitsAddTheMissingVertices) {
   const FairingRegion base = level_region(region, pm.triangles.front());
   EXPECT_GT(base.n_free, 0);
   EXPECT_LT(base.n_free, region.n_free / 4);
+}
+
+TEST_P(ProgressiveMeshTest, CollapsesKeepTheTriangleQuality) {
+  // Every triangle a collapse makes has quality 4√3·area / Σ edge² of at least the rules'
+  // min_quality (the input's right triangles have 0.87), measured on the positions the
+  // hierarchy was built on.
+  const Decimation& rules = GetParam() ? kNewtonDecimation : kPaperDecimation;
+  const testing::Mesh m = testing::onto_sphere(testing::planar_grid(40), 3.0);
+  const std::vector<bool> free = testing::inside(m.V, 0.8);
+  const Positions N = testing::sphere_normals(m.V);
+  const FairingRegion region = extract_region(m.V, m.F, free, &N);
+  Positions X(region.n, 3);
+  for (int i = 0; i < region.n; ++i) X.row(i) = m.V.row(region.global[i]);
+  const ProgressiveMesh pm = build_progressive_mesh(region, X, 3, rules);
+  ASSERT_EQ(pm.triangles.size(), 3u);
+  const std::set<std::array<int, 3>> input = rotated_triangles(region.triangles);
+  int made = 0;
+  for (std::size_t l = 0; l + 1 < pm.triangles.size(); ++l)
+    for (const std::array<int, 3>& t : rotated_triangles(pm.triangles[l])) {
+      if (input.count(t)) continue;
+      ++made;
+      const Vec3 a = X.row(t[0]), b = X.row(t[1]), c = X.row(t[2]);
+      const double edges = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+      const double quality = 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / edges;
+      EXPECT_GE(quality, rules.min_quality) << "level " << l;
+    }
+  EXPECT_GT(made, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(BoundaryLockedAndCoarsened, ProgressiveMeshTest, ::testing::Bool());

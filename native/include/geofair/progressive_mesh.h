@@ -54,6 +54,10 @@ struct Decimation {
   int min_valence = 5, max_valence = 8;
   /// Free vertices of valence below 5 collapse first (their priority is scaled by 1e-4).
   bool low_valence_first = false;
+  /// A collapse is refused if a triangle around it would end below this quality
+  /// 4√3·area / Σ edge² (dimensionless, in (0, 1]: 1 equilateral; 0.25 admits angles up to
+  /// about 155°, 0.4 up to about 140°).
+  double min_quality = 0.25;
 };
 
 /// The hierarchy of the paper's iteration (Paper): the boundary locked, valences 5..8.
@@ -63,14 +67,16 @@ constexpr Decimation kPaperDecimation{};
 /// boundary coarsened (a locked boundary joins a dense boundary to a sparse interior by
 /// fans of long triangles), free valences 4..10, valences 3 and 4 collapsed first (they
 /// hold the largest defects after a prolongation when they survive into coarse levels);
-/// docs/DESIGN_NOTES.md.
-constexpr Decimation kNewtonDecimation{true, 4, 10, true};
+/// docs/DESIGN_NOTES.md. Triangles of quality 0.4 at least: the obtuse triangles of a
+/// decimated regular mesh left its coarse Newton systems near singular (docs/REAL_MESHES.md,
+/// "Regular caps").
+constexpr Decimation kNewtonDecimation{true, 4, 10, true, 0.4};
 
 /// Builds the hierarchy with OpenMesh's decimater and a priority module of our own: an edge
 /// is collapsed shortest first (so the smallest edge length of the coarse mesh grows), but
 /// never if a triangle around it would become distorted (quality 4√3·area / Σ edge² below
-/// 0.25, or its normal turns by more than 60°), never from a G1 boundary vertex (but see
-/// rules.coarsen_boundary below), and never
+/// rules.min_quality, or its normal turns by more than 60°), never from a G1 boundary vertex
+/// (but see rules.coarsen_boundary below), and never
 /// if a free vertex would end with a valence outside [rules.min_valence, rules.max_valence].
 /// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least half as many as
 /// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
