@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import geofair
+import scenes
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import realmesh  # noqa: E402
@@ -99,6 +100,21 @@ def test_regular_cap_converges_on_the_newton_hierarchy(inner):
     assert realmesh.new_folds(v, r.vertices, f, free) == 0
     assert case["meta"]["sphere"]  # the unit sphere
     assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-5
+
+
+def test_regular_cap_finest_level_converges_quadratically_after_the_prolongation():
+    # The regular cap of 50,000 free vertices (bench/speed.py 50000 --regular): with obtuse
+    # coarse triangles (decimation quality 0.25) and the cotangent weights of the smoothed
+    # copy on the coarse levels, its finest level needed 10 Newton steps after the
+    # prolongation (100,000 vertices: the hierarchy failed). With triangles of quality >= 0.4
+    # and intrinsic Delaunay coarse weights, a few steps from a good start.
+    s = scenes.sphere_cap(n_free=50000, irregular=False, seed=1, boundary_rings=2)
+    v = s.disturbed(seed=2, amplitude=0.1)
+    r = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, time_limit=60.0)
+    assert r.converged and r.iteration == "newton", r.message
+    assert len(r.iterations_per_level) == 4, r.iterations_per_level
+    assert r.iterations_per_level[-1] <= 4, r.iterations_per_level
+    assert np.abs(np.linalg.norm(r.vertices[s.free], axis=1) - 1.0).max() < 1e-6
 
 
 @pytest.mark.parametrize("inner", ["uniform", "conformal"])
