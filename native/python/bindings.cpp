@@ -374,10 +374,9 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     {attempt_first_2}, {attempt_first_4}, ... iterations of the finest level (at most
     {attempt_steps} steps or {patience} without halving the residual each); the
     first attempt that converges ends the solve (.message says after how many). The LU
-    factors of the Newton steps take memory, growing faster than the vertex count (peak 0.7 GiB at 100,000 free vertices, 6.9 GiB at 1,000,000). Measured in the
-    docs/ACCURACY_AND_SPEED.md: the disturbed 2000-, 13000-, 100000- and 1000000-vertex caps take 5,
-    3+2+2, 3+2+2+2 and 3+2+2+2+3+3 Newton steps (coarsest level first) against thousands
-    of paper iterations (which do not converge at 100000).
+    factors of the Newton steps take memory, growing faster than the vertex count; the
+    README's speed table gives the steps per level and the peak memory
+    (bench/speed.py).
 damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
 levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many

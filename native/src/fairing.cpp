@@ -183,11 +183,10 @@ int newton_levels(const FairingRegion& region) {
 // distribution only starts the next level. Conformal ones: those of the original mesh at
 // the level's connectivity (the collapses keep the vertices, so that is the original mesh
 // replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of the smoothed
-// copy Xs (positive, unlike a decimated level's own cotangent weights). The uniform
-// weights of a decimated level place its vertices unlike the uniform weights of the finest
-// level, whose relaxation then has to move them by many edge lengths after the
-// prolongation; the negative cotangent weights of its obtuse triangles moved the vertices
-// of the next level by up to ten edge lengths (docs/REAL_MESHES.md, "Regular caps").
+// copy Xs. A decimated level's own uniform weights place its vertices unlike the finest
+// level's, and its own cotangent weights are negative at obtuse triangles; either makes
+// consecutive levels' vertex distributions differ by many edge lengths
+// (docs/REAL_MESHES.md, "Regular caps").
 InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Positions& X0,
                                           const Positions& Xs, InnerFairness inner) {
   if (inner == InnerFairness::Uniform)
@@ -326,7 +325,8 @@ class NewtonAttempts {
     IterationReport attempt;
     try {
       attempt = construction_->run_newton(Z, kNewtonAttemptSteps, tolerance, iteration_offset,
-                                          /*polish=*/true, /*prolongated=*/false, kNewtonPatience);
+                                          /*polish_at_convergence=*/true, /*prolongated=*/false,
+                                          kNewtonPatience);
     } catch (const SolverError&) {
       return;  // diverged or singular from this iterate: the paper's iteration goes on
     }

@@ -28,16 +28,29 @@ std::set<std::array<int, 3>> rotated_triangles(const Triangles& F) {
   return out;
 }
 
+// The 40×40 grid on a sphere of radius 3 (interior vertices jittered by `jitter` of the
+// spacing), free within radius 0.8, with the sphere's G1 normals; X: the region's positions.
+struct SphereRegion {
+  testing::Mesh mesh;
+  FairingRegion region;
+  Positions X;
+
+  explicit SphereRegion(double jitter)
+      : mesh(testing::onto_sphere(testing::planar_grid(40, jitter), 3.0)) {
+    const Positions N = testing::sphere_normals(mesh.V);
+    region = extract_region(mesh.V, mesh.F, testing::inside(mesh.V, 0.8), &N);
+    X.resize(region.n, 3);
+    for (int i = 0; i < region.n; ++i) X.row(i) = mesh.V.row(region.global[i]);
+  }
+};
+
 class ProgressiveMeshTest : public ::testing::TestWithParam<bool> {};
 
 TEST_P(ProgressiveMeshTest, LevelsAreNestedAndSplitsAddTheMissingVertices) {
   const bool coarsen_boundary = GetParam();
-  const testing::Mesh m = testing::onto_sphere(testing::planar_grid(40, 0.2), 3.0);
-  const std::vector<bool> free = testing::inside(m.V, 0.8);
-  const Positions N = testing::sphere_normals(m.V);
-  const FairingRegion region = extract_region(m.V, m.F, free, &N);
-  Positions X(region.n, 3);
-  for (int i = 0; i < region.n; ++i) X.row(i) = m.V.row(region.global[i]);
+  const SphereRegion sphere(0.2);
+  const FairingRegion& region = sphere.region;
+  const Positions& X = sphere.X;
   const ProgressiveMesh pm = build_progressive_mesh(
       region, X, 3, coarsen_boundary ? kNewtonDecimation : kPaperDecimation);
   ASSERT_EQ(pm.triangles.size(), 3u);
@@ -74,12 +87,9 @@ TEST_P(ProgressiveMeshTest, CollapsesKeepTheTriangleQuality) {
   // min_quality (the input's right triangles have 0.87), measured on the positions the
   // hierarchy was built on.
   const Decimation& rules = GetParam() ? kNewtonDecimation : kPaperDecimation;
-  const testing::Mesh m = testing::onto_sphere(testing::planar_grid(40), 3.0);
-  const std::vector<bool> free = testing::inside(m.V, 0.8);
-  const Positions N = testing::sphere_normals(m.V);
-  const FairingRegion region = extract_region(m.V, m.F, free, &N);
-  Positions X(region.n, 3);
-  for (int i = 0; i < region.n; ++i) X.row(i) = m.V.row(region.global[i]);
+  const SphereRegion sphere(0.0);
+  const FairingRegion& region = sphere.region;
+  const Positions& X = sphere.X;
   const ProgressiveMesh pm = build_progressive_mesh(region, X, 3, rules);
   ASSERT_EQ(pm.triangles.size(), 3u);
   const std::set<std::array<int, 3>> input = rotated_triangles(region.triangles);
