@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <vector>
 
 namespace geofair {
 
@@ -31,6 +32,49 @@ double normalize(double* w, int m) {
   return sum;
 }
 
+// The angles at q_i between consecutive neighbours of its closed ring (3D, in (0, π)).
+void ring_angles(const OneRings& rings, const Positions& X, int i, double* alpha) {
+  const int begin = rings.offset[i], m = rings.valence(i);
+  const Vec3 qi = X.row(i);
+  for (int k = 0; k < m; ++k) {
+    const Vec3 a = Vec3(X.row(rings.ring[begin + k])) - qi;
+    const Vec3 b = Vec3(X.row(rings.ring[begin + (k + 1) % m])) - qi;
+    alpha[k] = std::atan2(a.cross(b).norm(), a.dot(b));
+  }
+}
+
+// True if the neighbours with a positive weight w surround q_i: no angle of at least π
+// (the ring's angles scaled to a full turn) lies between two consecutive ones. Otherwise
+// the convex combination of those neighbours puts q_i on the border of their hull.
+bool surrounded_by_positive_weights(const double* w, const double* alpha, int m) {
+  double total = 0.0;
+  for (int k = 0; k < m; ++k) total += alpha[k];
+  int first = 0;
+  while (first < m && !(w[first] > 0.0)) ++first;
+  if (first == m || !(total > 0.0)) return false;
+  double gap = 0.0;
+  for (int s = 1; s <= m; ++s) {
+    const int k = (first + s) % m;
+    gap += alpha[(k + m - 1) % m];
+    if (w[k] > 0.0) {
+      if (gap * (2.0 * M_PI / total) >= M_PI) return false;
+      gap = 0.0;
+    }
+  }
+  return true;
+}
+
+// Floater's mean value weights of q_i's closed ring in X (Floater 2003): w_ij =
+// (tan(α_{j−1}/2) + tan(α_j/2)) / |q_j − q_i| with α the ring angles; positive.
+void mean_value_weights(const OneRings& rings, const Positions& X, int i, const double* alpha,
+                        double* w) {
+  const int begin = rings.offset[i], m = rings.valence(i);
+  for (int k = 0; k < m; ++k) {
+    const double length = (X.row(rings.ring[begin + k]) - X.row(i)).norm();
+    w[k] = (std::tan(alpha[(k + m - 1) % m] / 2) + std::tan(alpha[k] / 2)) / length;
+  }
+}
+
 // Keeps lambda.row_sum only if every vertex with weights has one (see InnerFairnessWeights).
 void drop_row_sums_unless_symmetric(InnerFairnessWeights& lambda) {
   for (int i = 0; i < lambda.size(); ++i)
@@ -50,11 +94,23 @@ InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Po
   lambda.neighbour = rings.ring;
   lambda.weight.assign(rings.ring.size(), 1.0);
   lambda.row_sum.assign(nv, 0.0);
+  std::vector<double> alpha;
   for (int i = 0; i < nv; ++i) {
     const int begin = rings.offset[i], m = rings.valence(i);
     if (m == 0) continue;
-    if (type != InnerFairness::Uniform) cotangent_weights(rings, X0, i, lambda.weight.data() + begin);
-    lambda.row_sum[i] = normalize(lambda.weight.data() + begin, m);
+    double* w = lambda.weight.data() + begin;
+    if (type != InnerFairness::Uniform) cotangent_weights(rings, X0, i, w);
+    bool symmetric = true;
+    if (type != InnerFairness::Uniform && rings.closed(i)) {
+      alpha.resize(m);
+      ring_angles(rings, X0, i, alpha.data());
+      if (!surrounded_by_positive_weights(w, alpha.data(), m)) {
+        mean_value_weights(rings, X0, i, alpha.data(), w);
+        symmetric = false;
+      }
+    }
+    const double sum = normalize(w, m);
+    lambda.row_sum[i] = symmetric ? sum : 0.0;
   }
   drop_row_sums_unless_symmetric(lambda);
   return lambda;

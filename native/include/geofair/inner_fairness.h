@@ -31,7 +31,8 @@ struct InnerFairnessWeights {
   /// λ_ij = w_ij / S_i (the valence for uniform weights), #vertices. The uniform, cotangent
   /// and intrinsic weights are symmetric (w_ij = w_ji), so S_i λ_ij = S_j λ_ji:
   /// bilaplacian_initial_mesh then solves a symmetric system. Empty where that does not
-  /// hold: a vertex whose weights all vanish falls back to uniform weights of its own.
+  /// hold: a vertex with mean value weights (Conformal, see inner_fairness_weights), or one
+  /// whose weights all vanish or are not finite and fall back to uniform weights of its own.
   std::vector<double> row_sum;
 
   int size() const { return int(offset.size()) - 1; }
@@ -50,6 +51,12 @@ struct InnerFairnessWeights {
 /// q_i = Σ_j λ_ij q_j has no maximum principle and the iteration can diverge). Clamping
 /// changes the map: on the obtuse lattices of bench/negative_weights.py the vertices land
 /// 0.34–3.2 mean edge lengths away from the harmonic map of the original's metric.
+/// Where the neighbours left with a positive weight do not surround the vertex (an angle of
+/// at least π between two consecutive ones, the ring's angles scaled to a full turn: at
+/// sharp cone points of the original, never on a planar ring), their convex combination
+/// would put it on the border of their hull and collapse its triangles; such a vertex takes
+/// Floater's mean value weights of its original ring instead (positive; not symmetric, so
+/// row_sum is left empty). docs/REAL_MESHES.md, "The face of Fig. 10".
 ///
 /// ConformalIntrinsic: the same with the Laplace–Beltrami operator of Bobenko & Springborn
 /// 2007 ("A discrete Laplace–Beltrami operator for simplicial surfaces", DCG 38):
@@ -71,7 +78,8 @@ struct InnerFairnessWeights {
 /// construction oscillates and stalls (a limit of the iteration, not of the weights;
 /// docs/DESIGN_NOTES.md).
 ///
-/// A vertex whose weights all vanish falls back to uniform weights over its neighbours.
+/// A vertex whose weights all vanish (on the region's border) or are not finite (a
+/// degenerate ring) falls back to uniform weights over its neighbours.
 /// \throw InvalidInputError as intrinsic_delaunay (not for a valid region).
 InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const Positions& X0,
                                             InnerFairness type);

@@ -63,7 +63,9 @@ enum class NormalWeighting {
 enum class InnerFairness {
   Uniform,    ///< λ_ij = 1/valence: regular vertex distribution
   Conformal,  ///< λ_ij ∝ cot α_ij + cot β_ij of the ORIGINAL mesh (negative ones clamped
-              ///< to 0): discrete harmonic map, the paper's conformal inner fairness
+              ///< to 0; mean value weights where the positive ones do not surround the
+              ///< vertex, see inner_fairness.h): discrete harmonic map, the paper's
+              ///< conformal inner fairness
   /// λ_ij ∝ L_ij of the intrinsic Delaunay triangulation of the ORIGINAL mesh (Bobenko &
   /// Springborn 2007): the discrete harmonic map without clamping, non-negative weights on
   /// any mesh; the same as Conformal on a mesh that needs no flip (see inner_fairness.h).
