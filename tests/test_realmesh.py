@@ -120,7 +120,7 @@ def test_regular_cap_finest_level_converges_quadratically_after_the_prolongation
 @pytest.mark.parametrize("inner", ["uniform", "conformal"])
 def test_failing_hierarchy_is_abandoned_early(inner):
     # The base level of Blender's icosphere-6 cap does not converge; the hierarchy is then
-    # abandoned after a few steps of it (kCoarseNewtonPatience) instead of starting the
+    # abandoned after a few steps of it (NewtonTuning::coarse_patience) instead of starting the
     # finest level from its result, and the finest level alone converges.
     if not realmesh.bpy_available():
         pytest.skip("bpy is not importable")

@@ -133,13 +133,13 @@ py::dict defaults_py() {
   d["levels"] = o.levels;
   d["iteration"] = name(o.iteration, kIterationNames);
   d["time_limit"] = py::none();
-  d["time_limit_base"] = kTimeLimitBase;
-  d["time_limit_per_free_vertex"] = kTimeLimitPerFree;
+  d["time_limit_base"] = o.tuning.schedule.time_limit_base;
+  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free;
   return d;
 }
 
-// fair's docstring with the figures of the automatic time limit (types.h) and of Newton's
-// method (construction.h, fairing.h) filled in from their constants.
+// fair's docstring with the figures of the automatic time limit and of Newton's method
+// filled in from the default tuning (tuning.h).
 std::string fair_doc(std::string doc) {
   const auto replace = [&doc](const std::string& key, const std::string& value) {
     for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
@@ -149,17 +149,18 @@ std::string fair_doc(std::string doc) {
     std::snprintf(text, sizeof text, "%g", x);
     return std::string(text);
   };
-  replace("{time_limit_base}", number(kTimeLimitBase));
-  replace("{time_limit_per_free_ms}", number(kTimeLimitPerFree * 1e3));
-  replace("{newton_step}", number(kNewtonStep));
-  replace("{polished_move}", number(kPolishedMove));
-  replace("{polishes}", number(kNewtonPolishes));
-  replace("{patience}", number(kNewtonPatience));
-  replace("{coarse_patience}", number(kCoarseNewtonPatience));
-  replace("{attempt_first}", number(kNewtonAttemptFirst));
-  replace("{attempt_first_2}", number(2 * kNewtonAttemptFirst));
-  replace("{attempt_first_4}", number(4 * kNewtonAttemptFirst));
-  replace("{attempt_steps}", number(kNewtonAttemptSteps));
+  const SolverTuning t;
+  replace("{time_limit_base}", number(t.schedule.time_limit_base));
+  replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free * 1e3));
+  replace("{newton_step}", number(t.newton.max_step));
+  replace("{polished_move}", number(t.newton.polished_move));
+  replace("{polishes}", number(t.newton.polishes));
+  replace("{patience}", number(t.newton.patience));
+  replace("{coarse_patience}", number(t.newton.coarse_patience));
+  replace("{attempt_first}", number(t.schedule.newton_attempt_first));
+  replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
+  replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
+  replace("{attempt_steps}", number(t.schedule.newton_attempt_steps));
   return doc;
 }
 
@@ -498,7 +499,8 @@ void bind_solver_steps(py::module_& m) {
           }
           if (!N.allFinite()) throw InvalidInputError("normals must be nonzero and finite");
           const InnerFairnessWeights lambda = inner_fairness_weights(region, X, inner);
-          TangentialSolver solver(region.rings, lambda, region.n_free, kTangentialIterations);
+          TangentialSolver solver(region.rings, lambda, region.n_free,
+                                  PaperIterationTuning{}.tangential_iterations);
           scale = solver.relax(lambda, N, X, /*lagged=*/false, planes);
           for (int i = 0; i < region.n_free; ++i) out.row(region.global[i]) = X.row(i);
         }

@@ -32,7 +32,7 @@ struct CoordinateBlocks {
 
 Positions bilaplacian_initial_mesh(const FairingRegion& region,
                                    const InnerFairnessWeights& lambda, const Positions& X,
-                                   double relative_residual) {
+                                   double relative_residual, int max_cg_iterations) {
   const int nf = region.n_free;
   using Mat3 = Eigen::Matrix3d;
   // Unknowns by coordinate: x of all free vertices, then y, then z (a*nf + i).
@@ -105,7 +105,7 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
                                CoordinateBlocks>
           cg;
       cg.preconditioner().llt = &llt;
-      cg.setMaxIterations(kBilaplacianIterations);
+      cg.setMaxIterations(max_cg_iterations);
       cg.setTolerance(relative_residual);
       cg.compute(K);
       f = cg.solve(rhs);

@@ -34,8 +34,9 @@ Construction::Construction(const FairingRegion& region, InnerFairnessWeights lam
       H_(region.n),
       dirichlet_(region),
       solver_(options.cg_iterations),
-      tangential_solver_(region.rings, lambda_, region.n_free, kTangentialIterations),
-      newton_(region),
+      tangential_solver_(region.rings, lambda_, region.n_free,
+                         options.tuning.paper.tangential_iterations, options.tuning.tangential),
+      newton_(region, options.tuning.newton),
       probe_dirichlet_(region) {
   N_.bottomRows(region.n - region.n_free) = region.g1_normals;
 }
@@ -106,7 +107,7 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
     }
     const bool global = k % 2 == 1;
     const Eigen::VectorXd H_target = target_curvatures(global);
-    if (iterations_++ % kCouplingRefresh == 0 || coupling_.empty())
+    if (iterations_++ % options_.tuning.paper.coupling_refresh == 0 || coupling_.empty())
       coupling_factors(region_, dirichlet_.weights(), options_.normal_weighting, H_, X, N_,
                        coupling_);
     const Positions X_before = X;
@@ -125,11 +126,11 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
 void Construction::relax_before_steps(Positions& X) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
-  // do not move vertices tangentially (docs/NEWTON.md, kNewtonRelaxations). At least two
+  // do not move vertices tangentially (docs/NEWTON.md, NewtonTuning::relaxations). At least two
   // direct solves (the second corrects the tangent planes of the first), more while the
   // stretch limit cuts a solve short. The first holds the tangent planes fixed: far from
   // inner fairness turning planes made the base level of a large hierarchy stall.
-  for (int p = 0; p < kNewtonRelaxations; ++p) {
+  for (int p = 0; p < options_.tuning.newton.relaxations; ++p) {
     evaluate(X);  // the normals at X
     const double scale = tangential_solver_.relax(
         lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
@@ -188,7 +189,7 @@ void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d
     out = Eigen::VectorXd::Zero(nf);
     return;
   }
-  const double eps = kProductStep * length_ / v_max;
+  const double eps = options_.tuning.newton.product_step * length_ / v_max;
   probe_X_ = X;
   for (int i = 0; i < nf; ++i) probe_X_.row(i) += (eps * v(i)) * N_.row(i);
   curvatures(probe_X_, probe_N_, probe_H_);
@@ -199,6 +200,7 @@ void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
                                          int iteration_offset, bool polish_at_convergence,
                                          bool prolongated, int patience) {
+  const NewtonTuning& newton = options_.tuning.newton;
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
   IterationReport report;
@@ -227,9 +229,10 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       report.step_seconds += laps.lap();
       const double move = polish(X);
       // Another polish (after the steps it needs) while the next would still move a vertex
-      // by more than kPolishedMove: the solves converge quadratically, so the next moves
-      // about kPolishContraction · move².
-      polished = kPolishContraction * move * move <= kPolishedMove || ++polishes >= kNewtonPolishes;
+      // by more than polished_move: the solves converge quadratically, so the next moves
+      // about polish_contraction · move².
+      polished = newton.polish_contraction * move * move <= newton.polished_move ||
+                 ++polishes >= newton.polishes;
       residual = evaluate(X);
       current_merit = merit();
       best = residual, best_at = k;
@@ -247,28 +250,28 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     }
     // Pseudo-transient continuation: the step solves (J + σ M) t = −d, an implicit Euler
     // step of the flow ∂t/∂τ = −M⁻¹ d with σ = 1/Δτ; σ = 0 is Newton's step. A step that
-    // raises the merit by more than kMeritGrowth is taken back and σ raised; accepted steps
+    // raises the merit by more than merit_growth is taken back and σ raised; accepted steps
     // scale σ by the merit's ratio (switched evolution relaxation), so close to the solution
     // the steps are Newton's and converge quadratically.
     d0 = dirichlet_.defects(H_);
     if (sigma > 0.0) shift_mass(X, mass);
     if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, {sigma, &mass}, t))
       throw SolverError("fair: the Newton system is singular (degenerate triangles)");
-    // Step length: no vertex moves by more than kNewtonStep mean distances to its neighbours.
+    // Step length: no vertex moves by more than max_step mean distances to its neighbours.
     double ratio = 0.0;
     for (int i = 0; i < nf; ++i)
       ratio = std::max(ratio, std::abs(t(i)) / rings.mean_neighbour_distance(X, i));
-    const double s = std::min(1.0, kNewtonStep / ratio);
+    const double s = std::min(1.0, newton.max_step / ratio);
     const Positions before = X;
     for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
     ++iterations_;
     const double trial = evaluate(X);
     const double trial_merit = merit();
-    if (!(trial_merit < kMeritGrowth * current_merit) || !std::isfinite(trial)) {
+    if (!(trial_merit < newton.merit_growth * current_merit) || !std::isfinite(trial)) {
       X = before;
       residual = evaluate(X);
-      sigma = std::max(kShiftIncrease * sigma, kShiftStart);
-      if (sigma > kShiftMax) {
+      sigma = std::max(newton.shift_increase * sigma, newton.shift_start);
+      if (sigma > newton.shift_max) {
         report.stalled = true;
         report.iterations = k + 1;
         report.residual = residual;
@@ -277,7 +280,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
       continue;
     }
     sigma *= trial_merit / current_merit;
-    if (sigma < kShiftNegligible * kShiftNegligible) sigma = 0.0;
+    if (sigma < newton.shift_negligible * newton.shift_negligible) sigma = 0.0;
     current_merit = trial_merit;
     residual = trial;
   }

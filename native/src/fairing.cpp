@@ -38,22 +38,8 @@ void check_options(const FairingOptions& o) {
   if (o.cg_iterations < 1) throw InvalidInputError("fair: cg_iterations must be >= 1");
   if (o.levels < 0) throw InvalidInputError("fair: levels must be >= 0");
   if (std::isnan(o.time_limit)) throw InvalidInputError("fair: time_limit must not be NaN");
+  validate_tuning(o.tuning);
 }
-
-// Tolerance of the coarse levels, relative to options.tolerance. They only start the next
-// level, whose cycles correct the smooth error anyway. Measured on the 13000-vertex cap
-// (Max's normals; iterations coarse to fine): factor 3: 6591/1140/420/280, 10:
-// 4631/790/180/110, 30: 5199/830/320/260, 1e4: 3145/680/660/680, each with a max radial
-// error of 4-6e-6.
-constexpr double kCoarseTolerance = 10;
-// ... or this many iterations of a coarse level. Decimated coarse levels can end in a limit
-// cycle far above their tolerance when solved on their own (the 13000-vertex cap with two
-// fixed rings: the 601-vertex base level oscillates around residual 30 for 20000
-// iterations, the 1192- and 3627-vertex levels as bases of 3 and 2 levels just as long),
-// while the finer levels still converge quickly with their corrections: with this cap
-// the iterations went from 84381/20490/420/100 (66 s) to 7500/1060/480/100 (9 s), with
-// the same max radial error, 4e-6.
-constexpr int kCoarseIterations = 500;
 
 #ifdef _OPENMP
 // The threads of one solve: OpenMP's maximum (OMP_NUM_THREADS, else the cores) less the
@@ -105,11 +91,12 @@ Positions gather(const Positions& X, const std::vector<int>& ids) {
 // region, Xs empty) if levels is 1 or the mesh cannot be decimated.
 ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& X0,
                                 const InnerFairnessWeights& lambda_finest, int levels,
-                                const Decimation& rules, Positions& Xs) {
+                                const Decimation& rules, const HierarchyTuning& tuning,
+                                Positions& Xs) {
   ProgressiveMesh hierarchy;
   if (levels > 1) {
-    Xs = hierarchy_positions(region, X0, &lambda_finest);
-    hierarchy = build_progressive_mesh(region, Xs, levels, rules);
+    Xs = hierarchy_positions(region, X0, &lambda_finest, tuning.smoothing);
+    hierarchy = build_progressive_mesh(region, Xs, levels, rules, tuning);
   }
   if (hierarchy.triangles.size() < 2) {
     hierarchy.triangles.assign(1, region.triangles);
@@ -143,11 +130,11 @@ struct LevelSolution {
   // weights of the smoothed copy Xs on every level: splits and their transposes interpolate
   // smooth corrections; those of a noisy original are not smooth, and the finest level's
   // corrections got undone on the 1200-vertex cap with conformal inner fairness), and the
-  // level-local id of every region vertex (-1 where not in the level).
+  // level-local id of every region vertex (-1 where not in the level). `sweeps`: prolongate's.
   Positions prolongated(const FairingRegion& level, const VertexSplits& region_splits,
                         const Positions& Xs, const InnerFairnessWeights& lambda,
                         VertexSplits& splits, std::vector<double>& weights,
-                        std::vector<int>& local) const {
+                        std::vector<int>& local, int sweeps) const {
     local.assign(X.rows(), -1);
     for (int i = 0; i < level.n; ++i) local[level.global[i]] = i;
     splits = region_splits;
@@ -158,24 +145,16 @@ struct LevelSolution {
     Eigen::VectorXd H_level(level.n);
     for (int i = 0; i < level.n; ++i) H_level(i) = H(level.global[i]);
     Positions N_level = gather(N, level.global);
-    prolongate(level, splits, weights, lambda, Y, H_level, N_level);
+    prolongate(level, splits, weights, lambda, Y, H_level, N_level, sweeps);
     return Y;
   }
 };
 
-// Newton's method on the levels of a progressive mesh (nested iteration, kNewtonDecimation):
-// the free vertices the base level keeps at least. Every level from a base of 200 to 25000
-// free vertices converged in 2-3 steps on the disturbed caps, and the finest level's cost
-// decides the time (13000-vertex cap: bases of 3200, 800 and 200 took 0.90, 0.84 and 0.88
-// s); below 2 × this one level is solved (2000-vertex cap: 5 steps, the same time as two
-// levels).
-constexpr int kNewtonMinBaseFree = 700;
-// Steps of a coarse level of the Newton hierarchy at most: it only starts the next level.
-constexpr int kCoarseNewtonSteps = 30;
-
-int newton_levels(const FairingRegion& region) {
+// Levels of the Newton hierarchy: as many as keep newton_min_base_free free vertices on the
+// base level (one level below twice that).
+int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
   int levels = 1;
-  for (double n = region.n_free / 4.0; n >= kNewtonMinBaseFree; n /= 4.0) ++levels;
+  for (double n = region.n_free / 4.0; n >= schedule.newton_min_base_free; n /= 4.0) ++levels;
   return levels;
 }
 
@@ -209,7 +188,7 @@ struct SolveRun {
 // solution (multigrid.h, prolongate), each with the tangential relaxation first
 // (Construction::run_newton). The finest level uses the requested inner fairness, the
 // coarse levels coarse_level_weights. Coarse levels stop at a looser tolerance, after
-// kCoarseNewtonSteps or after kCoarseNewtonPatience steps without progress; one that ends
+// schedule.coarse_newton_steps or after newton.coarse_patience steps without progress; one that ends
 // unconverged ends the run unconverged. `newton_iterations` accumulates the steps of all
 // levels, `phases` the wall time of its phases. With levels = 1 it is the single-level
 // Newton iteration from the linear initial mesh.
@@ -231,7 +210,7 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
   Laps laps;
   Positions Xs;
   const ProgressiveMesh hierarchy =
-      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation, Xs);
+      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation, options.tuning.hierarchy, Xs);
   SolveRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
@@ -252,11 +231,13 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
     VertexSplits level_splits;
     std::vector<double> level_weights;
     if (l == 0) {
-      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global), kNewtonInitialMeshResidual);
+      Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global),
+                                   options.tuning.bilaplacian.newton_initial_mesh_residual,
+                                   options.tuning.bilaplacian.cg_iterations);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
-                               local);
+                               local, options.tuning.multigrid.prolongation_sweeps);
     }
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     const std::unique_ptr<Construction> level_construction =
@@ -270,12 +251,14 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
       coarser_space = std::move(next);
     }
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());
-    const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
+    const SolverTuning& tuning = options.tuning;
+    const double tolerance =
+        options.tolerance * (finest ? 1.0 : tuning.schedule.coarse_tolerance);
     const int budget = finest ? options.max_iterations
-                              : std::min(options.max_iterations, kCoarseNewtonSteps);
+                              : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
-                                finest ? kNewtonPatience : kCoarseNewtonPatience);
+                                finest ? tuning.newton.patience : tuning.newton.coarse_patience);
     laps.lap();
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
     phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
@@ -324,9 +307,10 @@ class NewtonAttempts {
     Positions Z = Y;
     IterationReport attempt;
     try {
-      attempt = construction_->run_newton(Z, kNewtonAttemptSteps, tolerance, iteration_offset,
+      attempt = construction_->run_newton(Z, options_.tuning.schedule.newton_attempt_steps,
+                                          tolerance, iteration_offset,
                                           /*polish_at_convergence=*/true, /*prolongated=*/false,
-                                          kNewtonPatience);
+                                          options_.tuning.newton.patience);
     } catch (const SolverError&) {
       return;  // diverged or singular from this iterate: the paper's iteration goes on
     }
@@ -354,15 +338,15 @@ class NewtonAttempts {
 };
 
 // The paper's iteration on the finest level (`paper(budget, iteration_offset)` runs up to
-// `budget` iterations on Y and reports), in slices ending after kNewtonAttemptFirst, 2×,
-// 4×, ... iterations, with a Newton attempt from Y after each.
+// `budget` iterations on Y and reports), in slices ending after `first` (the schedule's
+// newton_attempt_first), 2×, 4×, ... iterations, with a Newton attempt from Y after each.
 template <class Paper>
 IterationReport paper_with_newton_attempts(Paper&& paper, Positions& Y, int budget,
-                                           double tolerance, int iteration_offset,
+                                           double tolerance, int iteration_offset, int first,
                                            NewtonAttempts& attempts) {
   IterationReport report;
   int done = 0;
-  for (int next = kNewtonAttemptFirst;; next = next > budget / 2 ? budget : 2 * next) {
+  for (int next = first;; next = next > budget / 2 ? budget : 2 * next) {
     const IterationReport slice = paper(std::min(budget, next) - done, iteration_offset + done);
     done += slice.iterations;
     report.residual = slice.residual;
@@ -415,7 +399,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   const double limit =
       options.time_limit >= 0.0 ? options.time_limit
       : options.iteration == Iteration::Auto
-          ? kTimeLimitBase + kTimeLimitPerFree * double(n_free)
+          ? options.tuning.schedule.time_limit_base +
+                options.tuning.schedule.time_limit_per_free * double(n_free)
           : std::numeric_limits<double>::infinity();
   bool timed_out = false, user_cancelled = false;
   FairingOptions timed = options;
@@ -475,7 +460,7 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
                      const Positions& X0, const InnerFairnessWeights& lambda_finest,
                      const FairingOptions& options, double L, int& newton_iterations,
                      Phases& phases, SolveRun& out) {
-  const int levels = options.levels > 0 ? options.levels : newton_levels(region);
+  const int levels = options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
   // The hierarchy first; if a level fails there, the finest level alone.
   const std::vector<int> attempts =
       levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
@@ -513,7 +498,8 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
   Positions Xs;  // the smoothed copy the hierarchy is measured on
   const ProgressiveMesh hierarchy = build_hierarchy(
       region, X0, lambda_finest,
-      options.outer_fairness == OuterFairness::Intrinsic ? levels : 1, kPaperDecimation, Xs);
+      options.outer_fairness == OuterFairness::Intrinsic ? levels : 1, kPaperDecimation,
+      options.tuning.hierarchy, Xs);
 
   FairingResult result;
   result.iteration = Iteration::Paper;
@@ -530,7 +516,7 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
   if (options.normal_weighting == NormalWeighting::Quadric)
     coarse_options.normal_weighting = NormalWeighting::Max;
   std::deque<MultigridLevel> levels_built;
-  Multigrid multigrid(levels_built);
+  Multigrid multigrid(levels_built, options.tuning.multigrid);
   NewtonAttempts attempts(finest_level, lambda_finest, options, L);
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
@@ -549,12 +535,13 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
     if (l == 0) {
       Y = bilaplacian_initial_mesh(lr, lambda, gather(X0, lr.global),
                                    options.outer_fairness == OuterFairness::Bilaplacian
-                                       ? kExactResidual
-                                       : kInitialMeshResidual);
+                                       ? options.tuning.bilaplacian.exact_residual
+                                       : options.tuning.bilaplacian.initial_mesh_residual,
+                                   options.tuning.bilaplacian.cg_iterations);
     } else {
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level.splits, level.weights,
-                               local);
+                               local, options.tuning.multigrid.prolongation_sweeps);
       const FairingRegion& coarser = levels_built[l - 1].region;
       level.from_coarser.resize(coarser.n);
       for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
@@ -571,15 +558,17 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
       report.converged = true;
     } else {
       // Coarse levels only start the next one: a looser tolerance.
-      const double tolerance = options.tolerance * (finest ? 1.0 : kCoarseTolerance);
-      const int budget =
-          finest ? options.max_iterations : std::min(options.max_iterations, kCoarseIterations);
+      const ScheduleTuning& schedule = options.tuning.schedule;
+      const double tolerance = options.tolerance * (finest ? 1.0 : schedule.coarse_tolerance);
+      const int budget = finest ? options.max_iterations
+                                : std::min(options.max_iterations, schedule.coarse_iterations);
       auto paper = [&](int slice, int offset) {
         return l == 0 ? construction.run(Y, slice, tolerance, offset)
                       : multigrid.solve(l, Y, tolerance, slice, offset);
       };
       report = finest && options.iteration == Iteration::Auto
                    ? paper_with_newton_attempts(paper, Y, budget, tolerance, result.iterations,
+                                                options.tuning.schedule.newton_attempt_first,
                                                 attempts)
                    : paper(budget, result.iterations);
     }

@@ -145,8 +145,9 @@ InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const P
 }
 
 TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWeights& pattern,
-                                   int n_free, int iterations)
-    : rings_(rings), n_free_(n_free) {
+                                   int n_free, int iterations,
+                                   const TangentialTuning& tuning)
+    : rings_(rings), n_free_(n_free), tuning_(tuning) {
   // Block pattern: 2×2 blocks at (i, i) and at (i, j) for free neighbours j (of λ: with
   // intrinsic weights not necessarily ring neighbours).
   const std::vector<int>& offset = pattern.offset;
@@ -217,7 +218,7 @@ Eigen::VectorXd TangentialSolver::assemble(const InnerFairnessWeights& lambda, c
     // normal part ℓ_i of the residual tilts into it: diagonal block I + ℓ_i D_i.
     if (planes == TangentPlanes::Turning) {
       const Eigen::Matrix2d turn = residual.dot(N.row(i)) * normal_derivative(N, X, i);
-      if (turn.allFinite() && turn.norm() < kMaxTurn)
+      if (turn.allFinite() && turn.norm() < tuning_.max_turn)
         for (int a = 0; a < 2; ++a)
           for (int b = 0; b < 2; ++b) entry(i, p, a, b) += turn(a, b);
     }
@@ -273,7 +274,7 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
   if (!coarse_.vertex.empty() && !solve_two_grid(rhs, lagged, u)) u.resize(0);
   if (u.size() == 0 && lagged && direct_.factorized()) {
     lagged_.preconditioner().lu = &direct_;
-    set_up_gmres(lagged_, A_, kLaggedTangentialIterations, kLaggedTangentialTolerance);
+    set_up_gmres(lagged_, A_, tuning_.lagged_iterations, tuning_.lagged_tolerance);
     u = lagged_.solve(rhs);
     if (lagged_.info() != Eigen::Success) u.resize(0);
   }
@@ -282,7 +283,7 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
     u = direct_.solve(rhs);
   }
   if (!u.allFinite()) return 0.0;
-  // One scale for the whole step: no edge stretches or shrinks by more than kMaxStretch of
+  // One scale for the whole step: no edge stretches or shrinks by more than max_stretch of
   // its length (the offsets of boundary vertices are 0).
   auto offset = [&](int i) {
     return i < nf ? Vec3(u(2 * i) * t1_[i] + u(2 * i + 1) * t2_[i]) : Vec3(Vec3::Zero());
@@ -294,7 +295,7 @@ double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positio
       stretch = std::max(stretch, (offset(i) - offset(j)).norm() / (X.row(j) - X.row(i)).norm());
     }
   if (!std::isfinite(stretch)) return 0.0;
-  const double scale = stretch > kMaxStretch ? kMaxStretch / stretch : 1.0;
+  const double scale = stretch > tuning_.max_stretch ? tuning_.max_stretch / stretch : 1.0;
   for (int i = 0; i < nf; ++i) X.row(i) += scale * offset(i).transpose();
   return scale;
 }
@@ -361,25 +362,25 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
   }
   two_grid_.preconditioner().solver = this;
   two_grid_.preconditioner().three_grid = three_grid;
-  set_up_gmres(two_grid_, A_, kTwoGridIterations, kTwoGridTolerance);
+  set_up_gmres(two_grid_, A_, tuning_.two_grid_iterations, tuning_.two_grid_tolerance);
   u = two_grid_.solve(rhs);
   return two_grid_.info() == Eigen::Success && u.allFinite();
 }
 
 namespace {
 
-// x ≈ A⁻¹ b by kTwoGridSweeps Gauss–Seidel sweeps on A, forward, then the correction
+// x ≈ A⁻¹ b by two_grid_sweeps Gauss–Seidel sweeps on A, forward, then the correction
 // P coarse⁻¹ Pᵀ of the residual, then as many sweeps backward.
 template <class CoarseSolve>
 Eigen::VectorXd two_grid_cycle(const Eigen::SparseMatrix<double, Eigen::RowMajor>& A,
                                const Eigen::SparseMatrix<double>& P, const Eigen::VectorXd& b,
-                               const CoarseSolve& coarse_solve) {
+                               const TangentialTuning& tuning, const CoarseSolve& coarse_solve) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
-  const int blocks = A.rows() > kParallelMin ? kTwoGridBlocks : 1;
-  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, true, blocks);
+  const int blocks = A.rows() > kParallelMin ? tuning.two_grid_blocks : 1;
+  for (int s = 0; s < tuning.two_grid_sweeps; ++s) gauss_seidel_sweep(A, b, x, true, blocks);
   const Eigen::VectorXd residual = b - A * x;
   x += P * coarse_solve(Eigen::VectorXd(P.transpose() * residual));
-  for (int s = 0; s < kTwoGridSweeps; ++s) gauss_seidel_sweep(A, b, x, false, blocks);
+  for (int s = 0; s < tuning.two_grid_sweeps; ++s) gauss_seidel_sweep(A, b, x, false, blocks);
   return x;
 }
 
@@ -388,10 +389,10 @@ Eigen::VectorXd two_grid_cycle(const Eigen::SparseMatrix<double, Eigen::RowMajor
 Eigen::VectorXd TangentialSolver::TwoGrid::solve(const Eigen::VectorXd& b) const {
   const TangentialSolver& s = *solver;
   if (!three_grid)
-    return two_grid_cycle(s.A_, s.coarse_P_, b,
+    return two_grid_cycle(s.A_, s.coarse_P_, b, s.tuning_,
                           [&](const Eigen::VectorXd& r) { return s.coarse_lu_.solve(r); });
-  return two_grid_cycle(s.A_, s.coarse_P_, b, [&](const Eigen::VectorXd& r) {
-    return two_grid_cycle(s.coarse_rows_, s.coarser_P_, r,
+  return two_grid_cycle(s.A_, s.coarse_P_, b, s.tuning_, [&](const Eigen::VectorXd& r) {
+    return two_grid_cycle(s.coarse_rows_, s.coarser_P_, r, s.tuning_,
                           [&](const Eigen::VectorXd& rc) { return s.coarser_lu_.solve(rc); });
   });
 }

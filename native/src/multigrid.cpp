@@ -132,7 +132,7 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
 
 void prolongate(const FairingRegion& level, const VertexSplits& splits,
                 const std::vector<double>& weights, const InnerFairnessWeights& lambda,
-                Positions& X, Eigen::VectorXd& H, Positions& N) {
+                Positions& X, Eigen::VectorXd& H, Positions& N, int sweeps) {
   const OneRings& rings = level.rings;
 
   // 1. Inner-fairness position over the split ring; H and normal interpolated alike.
@@ -173,7 +173,7 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
     for (int k = rings.offset[v]; k < rings.offset[v + 1]; ++k) add(rings.ring[k]);
   }
   const Positions P = X, NP = N;
-  for (int sweep = 0; sweep < kProlongationSweeps; ++sweep)
+  for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int l : disk) {
       const Vec3 c = weighted_centroid(lambda, X, l);
       if (is_new[l]) {
@@ -262,7 +262,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   construction.set_source(tau, top);
   if (l == 0) {
     const double r0 = construction.evaluate(X);
-    const IterationReport base = construction.run(X, kBaseIterations, kBaseReduction * r0, offset);
+    const IterationReport base = construction.run(X, tuning_.base_iterations, tuning_.base_reduction * r0, offset);
     cancelled_ = cancelled_ || base.cancelled;
     return;
   }
@@ -270,7 +270,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
 
   // Smoothing iterations count against the budget only on the level being solved.
   auto smooth = [&](int at_offset) {
-    const int n = top ? std::min(kSmoothing, budget_) : kSmoothing;
+    const int n = top ? std::min(tuning_.smoothing, budget_) : tuning_.smoothing;
     IterationReport r = construction.run(X, n, 0.0, at_offset);
     if (top) budget_ -= r.iterations;
     cancelled_ = cancelled_ || r.cancelled;
@@ -280,12 +280,12 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   if (cancelled_ || budget_ <= 0) return;
   if (state.skip > 0) {  // corrections did not help lately: smooth only
     --state.skip;
-    smooth(offset + kSmoothing);
+    smooth(offset + tuning_.smoothing);
     return;
   }
   auto reject = [&] {
-    state.damping = std::max(state.damping / 2, kMinCorrection);
-    state.skip = std::min((1 << state.rejections) - 1, kMaxSkip);
+    state.damping = std::max(state.damping / 2, tuning_.min_correction);
+    state.skip = std::min((1 << std::min(state.rejections, 30)) - 1, tuning_.max_skip);
     ++state.rejections;
   };
 
@@ -306,7 +306,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   Positions Y = Yc;
   bool solved = true;
   try {
-    cycle(l - 1, Y, &tau_c, false, offset + kSmoothing);
+    cycle(l - 1, Y, &tau_c, false, offset + tuning_.smoothing);
   } catch (const SolverError&) {
     solved = false;  // the coarse problem diverged: smooth without its correction
   }
@@ -315,7 +315,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   if (cancelled_) return;
   if (!solved) {
     reject();
-    smooth(offset + kSmoothing);
+    smooth(offset + tuning_.smoothing);
     return;
   }
 
@@ -327,7 +327,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   X.topRows(nf) += state.damping * D.topRows(nf);
   IterationReport post;
   try {
-    post = smooth(offset + kSmoothing);
+    post = smooth(offset + tuning_.smoothing);
   } catch (const SolverError&) {
     post.residual = HUGE_VAL;
   }
@@ -340,7 +340,7 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   // It made things worse: undo it, damp and pause the corrections, smooth instead.
   X = X_pre;
   reject();
-  smooth(offset + 2 * kSmoothing);
+  smooth(offset + 2 * tuning_.smoothing);
 }
 
 }  // namespace geofair

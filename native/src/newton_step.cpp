@@ -8,7 +8,8 @@
 
 namespace geofair {
 
-NewtonStep::NewtonStep(const FairingRegion& region) : region_(region) {
+NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning)
+    : region_(region), tuning_(tuning) {
   // Rows of J: region vertex k holds (m, ∂H_k/∂t_m) for m = k (if free) and for the free
   // vertices m of its ring; the entry of column m at row k lives at slot k of m's ring.
   const OneRings& r = region.rings;
@@ -111,16 +112,17 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     product(v, Jv);
     if (sigma > 0.0) Jv += sigma * shift.mass->cwiseProduct(v);
   };
-  // A factorization with a shift that differs by more than a factor kShiftRefactorization
-  // (shifts below kShiftNegligible count as none) preconditions poorly: refactorize.
-  auto effective = [](double s) { return std::max(s, kShiftNegligible); };
+  // A factorization with a shift that differs by more than a factor shift_refactorization
+  // (shifts below shift_negligible count as none) preconditions poorly: refactorize.
+  auto effective = [this](double s) { return std::max(s, tuning_.shift_negligible); };
   const double ratio = effective(sigma) / effective(factorized_sigma_);
-  if (ratio > kShiftRefactorization || ratio < 1.0 / kShiftRefactorization) refactorize_ = true;
+  if (ratio > tuning_.shift_refactorization || ratio < 1.0 / tuning_.shift_refactorization)
+    refactorize_ = true;
   // With the factorization of an earlier step first; if GMRES does not converge on it,
   // refactorize at X and solve again.
   const JacobianOperator J(b.size(), shifted);
   gmres_.preconditioner().lu = &lu_;
-  set_up_gmres(gmres_, J, kNewtonKrylovIterations, kNewtonKrylovTolerance);
+  set_up_gmres(gmres_, J, tuning_.krylov_iterations, tuning_.krylov_tolerance);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const bool fresh = refactorize_ || !lu_.factorized();
     if (fresh) {
@@ -133,7 +135,7 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
       refactorize_ = false;
     }
     t = gmres_.solve(b);
-    if (gmres_.iterations() > kNewtonKrylovIterations / 2) refactorize_ = true;
+    if (gmres_.iterations() > tuning_.krylov_iterations / 2) refactorize_ = true;
     if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
     refactorize_ = true;
     if (fresh) break;

@@ -67,6 +67,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // build_progressive_mesh, read here and by the priority module.
   int n_free = 0;
   Decimation rules;
+  int min_boundary_loop = HierarchyTuning{}.min_boundary_loop;  // HierarchyTuning
   bool is_g1(VertexHandle v) const { return v.idx() >= n_free; }
   // The factor of the priorities of collapses from v0 (length_priority): 1e-4 for a free
   // vertex of valence below 5 if low valences go first, else 1.
@@ -137,7 +138,7 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   float collapse_priority(const CollapseInfo& ci) override {
     const Decimation& rules = mesh_.rules;
     // A G1 boundary vertex (locked unless the boundary is coarsened) collapses only while
-    // its border loop keeps kMinBoundaryLoop vertices; a fixed vertex inside the region
+    // its border loop keeps min_boundary_loop vertices; a fixed vertex inside the region
     // (closed fan) never. The decimater itself collapses a vertex on the border only into
     // a neighbour on the border along a border edge (free vertices are never on it).
     if (mesh_.is_g1(ci.v0) && !(mesh_.is_boundary(ci.v0) && long_loop(ci.v0)))
@@ -182,10 +183,10 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   VertexSplits collapses;  // in collapse order
 
  private:
-  // True if the border loop through border vertex v has more than kMinBoundaryLoop vertices.
+  // True if the border loop through border vertex v has more than min_boundary_loop vertices.
   bool long_loop(typename MeshT::VertexHandle v) const {
     auto h = mesh_.halfedge_handle(v);  // the border half-edge out of v
-    for (int k = 0; k < kMinBoundaryLoop; ++k) {
+    for (int k = 0; k < mesh_.min_boundary_loop; ++k) {
       h = mesh_.next_halfedge_handle(h);
       if (mesh_.from_vertex_handle(h) == v) return false;
     }
@@ -216,10 +217,10 @@ int default_levels(int n_free) {
 }
 
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X_input,
-                              const InnerFairnessWeights* lambda) {
+                              const InnerFairnessWeights* lambda, int sweeps) {
   Positions X = X_input;
   const OneRings& r = region.rings;
-  for (int sweep = 0; sweep < kHierarchySmoothing; ++sweep) {
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
     Positions Y = X;
     for (int i = 0; i < region.n_free; ++i) {
       Vec3 c = Vec3::Zero();
@@ -236,10 +237,12 @@ Positions hierarchy_positions(const FairingRegion& region, const Positions& X_in
 }
 
 ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
-                                       int levels, const Decimation& rules) {
+                                       int levels, const Decimation& rules,
+                                       const HierarchyTuning& tuning) {
   Mesh mesh;
   mesh.n_free = region.n_free;
   mesh.rules = rules;
+  mesh.min_boundary_loop = tuning.min_boundary_loop;
   mesh.request_vertex_status();
   mesh.request_edge_status();
   mesh.request_face_status();
@@ -261,7 +264,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
   std::vector<Triangles> fine_to_coarse{region.triangles};
   std::vector<VertexSplits> splits_fine_to_coarse;
   const int n_boundary = region.n - region.n_free;
-  const double n_free_min = kMinFreePerBoundary * n_boundary;
+  const double n_free_min = tuning.min_free_per_boundary * n_boundary;
   double previous = region.n_free;
   int free_present = region.n_free;  // free vertices not collapsed yet
   for (int level = levels - 2; level >= 0; --level) {
@@ -298,7 +301,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
                                       [&](int v) { return v < region.n_free; }));
     // With the boundary coarsened, too few free vertices may remain: no such level (and
     // none coarser).
-    if (rules.coarsen_boundary && free_present < kMinLevelFree) break;
+    if (rules.coarsen_boundary && free_present < tuning.min_level_free) break;
     splits_fine_to_coarse.push_back(std::move(splits));
     fine_to_coarse.push_back(snapshot(mesh));
   }

@@ -28,28 +28,16 @@ namespace geofair {
 /// \param X       #region×3 positions (boundary rows are the fixed data)
 /// \param lambda  inner fairness weights of every region vertex (inner_fairness_weights)
 /// \param relative_residual  ‖b − K f‖ / ‖b‖ at which conjugate gradients stop
-///                 (kNewtonInitialMeshResidual or kInitialMeshResidual for an initial
-///                 mesh that Newton's method or the paper's iteration refines,
-///                 kExactResidual where the linear solution is the result)
+///                 (BilaplacianTuning: newton_initial_mesh_residual or
+///                 initial_mesh_residual for an initial mesh that Newton's method or the
+///                 paper's iteration refines, exact_residual where the linear solution is
+///                 the result)
+/// \param max_cg_iterations  conjugate-gradient iterations before sparse LU takes over
 /// \return #region×3 positions with the free rows replaced.
 /// \throw SolverError if the sparse factorization fails.
 Positions bilaplacian_initial_mesh(const FairingRegion& region,
                                    const InnerFairnessWeights& lambda, const Positions& X,
-                                   double relative_residual);
-
-/// Conjugate-gradient iterations of bilaplacian_initial_mesh at most before it falls back
-/// to sparse LU (the preconditioned matrix is the identity plus a term of rank at most the
-/// number of boundary vertices next to free ones, so CG needs about that many).
-constexpr int kBilaplacianIterations = 300;
-/// Relative residual of a linear initial mesh that the paper's iteration refines: its
-/// errors lie far below the distance the iteration moves the vertices, and that iteration
-/// is sensitive to its start (docs/DESIGN_NOTES.md).
-constexpr double kInitialMeshResidual = 1e-8;
-/// ... and of the base level that Newton's method refines (fairing.cpp, newton_multigrid):
-/// the same steps and results with fewer conjugate-gradient iterations (docs/DESIGN_NOTES.md).
-constexpr double kNewtonInitialMeshResidual = 1e-5;
-/// Relative residual where the linear solution is the result (OuterFairness::Bilaplacian):
-/// that of a direct solve.
-constexpr double kExactResidual = 1e-12;
+                                   double relative_residual,
+                                   int max_cg_iterations = BilaplacianTuning{}.cg_iterations);
 
 }  // namespace geofair

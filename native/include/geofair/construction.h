@@ -25,13 +25,6 @@ struct IterationReport {
   double relax_seconds = 0.0, polish_seconds = 0.0, step_seconds = 0.0;
 };
 
-/// run_newton gives up when the residual has not halved in this many steps ...
-constexpr int kNewtonPatience = 20;
-/// ... and on the coarse levels of a hierarchy in this many: a coarse level only starts the
-/// next, and one that has stopped making progress is better abandoned for the single level
-/// (docs/REAL_MESHES.md, "Regular caps").
-constexpr int kCoarseNewtonPatience = 8;
-
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix
 /// S and the CG solver, reused across iterations.
 class Construction {
@@ -39,6 +32,7 @@ class Construction {
   /// \param region  the mesh to fair (kept by reference)
   /// \param lambda  inner fairness weights (inner_fairness_weights)
   /// \param length  L, the length that makes the residual dimensionless (see fairing.h)
+  /// options.tuning: the paper's iteration's, Newton's and the tangential solves' tuning.
   Construction(const FairingRegion& region, InnerFairnessWeights lambda,
                const FairingOptions& options, double length);
 
@@ -50,7 +44,7 @@ class Construction {
   /// (Gauss–Seidel) and global (CG) steps alternate, and global steps move the vertices
   /// tangentially by TangentialSolver before the update along the normals. Every vertex
   /// update divides its normal step by the coupling factor max(1, ρ_i) (coupling_factors in
-  /// vertex_update.h), refreshed every kCouplingRefresh iterations. `progress` receives
+  /// vertex_update.h), refreshed every tuning.paper.coupling_refresh iterations. `progress` receives
   /// (iteration_offset + k, residual).
   /// \throw SolverError if the iteration diverges.
   IterationReport run(Positions& X, int max_iterations, double tolerance,
@@ -58,18 +52,18 @@ class Construction {
 
   /// Newton's method on eq. (12) instead (newton_step.h; beyond the paper). The vertex
   /// distribution is first brought to inner fairness by tangential solves
-  /// (TangentialSolver::relax, at most kNewtonRelaxations; the first with fixed tangent
+  /// (TangentialSolver::relax, at most tuning.newton.relaxations; the first with fixed tangent
   /// planes, the next with turning ones). Then per iteration the normal offsets of all free
   /// vertices from one inexact Newton step (NewtonStep, with the products of the exact
-  /// Jacobian), scaled so that no vertex moves by more than kNewtonStep mean distances to
+  /// Jacobian), scaled so that no vertex moves by more than max_step mean distances to
   /// its neighbours, globalized by pseudo-transient continuation (Kelley & Keyes 1998): the
-  /// first step is Newton's; a step that raises merit() by more than kMeritGrowth is taken
+  /// first step is Newton's; a step that raises merit() by more than merit_growth is taken
   /// back and the next
   /// solves (J + σ M) t = −d instead (an implicit Euler step of the flow ∂t/∂τ = −M⁻¹ d,
-  /// M_i = Σ_j |w_ij| / h_i², about J's diagonal), σ starting at kShiftStart and growing by
-  /// kShiftIncrease per taken-back step; an accepted step scales σ by the merit's ratio
+  /// M_i = Σ_j |w_ij| / h_i², about J's diagonal), σ starting at shift_start and growing by
+  /// shift_increase per taken-back step; an accepted step scales σ by the merit's ratio
   /// (switched evolution relaxation), so σ vanishes as the merit falls and the steps
-  /// become Newton's again. Above kShiftMax the run stops as stalled. The tangential
+  /// become Newton's again. Above shift_max the run stops as stalled. The tangential
   /// (inner-fairness) relaxation is not interleaved with the steps: if
   /// `polish_at_convergence` is set, where the residual reaches the tolerance one tangential
   /// solve with turning tangent planes restores inner fairness (direct, or on the two-grid
@@ -77,9 +71,9 @@ class Construction {
   /// normal over its tangential move d; that changes the discretization of H, so the
   /// residual may rise and the steps go on. The polish repeats (at once if the residual is
   /// still within the tolerance, else at the next convergence) while the next one would
-  /// move a vertex by more than kPolishedMove mean distances to its neighbours (predicted
-  /// from the last one's move by the quadratic convergence, kPolishContraction), at most
-  /// kNewtonPolishes times.
+  /// move a vertex by more than polished_move mean distances to its neighbours (predicted
+  /// from the last one's move by the quadratic convergence, polish_contraction), at most
+  /// `polishes` times (all of options.tuning.newton).
   /// Stops like run(), and also when the residual has not halved in `patience`
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
   /// linearization can fail to contract.
@@ -95,10 +89,11 @@ class Construction {
   /// residual. Not on the linear initial mesh, whose error is smooth (docs/NEWTON.md).
   ///
   /// `patience`: the number of steps without a halving of the residual after which the run
-  /// stops as stalled (kNewtonPatience; coarse levels of a hierarchy kCoarseNewtonPatience).
+  /// stops as stalled (NewtonTuning::patience; coarse levels of a hierarchy
+  /// coarse_patience).
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
-                             int iteration_offset = 0, bool polish_at_convergence = true,
-                             bool prolongated = false, int patience = kNewtonPatience);
+                             int iteration_offset, bool polish_at_convergence, bool prolongated,
+                             int patience);
 
   /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
   /// preconditioner (NewtonStep::analyze), which depends only on the mesh. fair() calls it
@@ -172,44 +167,5 @@ class Construction {
   long iterations_ = 0;
 };
 
-/// Iterations between refreshes of the coupling factors: they follow the mesh shape, which
-/// changes slowly; one refresh costs about three iterations.
-constexpr int kCouplingRefresh = 16;
-/// Newton steps (run_newton) move no vertex by more than this many mean distances to its
-/// neighbours (docs/NEWTON.md).
-constexpr double kNewtonStep = 4.0;
-/// run_newton's tangential solves (TangentialSolver::relax) before the first Newton step, at
-/// most: more than one where the stretch limit cuts a solve short (docs/NEWTON.md).
-constexpr int kNewtonRelaxations = 8;
-
-/// Tangential solves of run_newton at convergence, at most (see run_newton; the first are
-/// cut short by the stretch limit after a prolongation, then they converge quadratically:
-/// docs/NEWTON.md) ...
-constexpr int kNewtonPolishes = 8;
-/// ... repeated while the last one moved a vertex by more than this many mean distances to
-/// its neighbours: one solve leaves inner fairness less exact than the paper's iteration
-/// does (docs/NEWTON.md).
-constexpr double kPolishedMove = 1e-3;
-/// The polishes converge quadratically (turning tangent planes): after a move δ (in mean
-/// distances) the next moves about kPolishContraction · δ², and run_newton stops polishing
-/// once that is within kPolishedMove (δ ≤ 0.032) instead of polishing until a move itself
-/// is (the factor leaves a margin over the measured contraction, docs/NEWTON.md).
-constexpr double kPolishContraction = 1.0;
-/// The forward difference of run_newton's Jacobian products moves the vertices by at most
-/// this fraction of L (the region's diagonal).
-constexpr double kProductStep = 1e-7;
-/// run_newton takes a step back when it raises the merit by more than this factor: Newton's
-/// method converges non-monotonically on rough inputs (docs/REAL_MESHES.md, after the first
-/// round's table), so a moderate rise is kept.
-constexpr double kMeritGrowth = 4.0;
-/// Pseudo-transient continuation of run_newton: the shift σ after the first rejected step
-/// (dimensionless; M is about J's diagonal) ...
-constexpr double kShiftStart = 1e-2;
-/// ... multiplied by this at each further rejected step ...
-constexpr double kShiftIncrease = 10.0;
-/// ... up to this: a step that short which still raises the merit ends the run (stalled).
-constexpr double kShiftMax = 1e8;
-/// BiCGSTAB iterations of a global tangential step.
-constexpr int kTangentialIterations = 10;
 
 }  // namespace geofair

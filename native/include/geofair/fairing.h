@@ -75,7 +75,8 @@ struct FairingResult {
 /// takes thousands (docs/NEWTON.md, README). Where a coarse level fails the finest level is
 /// solved alone; where that stalls or fails, Auto starts over with the paper's steps below,
 /// with Newton's method tried again from their iterate on the finest level
-/// (kNewtonAttemptFirst); Paper runs them alone.
+/// (after ScheduleTuning::newton_attempt_first iterations and each doubling); Paper runs
+/// them alone.
 ///
 /// Beyond the paper, each justified by measurement where it is implemented: the vertex
 /// update divides its step by a measured coupling factor (vertex_update.h); global
@@ -111,19 +112,11 @@ struct FairingResult {
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
 ///
-/// \throw InvalidInputError for invalid input (see extract_region); SolverError (not with
+/// \throw InvalidInputError for invalid input (see extract_region) or options (a tuning
+///        field outside its range, validate_tuning); SolverError (not with
 ///        Auto's iteration, see above) if a
 ///        linear solve fails or the iteration diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options);
-
-/// Iteration::Auto, where it runs the paper's iteration: Newton's method is tried from the
-/// paper's iterate after this many iterations of the finest level and after each doubling
-/// (Newton's basin is small on real meshes, and the paper's iteration, robust but slow,
-/// leads into it: docs/REAL_MESHES.md, "Newton from the paper's iterate") ...
-constexpr int kNewtonAttemptFirst = 100;
-/// ... each attempt at most this many Newton steps (or kNewtonPatience steps without
-/// halving its residual); one that does not converge leaves the paper's iterate as it was.
-constexpr int kNewtonAttemptSteps = 60;
 
 }  // namespace geofair

@@ -99,8 +99,6 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
   return c;
 }
 
-/// TangentialSolver::relax: the largest relative stretch or shrinkage of an edge per step.
-constexpr double kMaxStretch = 0.5;
 /// The linearization of inner fairness in TangentialSolver::relax. Fixed: the tangent
 /// planes held fixed (section 7.3's update, all vertices at once). Turning: with the first-
 /// order turn of each tangent plane as its vertex moves along the surface (the normal's
@@ -110,16 +108,6 @@ constexpr double kMaxStretch = 0.5;
 /// solves reduce the distance to inner fairness only by a constant factor, with it
 /// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
 enum class TangentPlanes { Fixed, Turning };
-
-/// TangentialSolver's systems: the turn of the tangent plane ℓ_i D_i is left out of a
-/// diagonal block where its norm reaches this (it is about (h·κ)²/2 for edge length h and
-/// curvature κ: larger only on a noisy mesh, where the linearization means nothing).
-constexpr double kMaxTurn = 0.5;
-/// TangentialSolver::relax with `lagged`: GMRES's relative residual (dimensionless) on a
-/// lagged factorization ...
-constexpr double kLaggedTangentialTolerance = 1e-8;
-/// ... and its iteration limit there; beyond it the system is factorized anew.
-constexpr int kLaggedTangentialIterations = 20;
 
 /// Interpolation of corrections from a coarser level (multigrid.h, coarse_space):
 /// row i, free vertex i of the level, holds the weights of the coarser level's free vertices
@@ -131,20 +119,6 @@ struct CoarseSpace {
   std::vector<int> vertex;
   InnerFairnessWeights lambda;
 };
-
-/// TangentialSolver::relax with a coarse space: Gauss–Seidel sweeps before and after the
-/// coarse-grid correction of the two-grid preconditioner ...
-constexpr int kTwoGridSweeps = 2;
-/// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
-/// blocks' values from the start of the sweep (hybrid Gauss–Seidel), one thread per block
-/// above kParallelMin unknowns. Fixed, so results do not depend on the thread count
-/// (docs/DESIGN_NOTES.md, "kTwoGridBlocks").
-constexpr int kTwoGridBlocks = 2;
-/// ... and GMRES's iteration limit there.
-constexpr int kTwoGridIterations = 40;
-/// ... and GMRES's relative residual there. A solve's error only leaves the next polish
-/// a little more to do (run_newton polishes until the moves vanish; docs/DESIGN_NOTES.md).
-constexpr double kTwoGridTolerance = 1e-3;
 
 /// The global step of inner fairness (beyond the paper): moves every free
 /// vertex within its tangent plane so that the tangential part of the generalized Laplacian
@@ -167,8 +141,10 @@ class TangentialSolver {
   /// \param pattern  inner fairness weights whose neighbours give the sparsity pattern;
   ///                 every step must pass weights with the same neighbours
   /// \param n_free   free vertices are 0 .. n_free-1 of `rings`
+  /// \param iterations  BiCGSTAB iterations of step() (PaperIterationTuning)
+  /// \param tuning   relax()'s limits and iterations
   TangentialSolver(const OneRings& rings, const InnerFairnessWeights& pattern, int n_free,
-                   int iterations);
+                   int iterations, const TangentialTuning& tuning = {});
 
   /// \param lambda  inner fairness weights, with the neighbours of the constructor's pattern
   /// \param X       #region×3 positions, free rows updated in place
@@ -178,14 +154,14 @@ class TangentialSolver {
 
   /// The same linearized system solved directly (sparse LU, SuiteSparse's UMFPACK), and the
   /// whole step scaled by one factor so that no edge of the ring stretches or shrinks by more
-  /// than kMaxStretch of its length (instead of limiting each vertex's move): for bringing
+  /// than tuning.max_stretch of its length (instead of limiting each vertex's move): for bringing
   /// a mesh to inner fairness from afar, where the distribution that satisfies it lies many
   /// edge lengths away (construction.h, run_newton). Arguments as for step(): X #region×3,
   /// free rows moved in place (mesh units), N #region×3 unit normals at X.
   /// With `lagged`, a factorization of an earlier call (at nearby normals, as in the
   /// repeated polishes of a converged shape) preconditions GMRES on the new system to the
-  /// relative residual kLaggedTangentialTolerance instead of a new factorization; a fresh
-  /// one is taken if there is none or GMRES does not converge in kLaggedTangentialIterations.
+  /// relative residual tuning.lagged_tolerance instead of a new factorization; a fresh one
+  /// is taken if there is none or GMRES does not converge in tuning.lagged_iterations.
   /// `planes`: the linearization (TangentPlanes): Turning near inner fairness, where it
   /// converges quadratically.
   /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
@@ -195,7 +171,7 @@ class TangentialSolver {
 
   /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
   /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a
-  /// two-grid cycle instead of factorizing the system, kTwoGridSweeps symmetric Gauss–Seidel
+  /// two-grid cycle instead of factorizing the system, tuning.two_grid_sweeps symmetric Gauss–Seidel
   /// sweeps around a coarse-grid correction P̃ A_c⁻¹ P̃ᵀ (P̃: the interpolation carried into
   /// the tangent bases, P_ic T_iᵀ T_c). A_c is the coarser level's own linearized system
   /// (fixed tangent planes, weights coarse.lambda) in the tangent bases T_c of its vertices
@@ -203,8 +179,8 @@ class TangentialSolver {
   /// Galerkin product P̃ᵀ A P̃, whose stencil is wider: as good a preconditioner, cheaper
   /// to build and factorize (docs/DESIGN_NOTES.md). A_c (with `coarser` below: the next
   /// coarser system) is factorized at the first relax and, with `lagged`, kept for the
-  /// next ones. If GMRES does not converge in
-  /// kTwoGridIterations, the system is factorized.
+  /// next ones. If GMRES does not converge in tuning.two_grid_iterations (to
+  /// tuning.two_grid_tolerance), the system is factorized.
   ///
   /// `coarser`: the coarse space of the coarser level itself (its rows the columns of
   /// `coarse`, its `vertex` column ids of `coarse`), or empty. With it the coarse-grid
@@ -228,6 +204,7 @@ class TangentialSolver {
 
   const OneRings& rings_;
   int n_free_;
+  TangentialTuning tuning_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> A_;
   std::vector<int> slot_value_;  // per weight of a free vertex: index of its 2×2 block, or -1
   std::vector<int> diag_value_;  // per free vertex: index of its diagonal 2×2 block

@@ -26,7 +26,7 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 ///  1. each new vertex q_i at Σ_j w_ij q_j over the ring it is split into (`weights`: the
 ///     conformal weights of the smoothed input, i.e. the inner-fairness position of the
 ///     coarse levels), with H and the normal interpolated the same way;
-///  2. the 1-disks D(q_i) are relaxed, Δq_l = 0, by kProlongationSweeps Gauss–Seidel sweeps
+///  2. the 1-disks D(q_i) are relaxed, Δq_l = 0, by `sweeps` Gauss–Seidel sweeps
 ///     of q_l ← Σ_j λ_lj q_j (`lambda`, the level's inner fairness) over their union;
 ///  3. outer fairness is restored: each new vertex moves along its normal onto the surface
 ///     predicted by the tangent planes and mean curvatures of its split ring, the average of
@@ -44,9 +44,11 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
 /// \param X        #level×3 positions: valid for all but the new vertices, which are set
 /// \param H        #level mean curvatures, valid for the old vertices; the new are set
 /// \param N        #level×3 unit normals, valid for the old vertices; the new are set
+/// \param sweeps   step 2's sweeps (MultigridTuning::prolongation_sweeps)
 void prolongate(const FairingRegion& level, const VertexSplits& splits,
                 const std::vector<double>& weights, const InnerFairnessWeights& lambda,
-                Positions& X, Eigen::VectorXd& H, Positions& N);
+                Positions& X, Eigen::VectorXd& H, Positions& N,
+                int sweeps = MultigridTuning{}.prolongation_sweeps);
 
 /// The interpolation of corrections that vanish on the G1 boundary from the next coarser
 /// level to `level` (whose vertex splits, in level-local ids, are `splits`; a split of a G1
@@ -72,9 +74,6 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
                          const FairingRegion& coarser,
                          const InnerFairnessWeights& coarser_lambda);
 
-/// Gauss–Seidel sweeps of the relaxation, step 2 of prolongate.
-constexpr int kProlongationSweeps = 2;
-
 /// One level of the hierarchy with everything the cycles need.
 struct MultigridLevel {
   FairingRegion region;
@@ -93,25 +92,28 @@ struct MultigridLevel {
 /// errors at a rate that falls like 1/#V_I (docs/DESIGN_NOTES.md).
 ///
 /// A cycle on level l (tangential: inner fairness on; coarse problems: normal moves only):
-///  1. kSmoothing iterations of the construction on level l;
+///  1. `smoothing` iterations of the construction on level l (MultigridTuning);
 ///  2. the defects d = Σ_j w_ij (H_i − H_j) − τ of level l are restricted to level l−1 by
 ///     the transpose of the split interpolation below; with the injected positions Y_c,
 ///     τ_c = d_c(Y_c) − R d, and the coarse problem d_c(Y) = τ_c is solved approximately
 ///     (by a cycle on l−1, or on the base level by iterating until its residual fell by
-///     kBaseReduction, at most kBaseIterations);
+///     base_reduction, at most base_iterations);
 ///  3. the change Y − Y_c of the coarse vertices is interpolated to the new vertices of
 ///     level l by the split weights, replayed in order, and added;
-///  4. kSmoothing iterations again. A correction that leaves the residual above the one
+///  4. `smoothing` iterations again. A correction that leaves the residual above the one
 ///     before it is undone (and smoothing repeated without it), one whose coarse problem
 ///     diverges is dropped; then the level's corrections are damped and paused for a while
-///     (on a noisy input some corrections are many times the error; docs/DESIGN_NOTES.md).
+///     (on a noisy input some corrections are many times the error; min_correction,
+///     max_skip; docs/DESIGN_NOTES.md).
 /// The normal-only coarse problems correct the smooth error of the shape; the tangential
 /// one is the global inner-fairness step's (inner_fairness.h); docs/DESIGN_NOTES.md.
 class Multigrid {
  public:
   /// \param levels  coarsest first; kept by reference (a deque: the constructions refer to
   ///                the regions, which must not move)
-  explicit Multigrid(std::deque<MultigridLevel>& levels) : levels_(levels) {}
+  /// \param tuning  the cycles' iterations and damping
+  Multigrid(std::deque<MultigridLevel>& levels, const MultigridTuning& tuning)
+      : levels_(levels), tuning_(tuning) {}
 
   /// Cycles on level l until its residual is at most `tolerance` or level l performed
   /// `max_iterations` iterations (the coarser levels' iterations inside the cycles are not
@@ -123,6 +125,7 @@ class Multigrid {
   void cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top, int offset);
 
   std::deque<MultigridLevel>& levels_;
+  MultigridTuning tuning_;
   bool cancelled_ = false;
   int budget_ = 0;  // iterations left for level l's smoothing
 
@@ -135,21 +138,5 @@ class Multigrid {
   };
   std::vector<CorrectionState> state_;
 };
-
-/// After an undone correction a level's corrections are damped by 2 (down to
-/// kMinCorrection) and, after r undone in a row, paused for 2^(r−1) − 1 cycles (at most
-/// kMaxSkip): a correction that does not help costs its coarse problem and kSmoothing
-/// iterations, a paused cycle nothing extra. The smallest damping factor (dimensionless) ...
-constexpr double kMinCorrection = 1.0 / 16;
-/// ... and the longest pause, in cycles.
-constexpr int kMaxSkip = 15;
-
-/// Smoothing iterations before and after each coarse-grid correction (docs/DESIGN_NOTES.md).
-constexpr int kSmoothing = 10;
-/// Base level of a cycle: iterate until the residual fell by this factor ... (a cheaper
-/// base solve needs more cycles and costs more: docs/DESIGN_NOTES.md, "The cycles' base")
-constexpr double kBaseReduction = 0.05;
-/// ... or this many iterations.
-constexpr int kBaseIterations = 200;
 
 }  // namespace geofair

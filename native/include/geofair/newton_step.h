@@ -71,18 +71,6 @@ struct generic_product_impl<geofair::JacobianOperator, Rhs, SparseShape, DenseSh
 
 namespace geofair {
 
-/// Krylov iterations of one Newton step at most (Eigen's GMRES without restart). A step that
-/// needs more than half of them refactorizes its preconditioner at the next step.
-constexpr int kNewtonKrylovIterations = 30;
-/// GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ of a step (P: the preconditioner
-/// below; an inexact Newton step; docs/NEWTON.md).
-constexpr double kNewtonKrylovTolerance = 1e-3;
-/// The preconditioner of a shifted step (NewtonStep::solve) is refactorized when the shift σ
-/// differs from the factorized one by more than this factor (dimensionless, > 1) ...
-constexpr double kShiftRefactorization = 4.0;
-/// ... where shifts below this count as none (dimensionless; M is about J's diagonal).
-constexpr double kShiftNegligible = 1e-3;
-
 /// Normal offsets t (#V_I) of all free vertices at once that solve the linearized
 /// discrete fairness equation at every free vertex i (eq. (12); τ = 0 except for
 /// multigrid coarse problems):
@@ -91,7 +79,7 @@ constexpr double kShiftNegligible = 1e-3;
 /// recomputed: the normals (quadric fits), the Moreton–Séquin H of all region vertices
 /// (eq. (10), with the spiral samples of 6.2 that read the neighbours' normals) and the
 /// cotangent weights w_ij (eq. (6)). It is never assembled: Eigen's GMRES
-/// (kNewtonKrylovIterations, relative residual kNewtonKrylovTolerance) reads only its
+/// (NewtonTuning::krylov_iterations, relative residual krylov_tolerance) reads only its
 /// products J v, which the caller computes by a forward difference of the defects (one
 /// evaluation of the whole mesh per product).
 ///
@@ -100,14 +88,16 @@ constexpr double kShiftNegligible = 1e-3;
 /// derivatives of H by forward differences at each free vertex m and its ring (column m
 /// touches H_m and the H of m's ring), so D J_N is a 2-ring sparse matrix. It is
 /// factorized at the first step and again only after a step whose GMRES needed more than
-/// half of its iterations or failed.
+/// half of its iterations or failed, or when the shift σ differs from the factorized one by
+/// more than NewtonTuning::shift_refactorization (shifts below shift_negligible count as
+/// none).
 ///
 /// Why the products of the exact Jacobian: the fixed-normal matrix ignores how the quadric
 /// normal tilts with the neighbours, and Newton's method on it alone converged only
 /// linearly; with the exact products it converges quadratically (docs/NEWTON.md).
 class NewtonStep {
  public:
-  explicit NewtonStep(const FairingRegion& region);
+  NewtonStep(const FairingRegion& region, const NewtonTuning& tuning);
 
   /// Products J v of the Jacobian of the defects (#V_I in, #V_I out, 1/length²: defects
   /// per unit of normal offset) at the current positions.
@@ -145,6 +135,7 @@ class NewtonStep {
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                 const std::vector<double>& w);
   const FairingRegion& region_;
+  NewtonTuning tuning_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
   std::vector<int> row_offset_, row_column_, row_source_;  // rows of J_N (see constructor)
   std::vector<int> term_entry_;  // per term of the assembly of A: its index in A's values

@@ -37,13 +37,14 @@ struct ProgressiveMesh {
 /// mesh keeps at most about 250 free vertices.
 int default_levels(int n_free);
 
-/// The copy of X (#region×3) the hierarchy is measured on: kHierarchySmoothing Jacobi sweeps
+/// The copy of X (#region×3) the hierarchy is measured on: `sweeps` Jacobi sweeps
 /// q ← (q + Σ_j λ_ij q_j)/2 of the free vertices with the inner-fairness weights λ
 /// (inner_fairness_weights of the region; nullptr: uniform). The fairing moves the vertices that way, and on a
 /// noisy input (normal noise comparable to the edge length) the raw positions make the
 /// quality and flip tests meaningless and fold coarse triangles (docs/DESIGN_NOTES.md).
 Positions hierarchy_positions(const FairingRegion& region, const Positions& X,
-                              const InnerFairnessWeights* lambda);
+                              const InnerFairnessWeights* lambda,
+                              int sweeps = HierarchyTuning{}.smoothing);
 
 /// The rules of build_progressive_mesh's collapses.
 struct Decimation {
@@ -78,9 +79,10 @@ constexpr Decimation kNewtonDecimation{true, 4, 10, true, 0.4};
 /// rules.min_quality, or its normal turns by more than 60°), never from a G1 boundary vertex
 /// (but see rules.coarsen_boundary below), and never
 /// if a free vertex would end with a valence outside [rules.min_valence, rules.max_valence].
-/// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least half as many as
-/// there are G1 boundary vertices (the coarsest level is clamped to that, and fewer levels
-/// come back if that leaves nothing to coarsen or the mesh cannot be decimated that far).
+/// Level ℓ keeps about n_free / 4^(levels−1−ℓ) free vertices, but at least
+/// tuning.min_free_per_boundary times as many as there are G1 boundary vertices (the
+/// coarsest level is clamped to that, and fewer levels come back if that leaves nothing to
+/// coarsen or the mesh cannot be decimated that far).
 ///
 /// Why the two limits: a base mesh of mostly thin boundary fans ends the construction in a
 /// limit cycle, and at coarse vertices of valence 3 and 4 the spiral-sample estimate of H is
@@ -89,26 +91,19 @@ constexpr Decimation kNewtonDecimation{true, 4, 10, true, 0.4};
 /// With rules.coarsen_boundary (kNewtonDecimation) the G1 boundary is coarsened too: a
 /// boundary vertex may collapse along the region's border into its neighbour on the same
 /// border loop (never a fixed vertex inside the region, whose fan is closed, and no loop
-/// below kMinBoundaryLoop vertices), and level ℓ keeps about #region / 4^(levels−1−ℓ)
+/// below tuning.min_boundary_loop vertices), and level ℓ keeps about #region / 4^(levels−1−ℓ)
 /// vertices in all, without the floor above (fewer levels come back if a level would keep
-/// fewer than kMinLevelFree free vertices). The kept boundary vertices keep their
+/// fewer than tuning.min_level_free free vertices). The kept boundary vertices keep their
 /// positions and G1 normals, so every level is a coarser discretization of the same
 /// boundary-value problem, with edges of one length up to the border.
 ///
 /// \param X       #region×3 positions to measure on (hierarchy_positions of the input)
 /// \param levels  requested number of levels, ≥ 1
 /// \param rules   kPaperDecimation or kNewtonDecimation
+/// \param tuning  the levels' floors (HierarchyTuning)
 ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positions& X,
-                                       int levels, const Decimation& rules = kPaperDecimation);
-
-/// Smoothing sweeps of hierarchy_positions.
-constexpr int kHierarchySmoothing = 10;
-/// Free vertices a coarse level keeps at least, per G1 boundary vertex (boundary locked).
-constexpr double kMinFreePerBoundary = 0.5;
-/// Vertices a border loop of G1 boundary vertices keeps at least (boundary coarsened).
-constexpr int kMinBoundaryLoop = 12;
-/// Free vertices a level keeps at least (boundary coarsened): a coarser one is not built.
-constexpr int kMinLevelFree = 16;
+                                       int levels, const Decimation& rules = kPaperDecimation,
+                                       const HierarchyTuning& tuning = {});
 
 /// The fairing region of one level: its free vertices (region-local ids below n_free)
 /// first, then its boundary vertices; `global` maps to region-local ids.

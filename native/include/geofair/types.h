@@ -4,6 +4,8 @@
 // H > 0 on a sphere whose normals point outward (H = 1/r there).
 #pragma once
 
+#include "geofair/tuning.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -82,7 +84,7 @@ enum class OuterFairness {
 /// same discretization; they differ in speed and in the meshes they converge on.
 enum class Iteration {
   Auto,    ///< Newton; where it fails to converge, the paper's iteration with Newton
-           ///< attempts from its iterate (fairing.h, kNewtonAttemptFirst)
+           ///< attempts from its iterate (fairing.h, ScheduleTuning)
   Newton,  ///< Newton's method on the normal offsets of all free vertices at once, level
            ///< by level on the progressive mesh (nested iteration, section 7.4; levels)
            ///< (Construction::run_newton, newton_step.h; beyond the paper)
@@ -92,11 +94,6 @@ enum class Iteration {
 /// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
 /// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).
 constexpr int kParallelMin = 2500;
-
-/// The automatic time limit of fair (FairingOptions::time_limit < 0): this many seconds ...
-constexpr double kTimeLimitBase = 5.0;
-/// ... plus this many seconds per free vertex.
-constexpr double kTimeLimitPerFree = 2e-4;
 
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
@@ -123,12 +120,15 @@ struct FairingOptions {
   /// level, fairing.cpp; Paper: default_levels, one level up to 1000 free vertices).
   int levels = 0;
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
-  /// spent (FairingResult::message says so). Negative: automatic, kTimeLimitBase +
-  /// kTimeLimitPerFree × free vertices with Iteration::Auto, none with an iteration chosen
-  /// explicitly (the reference iterations run to max_iterations); infinity: none.
+  /// spent (FairingResult::message says so). Negative: automatic, time_limit_base +
+  /// time_limit_per_free × free vertices (tuning.schedule) with Iteration::Auto, none with
+  /// an iteration chosen explicitly (the reference iterations run to max_iterations);
+  /// infinity: none.
   double time_limit = -1.0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
+  /// The solvers' numerical choices beyond the paper's options (tuning.h).
+  SolverTuning tuning;
 };
 
 }  // namespace geofair
