@@ -325,7 +325,9 @@ boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices ar
 inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
     vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
     of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
-    that obtuse triangles make negative are clamped to 0); or "conformal_intrinsic" (the
+    that obtuse triangles make negative are clamped to 0, and a vertex whose remaining
+    neighbours do not surround it, at a sharp cone point of the input, takes the mean
+    value weights of its ring); or "conformal_intrinsic" (the
     discrete harmonic map with the cotangent weights of the intrinsic Delaunay
     triangulation of the input, Bobenko & Springborn 2007: never negative, nothing
     clamped, so vertices land where the harmonic map puts them also on meshes of obtuse
