@@ -89,9 +89,8 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   // Symmetric: conjugate gradients preconditioned by I₃ ⊗ K_s⁻¹, K_s factorized by CHOLMOD's
   // supernodal Cholesky (#V_I unknowns instead of 3#V_I). The preconditioned matrix is the
   // identity plus a low-rank term, so CG's iterations are bounded by that rank and do not
-  // grow with the free vertices inside. Disturbed 100000-vertex cap, base level of 26000 free
-  // vertices: 32 iterations to 1e-8, 46 to 1e-12; 0.5-0.7 s in all against 1.1-1.7 s for
-  // UMFPACK's LU of K (and 1.1-1.25 s for CHOLMOD's Cholesky of K).
+  // grow with the free vertices inside: about half the time of a direct solve of K
+  // (docs/DESIGN_NOTES.md, "The linear initial mesh's solver").
   if (scaled) {
     Eigen::SparseMatrix<double> Ks(nf, nf);
     Ks.setFromTriplets(scalar.begin(), scalar.end());

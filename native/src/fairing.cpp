@@ -45,11 +45,9 @@ void check_options(const FairingOptions& o) {
 // The threads of one solve: OpenMP's maximum (OMP_NUM_THREADS, else the cores) less the
 // cores that other processes keep busy now (the runnable tasks of /proc/loadavg, not
 // counting this process's own). On a busy machine the threads of a parallel loop wait for
-// each other at every barrier, so a core taken by another process is left to it: with one
-// core of the 2-core machine busy, the 100000-vertex cap took 16.8 s on one thread and
-// 19.5 s on two. libgomp's dynamic adjustment (cores minus the 15-minute load average) did
-// this before, but it also counted this process's own earlier solves: back-to-back solves
-// of the 100000-vertex cap ran on one thread, 10.2-10.4 s instead of 9.1-9.3 s.
+// each other at every barrier, so a core taken by another process is left to it; libgomp's
+// dynamic adjustment also counted this process's own earlier solves (docs/DESIGN_NOTES.md,
+// "Threads of a solve").
 int solve_threads() {
   static const int max_threads = omp_get_max_threads();  // before the first call sets it
   int runnable = 0, own = 0;
@@ -129,7 +127,7 @@ struct LevelSolution {
   // region-local ids). Out: the splits in level-local ids, their weights (the conformal
   // weights of the smoothed copy Xs on every level: splits and their transposes interpolate
   // smooth corrections; those of a noisy original are not smooth, and the finest level's
-  // corrections got undone on the 1200-vertex cap with conformal inner fairness), and the
+  // corrections got undone), and the
   // level-local id of every region vertex (-1 where not in the level). `sweeps`: prolongate's.
   Positions prolongated(const FairingRegion& level, const VertexSplits& region_splits,
                         const Positions& Xs, const InnerFairnessWeights& lambda,
@@ -199,8 +197,8 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
                            int& newton_iterations, Phases& phases) {
   // The finest level's construction does not depend on the hierarchy: it is set up, with
   // the symbolic analysis of its Newton preconditioner, on another thread while this one
-  // decimates and solves the coarser levels (100000-vertex cap: 0.38 s of set-up and 0.8-1 s
-  // of METIS ordering against 1.2-1.3 s of decimation and 2.5-3 s of the base level).
+  // decimates and solves the coarser levels, which take longer (docs/DESIGN_NOTES.md,
+  // "Threads of a solve").
   std::future<std::unique_ptr<Construction>> finest_construction =
       std::async(std::launch::async, [&finest_level, &lambda_finest, &options, L] {
         auto construction = std::make_unique<Construction>(finest_level, lambda_finest, options, L);
@@ -508,10 +506,9 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
   LevelSolution solution(X0);
   // Coarse levels estimate normals with Max's weights where the fitted normal is asked for:
   // the fit, consistent on the finest mesh, is ill-conditioned on the decimated rings of
-  // coarse levels (short and long edges, low valence): with it there, the 2000-vertex
-  // irregular cylinder patch took 15,900 iterations (10,300 on the coarsest level) instead
-  // of 4,200. The coarse levels only supply corrections; the finest level's equations
-  // decide the result.
+  // coarse levels (short and long edges, low valence), and the cycles need several times
+  // the iterations there (docs/DESIGN_NOTES.md, "Coarse levels"). The coarse levels only
+  // supply corrections; the finest level's equations decide the result.
   FairingOptions coarse_options = options;
   if (options.normal_weighting == NormalWeighting::Quadric)
     coarse_options.normal_weighting = NormalWeighting::Max;
@@ -622,9 +619,8 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   int newton_iterations = 0;
   Phases phases;
   SolveRun run;
-  // Auto tries Newton's method at every size: on the 1000000-vertex cap it converged in
-  // 136 s (7.4 GiB peak, the finest level's LU), where the paper's iteration had not after
-  // 27 minutes.
+  // Auto tries Newton's method at every size: it is the faster also at a million free
+  // vertices (docs/ACCURACY_AND_SPEED.md).
   const bool newton = options.outer_fairness == OuterFairness::Intrinsic &&
                       options.iteration != Iteration::Paper;
   if (!(newton && solve_by_newton(region, finest_level, X0, lambda_finest, options, L,

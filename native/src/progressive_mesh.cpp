@@ -31,7 +31,8 @@ float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1, floa
 // collapse keeps the mesh a manifold (is_collapse_ok) for every candidate it weighs; the
 // library's TriConnectivity::is_collapse_ok is compiled into Debian's libOpenMeshCore with
 // its assertions on, and there every status access compares type names and allocates a
-// string: 70% of the decimation on the 13000-vertex cap. This type answers with the same
+// string: most of the decimation's time (docs/DESIGN_NOTES.md, "The decimation's speed").
+// This type answers with the same
 // conditions, its status accesses inlined here; so do valence and find_halfedge, which the
 // decimater and the priority module ask for every candidate too (each handle access inside
 // the library checks its validity through a call).
@@ -84,9 +85,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // and a collapse ends it. The decimater's second check of the half-edge it chose, after
   // popping it from the heap, is never skipped: if no other sweep came in between, its
   // length equals `best`, and only longer ones are skipped. The hierarchy is the same as
-  // with every candidate weighed (identical triangles and splits on the 2000- to
-  // 100000-vertex caps with 2, 3 and 4 levels), where the checks and priorities took 58% of
-  // the decimation; now 13000-vertex cap 0.108 -> 0.080 s, 100000: 1.28 -> 1.10 s.
+  // with every candidate weighed (docs/DESIGN_NOTES.md, "The decimation's speed").
   struct Sweep {
     VertexHandle from;
     float best = FLT_MAX, factor = 1.0f;  // factor: priority_factor(from)
