@@ -167,17 +167,12 @@ TangentialSolver::TangentialSolver(const OneRings& rings, const InnerFairnessWei
   A_.makeCompressed();
   // Blocks are found through the first of their four entries (row 2i, column 2j); the
   // second row of the block starts at the same offset in row 2i+1.
-  auto find = [&](int row, int col) {
-    const int* inner = A_.innerIndexPtr() + A_.outerIndexPtr()[row];
-    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[row + 1];
-    return int(std::lower_bound(inner, end, col) - A_.innerIndexPtr());
-  };
   diag_value_.resize(n_free);
   slot_value_.assign(offset[n_free], -1);
   for (int i = 0; i < n_free; ++i) {
-    diag_value_[i] = find(2 * i, 2 * i);
+    diag_value_[i] = stored_entry(A_, 2 * i, 2 * i);
     for (int k = offset[i]; k < offset[i + 1]; ++k)
-      if (neighbour[k] < n_free) slot_value_[k] = find(2 * i, 2 * neighbour[k]);
+      if (neighbour[k] < n_free) slot_value_[k] = stored_entry(A_, 2 * i, 2 * neighbour[k]);
   }
   solver_.setMaxIterations(iterations);
   solver_.setTolerance(1e-12);

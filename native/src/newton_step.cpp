@@ -45,12 +45,8 @@ NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning)
   A_.resize(nf, nf);
   A_.setFromTriplets(pattern.begin(), pattern.end());
   A_.makeCompressed();
-  // The index of entry (i, c) in A's values.
-  auto entry = [&](int i, int c) {
-    const int* begin = A_.innerIndexPtr() + A_.outerIndexPtr()[c];
-    const int* end = A_.innerIndexPtr() + A_.outerIndexPtr()[c + 1];
-    return int(std::lower_bound(begin, end, i) - A_.innerIndexPtr());
-  };
+  // The index of entry (i, c) in A's values (A is column-major).
+  auto entry = [&](int i, int c) { return stored_entry(A_, c, i); };
   term_entry_.reserve(pattern.size());
   for_each_term([&](int i, int c) { term_entry_.push_back(entry(i, c)); });
   diagonal_entry_.resize(nf);

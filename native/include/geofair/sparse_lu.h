@@ -8,6 +8,16 @@
 
 namespace geofair {
 
+/// The index in A.valuePtr() of the stored entry at (outer, inner) of a compressed sparse
+/// matrix: (row, column) if A is row-major, (column, row) if column-major. The entry must
+/// be stored (in the pattern); the inner indices of each outer vector are sorted.
+template <class Sparse>
+int stored_entry(const Sparse& A, int outer, int inner) {
+  const auto* begin = A.innerIndexPtr() + A.outerIndexPtr()[outer];
+  const auto* end = A.innerIndexPtr() + A.outerIndexPtr()[outer + 1];
+  return int(std::lower_bound(begin, end, inner) - A.innerIndexPtr());
+}
+
 /// The threads of the BLAS that UMFPACK's dense kernels call, for the lifetime of this
 /// object; the earlier count is restored after. Only OpenBLAS can be told (looked up at run
 /// time); with another BLAS this does nothing.
