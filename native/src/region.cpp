@@ -170,19 +170,31 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
   return r;
 }
 
-Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
-                                    const std::vector<bool>& free, BoundaryNormalEstimate method,
-                                    const char* caller) {
+namespace {
+
+// The sizes and indices of the input (the first checks of extract_region and
+// estimate_boundary_normals).
+void check_indices(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const char* fn) {
   const int nv = int(V.rows());
   if (int(free.size()) != nv)
-    throw InvalidInputError(prefix(caller) + "free has " + std::to_string(free.size()) +
+    throw InvalidInputError(prefix(fn) + "free has " + std::to_string(free.size()) +
                             " entries for " + std::to_string(nv) + " vertices");
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c)
       if (F(f, c) < 0 || F(f, c) >= nv)
-        throw InvalidInputError(prefix(caller) + "triangle " + std::to_string(f) +
+        throw InvalidInputError(prefix(fn) + "triangle " + std::to_string(f) +
                                 " has vertex index " + std::to_string(F(f, c)) +
                                 ", out of range [0, " + std::to_string(nv) + ")");
+}
+
+}  // namespace
+
+Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
+                                    const std::vector<bool>& free, BoundaryNormalEstimate method,
+                                    const char* caller) {
+  const int nv = int(V.rows());
+  check_indices(V, F, free, caller);
   // G1 boundary: fixed vertices of triangles with a free vertex. Surrounding triangles:
   // those without a free vertex, as vertex -> triangle lists (CSR).
   std::vector<std::uint8_t> g1(nv, 0);
@@ -269,21 +281,6 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
 }
 
 namespace {
-
-// The sizes and indices of the input (extract_region's first checks).
-void check_indices(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const char* fn) {
-  const int nv = int(V.rows());
-  if (int(free.size()) != nv)
-    throw InvalidInputError(prefix(fn) + "free has " + std::to_string(free.size()) +
-                            " entries for " + std::to_string(nv) + " vertices");
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (F(f, c) < 0 || F(f, c) >= nv)
-        throw InvalidInputError(prefix(fn) + "triangle " + std::to_string(f) +
-                                " has vertex index " + std::to_string(F(f, c)) +
-                                ", out of range [0, " + std::to_string(nv) + ")");
-}
 
 // The region's vertices (free first, then the G1 boundary), triangles and one-rings, with
 // the checks of each free vertex (in a triangle, not on the border) and finite positions.
