@@ -208,7 +208,8 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
   Laps laps;
   Positions Xs;
   const ProgressiveMesh hierarchy =
-      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation, options.tuning.hierarchy, Xs);
+      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation,
+                      options.tuning.hierarchy, Xs);
   SolveRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
@@ -458,7 +459,8 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
                      const Positions& X0, const InnerFairnessWeights& lambda_finest,
                      const FairingOptions& options, double L, int& newton_iterations,
                      Phases& phases, SolveRun& out) {
-  const int levels = options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
+  const int levels =
+      options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
   // The hierarchy first; if a level fails there, the finest level alone.
   const std::vector<int> attempts =
       levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};

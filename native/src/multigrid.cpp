@@ -262,7 +262,8 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
   construction.set_source(tau, top);
   if (l == 0) {
     const double r0 = construction.evaluate(X);
-    const IterationReport base = construction.run(X, tuning_.base_iterations, tuning_.base_reduction * r0, offset);
+    const IterationReport base =
+        construction.run(X, tuning_.base_iterations, tuning_.base_reduction * r0, offset);
     cancelled_ = cancelled_ || base.cancelled;
     return;
   }

@@ -44,8 +44,8 @@ class Construction {
   /// (Gauss–Seidel) and global (CG) steps alternate, and global steps move the vertices
   /// tangentially by TangentialSolver before the update along the normals. Every vertex
   /// update divides its normal step by the coupling factor max(1, ρ_i) (coupling_factors in
-  /// vertex_update.h), refreshed every tuning.paper.coupling_refresh iterations. `progress` receives
-  /// (iteration_offset + k, residual).
+  /// vertex_update.h), refreshed every tuning.paper.coupling_refresh iterations.
+  /// `progress` receives (iteration_offset + k, residual).
   /// \throw SolverError if the iteration diverges.
   IterationReport run(Positions& X, int max_iterations, double tolerance,
                       int iteration_offset = 0);

@@ -36,7 +36,8 @@ struct NewtonTuning {
   /// paper's iteration does. > 0 ...
   double polished_move = 1e-3;
   /// ... the next move predicted as polish_contraction · δ² after a move δ (the polishes
-  /// converge quadratically; 1 leaves a margin over the measured contraction). ≥ 0.
+  /// converge quadratically; 1 leaves a margin over the measured contraction, and with
+  /// polished_move = 1e-3 polishing stops after a move δ ≤ 0.032). ≥ 0.
   double polish_contraction = 1.0;
   /// Forward-difference step of the Jacobian products: the largest vertex move as a
   /// fraction of L (the region's diagonal). In (0, 0.01].
@@ -89,7 +90,7 @@ struct TangentialTuning {
   /// factorized. ≥ 1.
   int two_grid_iterations = 40;
   /// ... and its relative residual: a solve's error only leaves the next polish a little
-  /// more to do. In (0, 1).
+  /// more to do (docs/DESIGN_NOTES.md, "TangentialTuning::two_grid_tolerance"). In (0, 1).
   double two_grid_tolerance = 1e-3;
 };
 
@@ -98,13 +99,17 @@ struct MultigridTuning {
   /// Gauss–Seidel sweeps of the relaxation after a prolongation (prolongate, step 2). ≥ 0.
   int prolongation_sweeps = 2;
   /// After an undone correction a level's corrections are damped by 2, down to this
-  /// factor (dimensionless) ... In (0, 1].
+  /// factor (dimensionless): a correction that does not help costs its coarse problem and
+  /// the smoothing, a paused cycle nothing extra ... In (0, 1].
   double min_correction = 1.0 / 16;
   /// ... and after r undone in a row paused for 2^(r−1) − 1 cycles, at most this many. ≥ 0.
   int max_skip = 15;
-  /// Smoothing iterations before and after each coarse-grid correction. ≥ 1.
+  /// Smoothing iterations before and after each coarse-grid correction
+  /// (docs/DESIGN_NOTES.md, "MultigridTuning::smoothing"). ≥ 1.
   int smoothing = 10;
-  /// The base level of a cycle iterates until its residual fell by this factor ... In (0, 1).
+  /// The base level of a cycle iterates until its residual fell by this factor: a cheaper
+  /// base solve needs more cycles and costs more (docs/DESIGN_NOTES.md, "The cycles'
+  /// base") ... In (0, 1).
   double base_reduction = 0.05;
   /// ... or this many iterations. ≥ 1.
   int base_iterations = 200;
