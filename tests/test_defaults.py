@@ -3,6 +3,7 @@
 import re
 
 import numpy as np
+import pytest
 
 import geofair
 import scenes
@@ -56,3 +57,40 @@ def test_defaults_fair_a_mesh():
 def test_docstring_figures_are_filled_in():
     # fair's docstring takes its figures from the library's constants: no placeholder is left.
     assert "{" not in geofair.fair.__doc__ and "}" not in geofair.fair.__doc__
+
+
+def test_tuning_defaults_name_every_field_once():
+    tuning = geofair.defaults()["tuning"]
+    assert len(tuning) == 48
+    assert tuning["newton.patience"] == 20 and isinstance(tuning["newton.patience"], int)
+    assert tuning["schedule.time_limit_base"] == geofair.defaults()["time_limit_base"]
+    assert {name.split(".")[0] for name in tuning} == {
+        "paper", "newton", "tangential", "multigrid", "hierarchy", "bilaplacian", "schedule"
+    }  # fmt: skip
+
+
+def test_tuning_override_reaches_the_solver():
+    # An automatic time limit of 0 s stops the solve at once, unconverged.
+    scene = scenes.sphere_cap(n_free=300, irregular=True, seed=13)
+    args = (scene.vertices, scene.faces, scene.free)
+    zero = {"schedule.time_limit_base": 0.0, "schedule.time_limit_per_free": 0}
+    result = geofair.fair(*args, boundary_normals=scene.normals, tuning=zero)
+    assert not result.converged and "time limit of 0.0e+00 s" in result.message
+    assert geofair.fair(*args, boundary_normals=scene.normals, tuning={}).converged
+
+
+def test_tuning_errors_name_the_field():
+    scene = scenes.sphere_cap(n_free=300, irregular=True, seed=13)
+    args = (scene.vertices, scene.faces, scene.free)
+    cases = [
+        ({"newton.patiense": 3}, 'unknown tuning field "newton.patiense"'),
+        ({"newton.patience": 2.5}, 'tuning["newton.patience"] must be an int'),
+        ({"newton.max_step": "x"}, 'tuning["newton.max_step"] must be a number'),
+        ({"newton.patience": 0}, "tuning.newton.patience must be in [1, inf), got 0"),
+        ({"tangential.max_stretch": 1.0}, "tuning.tangential.max_stretch must be in (0, 1), got 1"),
+        ([("newton.patience", 3)], "tuning must be a dict or None, got list"),
+    ]
+    for tuning, message in cases:
+        with pytest.raises(ValueError) as error:
+            geofair.fair(*args, boundary_normals=scene.normals, tuning=tuning)
+        assert message in str(error.value)

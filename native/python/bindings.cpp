@@ -18,6 +18,7 @@
 #include <optional>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
 
 namespace py = pybind11;
 using namespace geofair;
@@ -119,6 +120,33 @@ InnerFairness parse_inner_fairness(const std::string& s) {
   return parse(s, "inner_fairness", kInnerFairnessNames);
 }
 
+// fair's `tuning` argument: {"newton.patience": 30, ...} into `t`; unknown names and values
+// of the wrong type raise (the ranges are checked by fair, validate_tuning).
+void set_tuning(const py::object& tuning, SolverTuning& t) {
+  if (!py::isinstance<py::dict>(tuning))
+    throw InvalidInputError("fair: tuning must be a dict or None, got " +
+                            std::string(py::str(py::type::of(tuning).attr("__name__"))));
+  for (const auto& [key, value] : tuning.cast<py::dict>()) {
+    const std::string name = py::str(key);
+    bool found = false;
+    for_each_tuning_field(t, [&](const char* field_name, auto& field, double, double, bool,
+                                 bool) {
+      if (found || name != field_name) return;
+      found = true;
+      using Field = std::decay_t<decltype(field)>;
+      const bool integral = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
+      if (std::is_integral_v<Field> ? !integral : !(integral || py::isinstance<py::float_>(value)))
+        throw InvalidInputError("fair: tuning[\"" + name + "\"] must be " +
+                                (std::is_integral_v<Field> ? "an int" : "a number") + ", got " +
+                                std::string(py::str(py::repr(value))));
+      field = value.cast<Field>();
+    });
+    if (!found)
+      throw InvalidInputError("fair: unknown tuning field \"" + name +
+                              "\" (the fields: geofair.defaults()[\"tuning\"])");
+  }
+}
+
 // The defaults of fair's options: FairingOptions{}, the one source (types.h).
 py::dict defaults_py() {
   const FairingOptions o;
@@ -135,6 +163,10 @@ py::dict defaults_py() {
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
   d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free;
+  py::dict tuning;
+  for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
+                                      bool) { tuning[key] = value; });
+  d["tuning"] = tuning;
   return d;
 }
 
@@ -169,7 +201,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
                       int levels, const std::string& iteration, const py::object& progress,
-                      const py::object& time_limit) {
+                      const py::object& time_limit, const py::object& tuning) {
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces);
   const std::vector<bool> mask = to_mask(free, V.rows());
@@ -196,6 +228,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
       throw InvalidInputError("fair: time_limit must be None or a number >= 0 (seconds), got " +
                               std::string(py::str(time_limit)));
   }
+  if (!tuning.is_none()) set_tuning(tuning, options.tuning);
 
   // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
   // KeyboardInterrupt) stops the run and is re-raised.
@@ -299,9 +332,10 @@ Returns
 -------
 dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
 "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-"damping" (float), "time_limit" (None: automatic), and the automatic time limit of
+"damping" (float), "time_limit" (None: automatic), the automatic time limit of
 iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
-per free vertex).)doc");
+per free vertex), and "tuning" (dict: the solvers' numerical choices beyond the paper, by
+dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).)doc");
 
   const FairingOptions d;
   static const std::string fair_docstring = fair_doc(R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
@@ -395,6 +429,10 @@ time_limit : seconds (float) the whole call may take, or None (default): {time_l
     converged=False and a message saying so (the input positions if no level finished).
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).
+tuning : dict or None (default): overrides of the solvers' numerical choices beyond the
+    paper, from dotted names such as "newton.patience" to numbers; the names and defaults:
+    geofair.defaults()["tuning"], units and valid ranges: native/include/geofair/tuning.h.
+    An unknown name, a value of the wrong type or out of range raises ValueError.
 
 Returns
 -------
@@ -416,7 +454,7 @@ RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
         py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
         py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
         py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
-        fair_docstring.c_str());
+        py::arg("tuning") = py::none(), fair_docstring.c_str());
 }
 
 // geofair.cotangent_laplacian, intrinsic_delaunay and intrinsic_delaunay_laplacian.

@@ -2,7 +2,7 @@
 // grouped by the stage that reads them, each with its unit and valid range. The defaults
 // are the values the tests and benchmarks measure (the measurements are in docs/, named per
 // field). Set them through FairingOptions::tuning; fair() rejects a value outside its range
-// (validate_tuning).
+// (validate_tuning; the fields' names and ranges: for_each_tuning_field).
 #pragma once
 
 namespace geofair {
@@ -187,7 +187,66 @@ struct SolverTuning {
   ScheduleTuning schedule;
 };
 
-/// Checks every field of `tuning` against the range documented above.
+/// Calls f(name, field, lo, hi, lo_open, hi_open) for every field of `t` (a SolverTuning,
+/// const or not): its dotted name ("newton.patience"), a reference to it, and its valid
+/// range [lo, hi], open at an end where lo_open / hi_open (hi = kUnbounded: none). The one
+/// table of the fields' names and ranges: validate_tuning and the Python bindings read it.
+constexpr double kUnbounded = 1e300;
+template <class Tuning, class F>
+void for_each_tuning_field(Tuning& t, F&& f) {
+  constexpr double inf = kUnbounded;
+  f("paper.coupling_refresh", t.paper.coupling_refresh, 1, inf, false, false);
+  f("paper.tangential_iterations", t.paper.tangential_iterations, 1, inf, false, false);
+  f("newton.patience", t.newton.patience, 1, inf, false, false);
+  f("newton.coarse_patience", t.newton.coarse_patience, 1, inf, false, false);
+  f("newton.max_step", t.newton.max_step, 0, inf, true, false);
+  f("newton.relaxations", t.newton.relaxations, 1, inf, false, false);
+  f("newton.polishes", t.newton.polishes, 0, inf, false, false);
+  f("newton.polished_move", t.newton.polished_move, 0, inf, true, false);
+  f("newton.polish_contraction", t.newton.polish_contraction, 0, inf, false, false);
+  f("newton.product_step", t.newton.product_step, 0, 0.01, true, false);
+  f("newton.merit_growth", t.newton.merit_growth, 1, inf, false, false);
+  f("newton.shift_start", t.newton.shift_start, 0, inf, true, false);
+  f("newton.shift_increase", t.newton.shift_increase, 1, inf, true, false);
+  f("newton.shift_max", t.newton.shift_max, t.newton.shift_start, inf, false, false);
+  f("newton.shift_negligible", t.newton.shift_negligible, 0, 1, false, true);
+  f("newton.krylov_iterations", t.newton.krylov_iterations, 1, inf, false, false);
+  f("newton.krylov_tolerance", t.newton.krylov_tolerance, 0, 1, true, true);
+  f("newton.shift_refactorization", t.newton.shift_refactorization, 1, inf, true, false);
+  f("tangential.max_stretch", t.tangential.max_stretch, 0, 1, true, true);
+  f("tangential.max_turn", t.tangential.max_turn, 0, inf, true, false);
+  f("tangential.lagged_tolerance", t.tangential.lagged_tolerance, 0, 1, true, true);
+  f("tangential.lagged_iterations", t.tangential.lagged_iterations, 1, inf, false, false);
+  f("tangential.two_grid_sweeps", t.tangential.two_grid_sweeps, 1, inf, false, false);
+  f("tangential.two_grid_blocks", t.tangential.two_grid_blocks, 1, inf, false, false);
+  f("tangential.two_grid_iterations", t.tangential.two_grid_iterations, 1, inf, false, false);
+  f("tangential.two_grid_tolerance", t.tangential.two_grid_tolerance, 0, 1, true, true);
+  f("multigrid.prolongation_sweeps", t.multigrid.prolongation_sweeps, 0, inf, false, false);
+  f("multigrid.min_correction", t.multigrid.min_correction, 0, 1, true, false);
+  f("multigrid.max_skip", t.multigrid.max_skip, 0, 30, false, false);
+  f("multigrid.smoothing", t.multigrid.smoothing, 1, inf, false, false);
+  f("multigrid.base_reduction", t.multigrid.base_reduction, 0, 1, true, true);
+  f("multigrid.base_iterations", t.multigrid.base_iterations, 1, inf, false, false);
+  f("hierarchy.smoothing", t.hierarchy.smoothing, 0, inf, false, false);
+  f("hierarchy.min_free_per_boundary", t.hierarchy.min_free_per_boundary, 0, inf, true, false);
+  f("hierarchy.min_boundary_loop", t.hierarchy.min_boundary_loop, 3, inf, false, false);
+  f("hierarchy.min_level_free", t.hierarchy.min_level_free, 1, inf, false, false);
+  f("bilaplacian.cg_iterations", t.bilaplacian.cg_iterations, 1, inf, false, false);
+  f("bilaplacian.initial_mesh_residual", t.bilaplacian.initial_mesh_residual, 0, 1, true, true);
+  f("bilaplacian.newton_initial_mesh_residual", t.bilaplacian.newton_initial_mesh_residual, 0, 1,
+    true, true);
+  f("bilaplacian.exact_residual", t.bilaplacian.exact_residual, 0, 1, true, true);
+  f("schedule.time_limit_base", t.schedule.time_limit_base, 0, inf, false, false);
+  f("schedule.time_limit_per_free", t.schedule.time_limit_per_free, 0, inf, false, false);
+  f("schedule.newton_attempt_first", t.schedule.newton_attempt_first, 1, inf, false, false);
+  f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);
+  f("schedule.newton_min_base_free", t.schedule.newton_min_base_free, 1, inf, false, false);
+  f("schedule.coarse_newton_steps", t.schedule.coarse_newton_steps, 1, inf, false, false);
+  f("schedule.coarse_tolerance", t.schedule.coarse_tolerance, 1, inf, false, false);
+  f("schedule.coarse_iterations", t.schedule.coarse_iterations, 1, inf, false, false);
+}
+
+/// Checks every field of `tuning` against its range (for_each_tuning_field).
 /// \throw InvalidInputError naming the field ("fair: tuning.newton.patience must be ≥ 1,
 ///        got 0").
 void validate_tuning(const SolverTuning& tuning);

@@ -126,11 +126,12 @@ def defaults() -> dict:
     -------
     dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
     "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-    "damping" (float), "time_limit" (None: automatic), and the automatic time limit of
+    "damping" (float), "time_limit" (None: automatic), the automatic time limit of
     iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
-    per free vertex).
+    per free vertex), and "tuning" (dict: the solvers' numerical choices beyond the paper, by
+    dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -223,6 +224,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         converged=False and a message saying so (the input positions if no level finished).
     progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
         returning False stops the run early (converged is then False).
+    tuning : dict or None (default): overrides of the solvers' numerical choices beyond the
+        paper, from dotted names such as "newton.patience" to numbers; the names and defaults:
+        geofair.defaults()["tuning"], units and valid ranges: native/include/geofair/tuning.h.
+        An unknown name, a value of the wrong type or out of range raises ValueError.
     
     Returns
     -------
