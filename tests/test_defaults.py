@@ -77,6 +77,8 @@ def test_tuning_override_reaches_the_solver():
     result = geofair.fair(*args, boundary_normals=scene.normals, tuning=zero)
     assert not result.converged and "time limit of 0.0e+00 s" in result.message
     assert geofair.fair(*args, boundary_normals=scene.normals, tuning={}).converged
+    numpy_values = {"newton.patience": np.int64(20), "newton.max_step": np.float64(4.0)}
+    assert geofair.fair(*args, boundary_normals=scene.normals, tuning=numpy_values).converged
 
 
 def test_tuning_errors_name_the_field():
@@ -85,6 +87,7 @@ def test_tuning_errors_name_the_field():
     cases = [
         ({"newton.patiense": 3}, 'unknown tuning field "newton.patiense"'),
         ({"newton.patience": 2.5}, 'tuning["newton.patience"] must be an int'),
+        ({"newton.patience": 10**30}, 'tuning["newton.patience"] must be an int'),
         ({"newton.max_step": "x"}, 'tuning["newton.max_step"] must be a number'),
         ({"newton.patience": 0}, "tuning.newton.patience must be in [1, inf), got 0"),
         ({"tangential.max_stretch": 1.0}, "tuning.tangential.max_stretch must be in (0, 1), got 1"),

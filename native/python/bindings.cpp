@@ -134,12 +134,20 @@ void set_tuning(const py::object& tuning, SolverTuning& t) {
       if (found || name != field_name) return;
       found = true;
       using Field = std::decay_t<decltype(field)>;
-      const bool integral = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
+      // Integers: anything with __index__ (Python's and numpy's ints), not bool.
+      const bool integral = PyIndex_Check(value.ptr()) && !py::isinstance<py::bool_>(value);
+      const auto wrong = [&] {
+        return InvalidInputError("fair: tuning[\"" + name + "\"] must be " +
+                                 (std::is_integral_v<Field> ? "an int" : "a number") +
+                                 ", got " + std::string(py::str(py::repr(value))));
+      };
       if (std::is_integral_v<Field> ? !integral : !(integral || py::isinstance<py::float_>(value)))
-        throw InvalidInputError("fair: tuning[\"" + name + "\"] must be " +
-                                (std::is_integral_v<Field> ? "an int" : "a number") + ", got " +
-                                std::string(py::str(py::repr(value))));
-      field = value.cast<Field>();
+        throw wrong();
+      try {
+        field = value.cast<Field>();
+      } catch (const py::cast_error&) {
+        throw wrong();  // e.g. an int beyond the C++ int's range
+      }
     });
     if (!found)
       throw InvalidInputError("fair: unknown tuning field \"" + name +
