@@ -324,6 +324,8 @@ class NewtonAttempts {
   }
 
   int steps() const { return steps_; }
+  // Paper iterations before the first attempt (each later one after a doubling).
+  int first_after() const { return options_.tuning.schedule.newton_attempt_first; }
   // The iterations of the level's paper iteration after which an attempt converged, or -1.
   int converged_after() const { return converged_after_; }
 
@@ -337,15 +339,15 @@ class NewtonAttempts {
 };
 
 // The paper's iteration on the finest level (`paper(budget, iteration_offset)` runs up to
-// `budget` iterations on Y and reports), in slices ending after `first` (the schedule's
-// newton_attempt_first), 2×, 4×, ... iterations, with a Newton attempt from Y after each.
+// `budget` iterations on Y and reports), in slices ending after attempts.first_after(), 2×,
+// 4×, ... iterations, with a Newton attempt from Y after each.
 template <class Paper>
 IterationReport paper_with_newton_attempts(Paper&& paper, Positions& Y, int budget,
-                                           double tolerance, int iteration_offset, int first,
+                                           double tolerance, int iteration_offset,
                                            NewtonAttempts& attempts) {
   IterationReport report;
   int done = 0;
-  for (int next = first;; next = next > budget / 2 ? budget : 2 * next) {
+  for (int next = attempts.first_after();; next = next > budget / 2 ? budget : 2 * next) {
     const IterationReport slice = paper(std::min(budget, next) - done, iteration_offset + done);
     done += slice.iterations;
     report.residual = slice.residual;
@@ -567,7 +569,6 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
       };
       report = finest && options.iteration == Iteration::Auto
                    ? paper_with_newton_attempts(paper, Y, budget, tolerance, result.iterations,
-                                                options.tuning.schedule.newton_attempt_first,
                                                 attempts)
                    : paper(budget, result.iterations);
     }

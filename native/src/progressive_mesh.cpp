@@ -68,7 +68,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // build_progressive_mesh, read here and by the priority module.
   int n_free = 0;
   Decimation rules;
-  int min_boundary_loop = HierarchyTuning{}.min_boundary_loop;  // HierarchyTuning
+  int min_boundary_loop = HierarchyTuning{}.min_boundary_loop;  // build_progressive_mesh sets it
   bool is_g1(VertexHandle v) const { return v.idx() >= n_free; }
   // The factor of the priorities of collapses from v0 (length_priority): 1e-4 for a free
   // vertex of valence below 5 if low valences go first, else 1.

@@ -1,5 +1,6 @@
 // Tuning of geofair::fair's solvers: the numerical choices beyond the paper's options,
-// grouped by the stage that reads them, each with its unit and valid range. The defaults
+// grouped by the stage that reads them, each with its unit and meaning here and its valid
+// range in for_each_tuning_field below (the one table of names and ranges). The defaults
 // are the values the tests and benchmarks measure (the measurements are in docs/, named per
 // field). Set them through FairingOptions::tuning; fair() rejects a value outside its range
 // (validate_tuning; the fields' names and ranges: for_each_tuning_field).
@@ -10,122 +11,118 @@ namespace geofair {
 /// The paper's iteration (section 7; Construction::run).
 struct PaperIterationTuning {
   /// Iterations between refreshes of the coupling factors ρ_i (vertex_update.h): they follow
-  /// the mesh shape, which changes slowly; one refresh costs about three iterations. ≥ 1.
+  /// the mesh shape, which changes slowly; one refresh costs about three iterations.
   int coupling_refresh = 16;
-  /// BiCGSTAB iterations of a global tangential step (TangentialSolver::step). ≥ 1.
+  /// BiCGSTAB iterations of a global tangential step (TangentialSolver::step).
   int tangential_iterations = 10;
 };
 
 /// Newton's method on eq. (12) (Construction::run_newton, NewtonStep; docs/NEWTON.md).
 struct NewtonTuning {
-  /// Steps without a halving of the residual after which a run stops as stalled. ≥ 1 ...
+  /// Steps without a halving of the residual after which a run stops as stalled ...
   int patience = 20;
   /// ... on the coarse levels of a hierarchy, which only start the next level: one that has
   /// stopped making progress is abandoned for the single level (docs/REAL_MESHES.md,
-  /// "Regular caps"). ≥ 1.
+  /// "Regular caps").
   int coarse_patience = 8;
-  /// Largest move of a vertex in one step, in mean distances to its neighbours. > 0.
+  /// Largest move of a vertex in one step, in mean distances to its neighbours.
   double max_step = 4.0;
   /// Tangential solves towards inner fairness before the first step, at most: more than one
-  /// where the stretch limit cuts a solve short. ≥ 1.
+  /// where the stretch limit cuts a solve short.
   int relaxations = 8;
-  /// Tangential solves (polishes) at convergence, at most. ≥ 0 ...
+  /// Tangential solves (polishes) at convergence, at most ...
   int polishes = 8;
   /// ... repeated while the next one would move a vertex by more than this many mean
   /// distances to its neighbours: one solve leaves inner fairness less exact than the
-  /// paper's iteration does. > 0 ...
+  /// paper's iteration does ...
   double polished_move = 1e-3;
   /// ... the next move predicted as polish_contraction · δ² after a move δ (the polishes
   /// converge quadratically; 1 leaves a margin over the measured contraction, and with
-  /// polished_move = 1e-3 polishing stops after a move δ ≤ 0.032). ≥ 0.
+  /// polished_move = 1e-3 polishing stops after a move δ ≤ 0.032).
   double polish_contraction = 1.0;
   /// Forward-difference step of the Jacobian products: the largest vertex move as a
-  /// fraction of L (the region's diagonal). In (0, 0.01].
+  /// fraction of L (the region's diagonal).
   double product_step = 1e-7;
   /// A step that raises the merit by more than this factor is taken back: Newton's method
-  /// converges non-monotonically on rough inputs, so a moderate rise is kept. ≥ 1.
+  /// converges non-monotonically on rough inputs, so a moderate rise is kept.
   double merit_growth = 4.0;
   /// Pseudo-transient continuation: the shift σ after the first taken-back step
-  /// (dimensionless; M is about J's diagonal). > 0 ...
+  /// (dimensionless; M is about J's diagonal) ...
   double shift_start = 1e-2;
-  /// ... multiplied by this per further taken-back step. > 1 ...
+  /// ... multiplied by this per further taken-back step ...
   double shift_increase = 10.0;
   /// ... up to this: a step that short which still raises the merit ends the run (stalled).
-  /// ≥ shift_start.
   double shift_max = 1e8;
-  /// Shifts below this count as none (dimensionless). In [0, 1).
+  /// Shifts below this count as none (dimensionless).
   double shift_negligible = 1e-3;
   /// GMRES iterations of a step at most (Eigen's GMRES without restart); a step that needs
-  /// more than half of them refactorizes its preconditioner at the next step. ≥ 1.
+  /// more than half of them refactorizes its preconditioner at the next step.
   int krylov_iterations = 30;
   /// GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ of a step (an inexact Newton step).
-  /// In (0, 1).
   double krylov_tolerance = 1e-3;
   /// The preconditioner of a shifted step is refactorized when the shift differs from the
-  /// factorized one by more than this factor (dimensionless). > 1.
+  /// factorized one by more than this factor (dimensionless).
   double shift_refactorization = 4.0;
 };
 
 /// Global tangential solves of inner fairness (TangentialSolver::relax, inner_fairness.h).
 struct TangentialTuning {
-  /// Largest relative stretch or shrinkage of an edge per relax. In (0, 1).
+  /// Largest relative stretch or shrinkage of an edge per relax.
   double max_stretch = 0.5;
   /// The turn of the tangent plane ℓ_i D_i is left out of a diagonal block where its norm
   /// reaches this (it is about (h·κ)²/2: larger only on a noisy mesh, where the
-  /// linearization means nothing). Dimensionless, > 0.
+  /// linearization means nothing). Dimensionless.
   double max_turn = 0.5;
-  /// GMRES's relative residual on a lagged factorization ... In (0, 1).
+  /// GMRES's relative residual on a lagged factorization ...
   double lagged_tolerance = 1e-8;
-  /// ... and its iteration limit there; beyond it the system is factorized anew. ≥ 1.
+  /// ... and its iteration limit there; beyond it the system is factorized anew.
   int lagged_iterations = 20;
   /// Gauss–Seidel sweeps before and after the coarse-grid correction of the two-grid
-  /// preconditioner. ≥ 1 ...
+  /// preconditioner ...
   int two_grid_sweeps = 2;
   /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
   /// blocks' values from the start of the sweep, one thread per block above kParallelMin
   /// unknowns. Fixed, so results do not depend on the thread count (docs/DESIGN_NOTES.md,
-  /// "TangentialTuning::two_grid_blocks"). ≥ 1.
+  /// "TangentialTuning::two_grid_blocks").
   int two_grid_blocks = 2;
   /// GMRES's iteration limit on the two-grid preconditioner; beyond it the system is
-  /// factorized. ≥ 1.
+  /// factorized.
   int two_grid_iterations = 40;
   /// ... and its relative residual: a solve's error only leaves the next polish a little
-  /// more to do (docs/DESIGN_NOTES.md, "TangentialTuning::two_grid_tolerance"). In (0, 1).
+  /// more to do (docs/DESIGN_NOTES.md, "TangentialTuning::two_grid_tolerance").
   double two_grid_tolerance = 1e-3;
 };
 
 /// The paper's progressive-mesh multigrid (section 7.4; Multigrid, multigrid.h).
 struct MultigridTuning {
-  /// Gauss–Seidel sweeps of the relaxation after a prolongation (prolongate, step 2). ≥ 0.
+  /// Gauss–Seidel sweeps of the relaxation after a prolongation (prolongate, step 2).
   int prolongation_sweeps = 2;
   /// After an undone correction a level's corrections are damped by 2, down to this
   /// factor (dimensionless): a correction that does not help costs its coarse problem and
-  /// the smoothing, a paused cycle nothing extra ... In (0, 1].
+  /// the smoothing, a paused cycle nothing extra ...
   double min_correction = 1.0 / 16;
-  /// ... and after r undone in a row paused for 2^(r−1) − 1 cycles, at most this many. ≥ 0.
+  /// ... and after r undone in a row paused for 2^(r−1) − 1 cycles, at most this many.
   int max_skip = 15;
   /// Smoothing iterations before and after each coarse-grid correction
-  /// (docs/DESIGN_NOTES.md, "MultigridTuning::smoothing"). ≥ 1.
+  /// (docs/DESIGN_NOTES.md, "MultigridTuning::smoothing").
   int smoothing = 10;
   /// The base level of a cycle iterates until its residual fell by this factor: a cheaper
   /// base solve needs more cycles and costs more (docs/DESIGN_NOTES.md, "The cycles'
-  /// base") ... In (0, 1).
+  /// base") ...
   double base_reduction = 0.05;
-  /// ... or this many iterations. ≥ 1.
+  /// ... or this many iterations.
   int base_iterations = 200;
 };
 
 /// The progressive mesh's levels (progressive_mesh.h).
 struct HierarchyTuning {
-  /// Smoothing sweeps of hierarchy_positions (the copy the decimation measures on). ≥ 0.
+  /// Smoothing sweeps of hierarchy_positions (the copy the decimation measures on).
   int smoothing = 10;
   /// Free vertices a coarse level keeps at least, per G1 boundary vertex (boundary locked).
-  /// > 0.
   double min_free_per_boundary = 0.5;
-  /// Vertices a border loop of G1 boundary vertices keeps at least (boundary coarsened). ≥ 3.
+  /// Vertices a border loop of G1 boundary vertices keeps at least (boundary coarsened).
   int min_boundary_loop = 12;
   /// Free vertices a level keeps at least (boundary coarsened): a coarser one is not built.
-  /// ≥ 1.
   int min_level_free = 16;
 };
 
@@ -133,46 +130,46 @@ struct HierarchyTuning {
 struct BilaplacianTuning {
   /// Conjugate-gradient iterations at most before sparse LU takes over (the preconditioned
   /// matrix is the identity plus a term of rank at most the boundary vertices next to free
-  /// ones, so CG needs about that many). ≥ 1.
+  /// ones, so CG needs about that many).
   int cg_iterations = 300;
   /// Relative residual of an initial mesh that the paper's iteration refines: its errors
   /// lie far below the iteration's moves, and that iteration is sensitive to its start
-  /// (docs/DESIGN_NOTES.md). In (0, 1) ...
+  /// (docs/DESIGN_NOTES.md) ...
   double initial_mesh_residual = 1e-8;
   /// ... of the base level that Newton's method refines (the same steps and results with
-  /// fewer iterations). In (0, 1) ...
+  /// fewer iterations) ...
   double newton_initial_mesh_residual = 1e-5;
   /// ... and where the linear solution is the result (OuterFairness::Bilaplacian): that of
-  /// a direct solve. In (0, 1).
+  /// a direct solve.
   double exact_residual = 1e-12;
 };
 
 /// fair()'s schedule: levels, budgets and the time limit (fairing.h).
 struct ScheduleTuning {
-  /// The automatic time limit (FairingOptions::time_limit < 0): this many seconds ... ≥ 0.
+  /// The automatic time limit (FairingOptions::time_limit < 0): this many seconds ...
   double time_limit_base = 5.0;
-  /// ... plus this many seconds per free vertex. ≥ 0.
+  /// ... plus this many seconds per free vertex.
   double time_limit_per_free = 2e-4;
   /// Iteration::Auto, where it runs the paper's iteration: Newton's method is tried from the
   /// paper's iterate after this many iterations of the finest level and after each doubling
-  /// (docs/REAL_MESHES.md, "Newton from the paper's iterate"). ≥ 1 ...
+  /// (docs/REAL_MESHES.md, "Newton from the paper's iterate") ...
   int newton_attempt_first = 100;
   /// ... each attempt at most this many Newton steps (or NewtonTuning::patience steps
-  /// without halving its residual). ≥ 1.
+  /// without halving its residual).
   int newton_attempt_steps = 60;
   /// The Newton hierarchy keeps at least this many free vertices on its base level (one
-  /// level below twice this; docs/DESIGN_NOTES.md, "Coarse levels"). ≥ 1.
+  /// level below twice this; docs/DESIGN_NOTES.md, "Coarse levels").
   int newton_min_base_free = 700;
   /// Steps of a coarse level of the Newton hierarchy at most: it only starts the next
-  /// level. ≥ 1.
+  /// level.
   int coarse_newton_steps = 30;
   /// Tolerance of the coarse levels (both hierarchies) relative to FairingOptions::tolerance:
   /// they only start the next level, whose cycles correct the smooth error anyway
-  /// (docs/DESIGN_NOTES.md, "Coarse levels"). ≥ 1.
+  /// (docs/DESIGN_NOTES.md, "Coarse levels").
   double coarse_tolerance = 10.0;
   /// Iterations of a coarse level of the paper's hierarchy at most: decimated coarse levels
   /// can end in a limit cycle far above their tolerance (docs/DESIGN_NOTES.md, "Coarse
-  /// levels"). ≥ 1.
+  /// levels").
   int coarse_iterations = 500;
 };
 
@@ -247,8 +244,8 @@ void for_each_tuning_field(Tuning& t, F&& f) {
 }
 
 /// Checks every field of `tuning` against its range (for_each_tuning_field).
-/// \throw InvalidInputError naming the field ("fair: tuning.newton.patience must be ≥ 1,
-///        got 0").
+/// \throw InvalidInputError naming the field and its range ("fair: tuning.newton.patience
+///        must be in [1, inf), got 0").
 void validate_tuning(const SolverTuning& tuning);
 
 }  // namespace geofair
