@@ -43,7 +43,9 @@ builds one, ``new_folds(...)`` counts folds: for tests to reuse):
   for that mesh (printed at the start).
 - ``blender/...``: primitives made by Blender through the ``bpy`` module (pip bpy; made
   in a subprocess, cached as .npz in --cache; without bpy these cases are skipped with a
-  note), quads triangulated by ``bmesh.ops.triangulate``: the UV sphere (64 segments, 32
+  note), quads triangulated by ``bmesh.ops.triangulate`` and given to ``geofair.fair``
+  with their ``polygon_ids`` (the polygon each triangle came from), as the add-on gives
+  Blender's tessellation: the UV sphere (64 segments, 32
   rings, radius 1) and icospheres of 4, 5, 6 (7 with --large) subdivisions (regular
   meshes), each with the cap above z = 0.25 free and flattened onto the plane z = 0.25
   (G1 normals: the exact sphere normals), radial error reported; Suzanne subdivided twice
@@ -114,7 +116,7 @@ QUICK_DISCS = [(m, 100) for m in ("elk", "bull", "dino", "knot1", "blobby", "cac
 QUICK_DISCS += [("bull", 1000), ("lion-head", 1000)]
 SIZE_CLASSES = ((150, "<=150"), (1500, "<=1.5k"), (15000, "<=15k"), (None, ">15k"))
 DEFAULT_CACHE = "/tmp/geofair_realmesh_cases"
-CORPUS_VERSION = 1  # part of the cached case file names: bump when a case definition changes
+CORPUS_VERSION = 2  # part of the cached case file names: bump when a case definition changes
 
 
 # --------------------------------------------------------------------------------------
@@ -192,21 +194,22 @@ def bpy_available():
 
 
 def blender_mesh(name, cache=DEFAULT_CACHE):
-    """(vertices, triangles) of a Blender primitive; made (all of them at once) by a
-    subprocess that imports bpy, cached as .npz."""
+    """(vertices, triangles, polygon of each triangle) of a Blender primitive; made (all of
+    them at once) by a subprocess that imports bpy, cached as .npz."""
     path = os.path.join(cache, f"mesh_blender_{name}.npz")
-    if not os.path.exists(path):
+    if not os.path.exists(path) or "polygons" not in np.load(path).files:
         os.makedirs(cache, exist_ok=True)
         cmd = [sys.executable, os.path.abspath(__file__), "--make-blender", "--cache", cache]
         run = subprocess.run(cmd, capture_output=True, text=True)
         if run.returncode != 0 or not os.path.exists(path):
             raise RuntimeError(f"making the Blender meshes failed: {run.stderr.strip()[-500:]}")
     with np.load(path) as d:
-        return d["vertices"], d["faces"]
+        return d["vertices"], d["faces"], d["polygons"]
 
 
 def make_blender_meshes(cache):
-    """Runs in its own process: Blender's primitives, triangulated, as .npz."""
+    """Runs in its own process: Blender's primitives, triangulated (with the polygon of each
+    triangle), as .npz."""
     import bpy  # first: the bpy module from PyPI makes bmesh importable
 
     # isort: split
@@ -231,13 +234,17 @@ def make_blender_meshes(cache):
         makers[name]()
         bm = bmesh.new()
         bm.from_mesh(bpy.context.active_object.data)
+        polygon = bm.faces.layers.int.new("polygon")  # the triangles inherit their polygon's value
+        for face in bm.faces:
+            face[polygon] = face.index
         bmesh.ops.triangulate(bm, faces=bm.faces[:])
         bm.verts.index_update()
         v = np.array([x.co[:] for x in bm.verts], float)
         f = np.array([[x.index for x in face.verts] for face in bm.faces], np.int64)
+        p = np.array([face[polygon] for face in bm.faces], np.int64)
         bm.free()
         path = os.path.join(cache, f"mesh_blender_{name}.npz")
-        np.savez(path + ".tmp.npz", vertices=v, faces=f)
+        np.savez(path + ".tmp.npz", vertices=v, faces=f, polygons=p)
         os.replace(path + ".tmp.npz", path)
         print(f"{name}: {len(v)} vertices, {len(f)} triangles", flush=True)
 
@@ -280,9 +287,10 @@ def disc_free(vertices, faces, seed_vertex, target, border=None):
     return disc & ~border, r
 
 
-def submesh(vertices, faces, free, rings=RINGS):
+def submesh(vertices, faces, free, rings=RINGS, polygons=None):
     """The triangles with a free vertex and `rings` rings of triangles around them,
-    reindexed: (vertices, faces, free, original vertex ids)."""
+    reindexed: (vertices, faces, free, original vertex ids), and with ``polygons`` (one id
+    per triangle) the ids of the triangles kept."""
     n = len(vertices)
     sel = free[faces].any(axis=1)
     for _ in range(rings):
@@ -292,6 +300,8 @@ def submesh(vertices, faces, free, rings=RINGS):
     used = np.unique(faces[sel])
     local = np.full(n, -1, np.int64)
     local[used] = np.arange(len(used))
+    if polygons is not None:
+        return vertices[used], local[faces[sel]], free[used], used, polygons[sel]
     return vertices[used], local[faces[sel]], free[used], used
 
 
@@ -445,11 +455,12 @@ def cases(quick=False, large=False):
 
 
 def _mesh(spec, cache):
+    """(vertices, faces, polygon of each triangle or None)."""
     where, name = spec.split(":", 1)
-    return cgal_mesh(name, cache) if where == "cgal" else blender_mesh(name, cache)
+    return (*cgal_mesh(name, cache), None) if where == "cgal" else blender_mesh(name, cache)
 
 
-def _largest_component(vertices, faces):
+def _largest_component(vertices, faces, polygons):
     from scipy.sparse.csgraph import connected_components
 
     _, label = connected_components(_adjacency(faces, len(vertices)), directed=False)
@@ -458,22 +469,27 @@ def _largest_component(vertices, faces):
     used = np.unique(faces[keep])
     local = np.full(len(vertices), -1, np.int64)
     local[used] = np.arange(len(used))
-    return vertices[used], local[faces[keep]]
+    return vertices[used], local[faces[keep]], None if polygons is None else polygons[keep]
 
 
-def _region_case(vertices, faces, free, meta):
-    v, f, fr, ids = submesh(vertices, faces, free)
-    return {"vertices": v, "faces": f, "free": fr, "boundary_normals": g1_normals(v, f, fr), "meta": meta}
+def _region_case(vertices, faces, free, meta, polygons=None):
+    if polygons is None:
+        v, f, fr, _ = submesh(vertices, faces, free)
+    else:
+        v, f, fr, _, polygons = submesh(vertices, faces, free, polygons=polygons)
+    case = {"vertices": v, "faces": f, "free": fr, "boundary_normals": g1_normals(v, f, fr), "meta": meta}
+    return dict(case, polygon_ids=polygons)
 
 
 def load_case(desc, cache=DEFAULT_CACHE):
     """The arrays of a case: dict(vertices (n, 3) float64, faces (m, 3) int64, free (n,)
-    bool, boundary_normals (n, 3) or None, meta: dict). Disc cases take the first valid
+    bool, boundary_normals (n, 3) or None, polygon_ids (m,) int64 or None (Blender's
+    meshes: the polygon each triangle came from), meta: dict). Disc cases take the first valid
     seed candidate from desc.get("attempt", 0) on; meta["invalid"] is the number of
     candidates before it (all invalid)."""
     kind, meta = desc["kind"], {"name": desc["name"], "sphere": False}
     if kind == "disc":
-        v, f = _mesh(desc["mesh"], cache)
+        v, f, polygons = _mesh(desc["mesh"], cache)
         n = len(v)
         border = scenes.border_mask(f, n)
         used = np.zeros(n, bool)
@@ -486,7 +502,8 @@ def load_case(desc, cache=DEFAULT_CACHE):
             free, r = disc_free(v, f, int(order[j]), desc["size"], border)
             problem = "the seed's component is too small" if free is None else None
             if free is not None:
-                case = _region_case(v, f, free, dict(meta, seed_vertex=int(order[j]), radius=r, invalid=j))
+                meta_j = dict(meta, seed_vertex=int(order[j]), radius=r, invalid=j)
+                case = _region_case(v, f, free, meta_j, polygons)
                 problem = region_problem(case["faces"], case["free"])
                 if problem is None and case["boundary_normals"] is not None:
                     bn, g1 = case["boundary_normals"], case["free"][case["faces"]].any(axis=1)
@@ -498,25 +515,26 @@ def load_case(desc, cache=DEFAULT_CACHE):
             reasons.append(f"seed {int(order[j])}: {problem}")
         raise ValueError(f"{desc['name']}: no valid seed in {MAX_CANDIDATES} candidates ({reasons[-1]})")
     if kind == "cap":
-        v, f = _mesh(desc["mesh"], cache)
-        v, f, free, _ = submesh(v, f, v[:, 2] > CAP_Z)
+        v, f, polygons = _mesh(desc["mesh"], cache)
+        v, f, free, _, polygons = submesh(v, f, v[:, 2] > CAP_Z, polygons=polygons)
         normals = v / np.linalg.norm(v, axis=1, keepdims=True)
         v = v.copy()
         v[free, 2] = CAP_Z
         meta.update(sphere=True)
-        return {"vertices": v, "faces": f, "free": free, "boundary_normals": normals, "meta": meta}
+        return {"vertices": v, "faces": f, "free": free, "boundary_normals": normals, "polygon_ids": polygons,
+                "meta": meta}  # fmt: skip
     if kind == "ball":
         import results  # scripts/results.py: ball_region and the paper's regions
 
-        v, f = _mesh(desc["mesh"], cache)
+        v, f, polygons = _mesh(desc["mesh"], cache)
         if desc["mesh"] == "blender:suzanne":
-            v, f = _largest_component(v, f)  # the head, without the eyes
+            v, f, polygons = _largest_component(v, f, polygons)  # the head, without the eyes
             centre, radius = SUZANNE_REGIONS[desc["region"]]
         else:
             centre, radius = getattr(results, desc["region"])
         _, free = results.ball_region(v, f, centre, radius)
         free &= ~scenes.border_mask(f, len(v))
-        return _region_case(v, f, free, meta)
+        return _region_case(v, f, free, meta, polygons)
     if kind == "tetrathing":
         import paper_scenes
 
@@ -526,11 +544,12 @@ def load_case(desc, cache=DEFAULT_CACHE):
 
         d = _cached(cache, f"scene_tetrathing_{desc['n']}", make)
         return {"vertices": d["vertices"], "faces": d["faces"], "free": d["free"], "boundary_normals": d["normals"],
-                "meta": meta}  # fmt: skip
+                "polygon_ids": None, "meta": meta}  # fmt: skip
     if kind == "regular_cap":
         v, f, free, normals = speed.load_scene(cache, desc["n"], regular=True)
         meta.update(sphere=True)
-        return {"vertices": v, "faces": f, "free": free, "boundary_normals": normals, "meta": meta}
+        return {"vertices": v, "faces": f, "free": free, "boundary_normals": normals, "polygon_ids": None,
+                "meta": meta}  # fmt: skip
     raise ValueError(f"unknown case kind {kind!r}")
 
 
@@ -545,10 +564,12 @@ def case_file(desc, cache):
     if not os.path.exists(path):
         case = load_case(desc, cache)
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        bn = case["boundary_normals"]
+        bn, polygons = case["boundary_normals"], case["polygon_ids"]
         tmp = f"{path}.{os.getpid()}.tmp.npz"
         np.savez(tmp, vertices=case["vertices"], faces=case["faces"], free=case["free"],
-                 boundary_normals=np.zeros((0, 3)) if bn is None else bn, meta=json.dumps(case["meta"]))  # fmt: skip
+                 boundary_normals=np.zeros((0, 3)) if bn is None else bn,
+                 polygon_ids=np.zeros(0, np.int64) if polygons is None else polygons,
+                 meta=json.dumps(case["meta"]))  # fmt: skip
         os.replace(tmp, path)
     return path
 
@@ -570,11 +591,12 @@ def child(args):
     import geofair
 
     with np.load(args.child) as d:
-        v, f, free, bn = d["vertices"], d["faces"], d["free"], d["boundary_normals"]
+        v, f, free, bn, polygons = d["vertices"], d["faces"], d["free"], d["boundary_normals"], d["polygon_ids"]
     bn = bn if len(bn) else None
+    polygons = polygons if len(polygons) else None
     t = time.perf_counter()
     try:
-        r = geofair.fair(v, f, free, boundary_normals=bn, inner_fairness=args.inner)
+        r = geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner)
     except ValueError as error:
         out = {"status": "invalid", "message": str(error)}
     except Exception as error:  # geofair.SolverError (a RuntimeError) and anything else

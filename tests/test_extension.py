@@ -119,6 +119,7 @@ def reference(data):
         data["triangles"],
         data["free"],
         boundary_normals=data["boundary_normals"],
+        polygon_ids=data["polygon_ids"],
         inner_fairness=options["inner_fairness"].lower(),
         outer_fairness=options["outer_fairness"].lower(),
         tolerance=options["tolerance"],

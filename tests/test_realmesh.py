@@ -24,6 +24,7 @@ CONVERGING = {
     ("cgal/knot1/100/s0", "uniform"),
     ("cgal/blobby/100/s0", "uniform"),
     ("blender/torus/100/s0", "uniform"),
+    ("blender/uv_sphere_cap", "uniform"),
     ("blender/icosphere4_cap", "uniform"),
     ("blender/icosphere5_cap", "uniform"),
     ("cgal/dino/100/s0", "conformal"),
@@ -62,13 +63,21 @@ def test_real_mesh_region_converges_without_folds(desc, inner):
     case = realmesh.load_case(desc)
     v, f, free = case["vertices"], case["faces"], case["free"]
     limit = CONVERGING_TIME_LIMIT if (desc["name"], inner) in CONVERGING else XFAIL_TIME_LIMIT
-    r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], inner_fairness=inner, time_limit=limit)
+    r = geofair.fair(
+        v,
+        f,
+        free,
+        boundary_normals=case["boundary_normals"],
+        polygon_ids=case["polygon_ids"],
+        inner_fairness=inner,
+        time_limit=limit,
+    )
     assert np.array_equal(r.vertices[~free], v[~free])
     assert np.isfinite(r.vertices).all()
     assert r.converged, r.message
     assert realmesh.new_folds(v, r.vertices, f, free) == 0
     if case["meta"].get("sphere"):
-        # Blender's sphere caps: the library's own boundary normals, the unit sphere.
+        # Blender's sphere caps (the sphere's normals as the G1 normals): the unit sphere.
         assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-3
 
 

@@ -282,6 +282,8 @@ class FairingRun(_WorkerThread):
                 mesh.triangles[self.present_triangles],
                 fairing_region.free,
                 boundary_normals=self.boundary_normals,
+                # Uniform inner fairness over the polygons' edges, not the tessellation's diagonals.
+                polygon_ids=mesh.triangle_face[self.present_triangles],
                 inner_fairness=options.inner_fairness.lower(),
                 outer_fairness=options.outer_fairness.lower(),
                 tolerance=options.tolerance,

@@ -17,8 +17,8 @@ INNER_FAIRNESS_ITEMS = (
     (
         "UNIFORM",
         "Uniform",
-        "Regular vertex distribution: every vertex at the average of its neighbours "
-        "in the tangent plane (uniform Laplacian)",
+        "Regular vertex distribution: every vertex at the average of its neighbours along the mesh's "
+        "edges (not across the diagonals that split quads and n-gons), in the tangent plane (uniform Laplacian)",
     ),
     (
         "CONFORMAL",

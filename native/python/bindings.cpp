@@ -69,6 +69,25 @@ Triangles to_triangles(const py::handle& obj) {
   return F;
 }
 
+std::vector<int> to_polygon_ids(const py::handle& obj, py::ssize_t m) {
+  const py::array a = as_array(obj, "polygon_ids");
+  if (a.ndim() != 1 || a.shape(0) != m)
+    throw InvalidInputError("polygon_ids must have shape (" + std::to_string(m) +
+                            ",) (one per triangle), got " + shape_of(a));
+  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+    throw InvalidInputError("polygon_ids must have an integer dtype, got " + dtype_of(a));
+  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  std::vector<int> ids(m);
+  for (py::ssize_t t = 0; t < m; ++t) {
+    const long long id = c.data()[t];
+    if (id < std::numeric_limits<int>::min() || id > std::numeric_limits<int>::max())
+      throw InvalidInputError("polygon_ids[" + std::to_string(t) + "] = " + std::to_string(id) +
+                              " is out of range");
+    ids[t] = int(id);
+  }
+  return ids;
+}
+
 std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
   const py::array a = as_array(obj, "free");
   if (a.ndim() != 1 || a.shape(0) != n)
@@ -205,7 +224,8 @@ std::string fair_doc(std::string doc) {
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
-                      const py::object& boundary_normals, const std::string& inner_fairness,
+                      const py::object& boundary_normals, const py::object& polygon_ids,
+                      const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
                       int levels, const std::string& iteration, const py::object& progress,
@@ -213,6 +233,8 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces);
   const std::vector<bool> mask = to_mask(free, V.rows());
+  std::optional<std::vector<int>> polygons;
+  if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
   std::optional<Positions> normals;
   if (!boundary_normals.is_none()) {
     normals = to_positions(boundary_normals, "boundary_normals");
@@ -260,7 +282,8 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   FairingResult result;
   {
     py::gil_scoped_release release;
-    result = fair(V, F, mask, normals ? &*normals : nullptr, options);
+    result = fair(V, F, mask, normals ? &*normals : nullptr, options,
+                  polygons ? &*polygons : nullptr);
   }
   if (callback_error) throw *callback_error;
   return result;
@@ -364,8 +387,16 @@ boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices ar
     faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
     least-squares quadric through the fixed vertices around it (error O(h²); earlier
     releases took the one-sided area-weighted normal, O(h)).
+polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
+    triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
+    whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
+    an edge of the mesh. Read by inner_fairness="uniform" only (beyond the paper): its
+    umbrella runs over the polygon mesh's edges, so the vertex distribution of a quad mesh
+    does not depend on which diagonal split each quad. A vertex left with fewer than three
+    such neighbours (or a G1 boundary vertex with none) keeps its whole ring of triangles.
+    The surface (Δ_B H, mean curvature, normals) is always that of the triangles.
 inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
-    vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
+    vertex distribution; over the polygons' edges with polygon_ids); "conformal" (the discrete harmonic map with the cotangent weights
     of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
     that obtuse triangles make negative are clamped to 0, and a vertex whose remaining
     neighbours do not surround it, at a sharp cone point of the input, takes the mean
@@ -454,7 +485,7 @@ Raises
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
-        py::arg("boundary_normals") = py::none(),
+        py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
         py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
         py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
         py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),

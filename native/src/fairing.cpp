@@ -372,13 +372,15 @@ std::string scientific(double x) {
 }
 
 FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                    const Positions* boundary_normals, const FairingOptions& options);
+                    const Positions* boundary_normals, const FairingOptions& options,
+                    const std::vector<int>* polygon_ids);
 
 // The residual (see fair) of the input positions themselves; the largest finite double where
 // it is not finite (degenerate triangles), so that a result never carries NaN or ∞.
 double input_residual(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                      const Positions* boundary_normals, const FairingOptions& options) {
-  FairingRegion region = extract_region(V, F, free, boundary_normals);
+                      const Positions* boundary_normals, const FairingOptions& options,
+                      const std::vector<int>* polygon_ids) {
+  FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids);
   const Positions X0 = gather(V, region.global);
   std::iota(region.global.begin(), region.global.end(), 0);
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
@@ -391,7 +393,8 @@ double input_residual(const Positions& V, const Triangles& F, const std::vector<
 }  // namespace
 
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const Positions* boundary_normals, const FairingOptions& options) {
+                   const Positions* boundary_normals, const FairingOptions& options,
+                   const std::vector<int>* polygon_ids) {
   check_options(options);
   // The time limit stops the iterations through the progress callback, which every
   // iteration of the user's problem calls; the user's callback still sees each call.
@@ -418,14 +421,14 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   };
   FairingResult result;
   try {
-    result = solve(V, F, free, boundary_normals, timed);
+    result = solve(V, F, free, boundary_normals, timed, polygon_ids);
   } catch (const SolverError& error) {
     // Auto's last resort, the paper's iteration, diverged: an unconverged result (the input)
     // rather than an exception; an explicitly chosen iteration raises.
     if (options.iteration != Iteration::Auto) throw;
     result = FairingResult{};
     result.vertices = V;
-    result.residual = input_residual(V, F, free, boundary_normals, options);
+    result.residual = input_residual(V, F, free, boundary_normals, options, polygon_ids);
     result.message = std::string(error.what()) + "; the input is returned unchanged";
     return result;
   }
@@ -599,13 +602,14 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
 }
 
 FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                    const Positions* boundary_normals, const FairingOptions& options) {
+                    const Positions* boundary_normals, const FairingOptions& options,
+                    const std::vector<int>* polygon_ids) {
 #ifdef _OPENMP
   omp_set_dynamic(0);
   omp_set_num_threads(solve_threads());
 #endif
   const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
-  const FairingRegion region = extract_region(V, F, free, boundary_normals);
+  const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids);
 
   const Positions X0 = gather(V, region.global);  // the original mesh
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();

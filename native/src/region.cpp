@@ -8,10 +8,12 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <unordered_map>
 
 namespace geofair {
 namespace {
@@ -282,10 +284,43 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
 
 namespace {
 
+// region.polygon_diagonal: an edge of the region is a diagonal of a polygon where its two
+// triangles of F (inside the region or not) carry the same polygon id.
+void mark_polygon_diagonals(FairingRegion& region, const Triangles& F,
+                            const std::vector<int>& polygon_ids, int n_vertices) {
+  struct EdgeTriangles {
+    int polygon, count;
+    bool same;
+  };
+  std::vector<int> local(n_vertices, -1);
+  for (int i = 0; i < region.n; ++i) local[region.global[i]] = i;
+  std::unordered_map<std::uint64_t, EdgeTriangles> edges;
+  edges.reserve(3 * std::size_t(region.triangles.rows()));
+  auto key = [&](int a, int b) {
+    return std::uint64_t(std::min(a, b)) * std::uint64_t(region.n) + std::uint64_t(std::max(a, b));
+  };
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const int a = local[F(t, c)], b = local[F(t, (c + 1) % 3)];
+      if (a < 0 || b < 0) continue;
+      const int polygon = polygon_ids[t];
+      const auto [it, first] = edges.try_emplace(key(a, b), EdgeTriangles{polygon, 0, true});
+      it->second.same = it->second.same && it->second.polygon == polygon;
+      ++it->second.count;
+    }
+  const OneRings& rings = region.rings;
+  region.polygon_diagonal.assign(rings.ring.size(), 0);
+  for (int i = 0; i < region.n; ++i)
+    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
+      const EdgeTriangles& e = edges.at(key(i, rings.ring[k]));
+      region.polygon_diagonal[k] = e.count == 2 && e.same;
+    }
+}
+
 // The region's vertices (free first, then the G1 boundary), triangles and one-rings, with
 // the checks of each free vertex (in a triangle, not on the border) and finite positions.
 FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                          const char* fn) {
+                          const std::vector<int>* polygon_ids, const char* fn) {
   const int nv = int(V.rows());
   // Region triangles: those with a free vertex. Their fixed vertices are the G1 boundary.
   std::vector<int> region_triangles;
@@ -331,6 +366,7 @@ FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vec
       throw InvalidInputError(prefix(fn) + "free vertex " + std::to_string(region.global[i]) +
                               " lies on the mesh border (its triangles do not close around "
                               "it); fix it or give it as a G1 boundary vertex");
+  if (polygon_ids) mark_polygon_diagonals(region, F, *polygon_ids, nv);
   return region;
 }
 
@@ -392,10 +428,14 @@ void set_g1_normals(FairingRegion& region, const Positions& V, const Triangles& 
 }  // namespace
 
 FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                             const Positions* boundary_normals, bool check_orientation) {
+                             const Positions* boundary_normals, bool check_orientation,
+                             const std::vector<int>* polygon_ids) {
   const char* fn = "fair";
   check_indices(V, F, free, fn);
-  FairingRegion region = region_mesh(V, F, free, fn);
+  if (polygon_ids && Eigen::Index(polygon_ids->size()) != F.rows())
+    throw InvalidInputError(prefix(fn) + "polygon_ids has " + std::to_string(polygon_ids->size()) +
+                            " entries for " + std::to_string(F.rows()) + " triangles");
+  FairingRegion region = region_mesh(V, F, free, polygon_ids, fn);
   set_g1_normals(region, V, F, free, boundary_normals, check_orientation, fn);
   return region;
 }

@@ -75,5 +75,70 @@ TEST(ConformalWeights, MeanValueWeightsWhereThePositiveOnesDoNotSurroundTheVerte
   EXPECT_GT((c - p - t * (q - p)).norm(), 0.1 * rings.mean_neighbour_distance(m.V, 0, Vec3::Zero()));
 }
 
+// A planar grid of quads, each split into two triangles (planar_grid: triangles 2q and
+// 2q + 1 are quad q), free within radius 0.6 of its centre (the G1 boundary then stays off
+// the grid's border).
+Positions region_positions(const Positions& V, const FairingRegion& region) {
+  Positions X(region.n, 3);
+  for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
+  return X;
+}
+
+FairingRegion quad_grid_region(const testing::Mesh& m, const std::vector<int>* polygon_ids) {
+  Positions up = Positions::Zero(m.V.rows(), 3);
+  up.col(2).setOnes();
+  return extract_region(m.V, m.F, testing::inside(m.V, 0.6), &up, true, polygon_ids);
+}
+
+TEST(UniformWeights, OverThePolygonEdgesOfATriangulatedQuadGrid) {
+  const testing::Mesh m = testing::planar_grid(8);
+  std::vector<int> quads(m.F.rows());
+  for (int t = 0; t < int(quads.size()); ++t) quads[t] = t / 2;
+  const FairingRegion region = quad_grid_region(m, &quads);
+  const Positions X0 = region_positions(m.V, region);
+  const InnerFairnessWeights lambda = inner_fairness_weights(region, X0, InnerFairness::Uniform);
+  const double h = 0.25;
+  for (int i = 0; i < region.n_free; ++i) {
+    int kept = 0;
+    for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k) {
+      const double distance = (X0.row(lambda.neighbour[k]) - X0.row(i)).norm();
+      const bool diagonal = distance > 1.2 * h;  // the quad's diagonal is h·√2 long
+      EXPECT_EQ(bool(region.polygon_diagonal[k]), diagonal) << "vertex " << i;
+      EXPECT_DOUBLE_EQ(lambda.weight[k], diagonal ? 0.0 : 0.25) << "vertex " << i;
+      kept += !diagonal;
+    }
+    EXPECT_EQ(kept, 4) << "vertex " << i;
+  }
+  EXPECT_EQ(lambda.row_sum.size(), std::size_t(region.n));  // still symmetric
+
+  // Without polygons: 1/valence over the triangles' edges, diagonals included.
+  const FairingRegion triangles = quad_grid_region(m, nullptr);
+  EXPECT_TRUE(triangles.polygon_diagonal.empty());
+  const InnerFairnessWeights plain = inner_fairness_weights(triangles, X0, InnerFairness::Uniform);
+  for (int i = 0; i < triangles.n_free; ++i)
+    for (int k = plain.offset[i]; k < plain.offset[i + 1]; ++k)
+      EXPECT_DOUBLE_EQ(plain.weight[k], 1.0 / triangles.rings.valence(i));
+}
+
+TEST(UniformWeights, BogusPolygonsKeepTheTriangleUmbrella) {
+  // One "polygon" for all triangles: every interior edge is a diagonal, so every vertex
+  // keeps its whole ring, and the weights are those without polygons.
+  const testing::Mesh m = testing::planar_grid(8);
+  const std::vector<int> one(m.F.rows(), 7);
+  const FairingRegion region = quad_grid_region(m, &one);
+  const FairingRegion plain_region = quad_grid_region(m, nullptr);
+  const Positions X0 = region_positions(m.V, region);
+  const InnerFairnessWeights lambda = inner_fairness_weights(region, X0, InnerFairness::Uniform);
+  const InnerFairnessWeights plain = inner_fairness_weights(plain_region, X0, InnerFairness::Uniform);
+  EXPECT_EQ(lambda.weight, plain.weight);
+  EXPECT_EQ(lambda.row_sum, plain.row_sum);
+}
+
+TEST(UniformWeights, PolygonIdsOfTheWrongSizeAreAnError) {
+  const testing::Mesh m = testing::planar_grid(4);
+  const std::vector<int> short_ids(m.F.rows() - 1, 0);
+  EXPECT_THROW(quad_grid_region(m, &short_ids), InvalidInputError);
+}
+
 }  // namespace
 }  // namespace geofair

@@ -112,6 +112,7 @@ def main():
         after=after,
         vertices=mesh.vertices,
         triangles=mesh.triangles[run.present_triangles],
+        polygon_ids=mesh.triangle_face[run.present_triangles],
         free=fairing_region.free,
         boundary_normals=run.boundary_normals,
         options=json.dumps(dataclasses.asdict(options)),

@@ -107,16 +107,21 @@ struct FairingResult {
 ///                surrounded by triangles (not on the mesh border)
 /// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
 ///                for estimate_boundary_normals (region.h) of the surrounding surface
+/// \param polygon_ids #F polygon each triangle was tessellated from, or nullptr: uniform
+///                inner fairness then runs over the polygon mesh's edges, not the
+///                diagonals that split its polygons (inner_fairness_weights; beyond the
+///                paper). The surface itself is that of the triangles either way.
 ///
 /// The whole call stops unconverged once options.time_limit is spent (result.message). With
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
 ///
 /// \throw InvalidInputError for invalid input (see extract_region) or options (a tuning
-///        field outside its range, validate_tuning); SolverError (not with
+///        field outside its range, validate_tuning; polygon_ids of the wrong size); SolverError (not with
 ///        Auto's iteration, see above) if a
 ///        linear solve fails or the iteration diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const Positions* boundary_normals, const FairingOptions& options);
+                   const Positions* boundary_normals, const FairingOptions& options,
+                   const std::vector<int>* polygon_ids = nullptr);
 
 }  // namespace geofair

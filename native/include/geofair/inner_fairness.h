@@ -41,7 +41,12 @@ struct InnerFairnessWeights {
 /// Inner fairness weights λ of a fairing region (Schneider & Kobbelt 2001, section 7.3) for
 /// all its vertices, free and G1 boundary; X0 #region×3 the ORIGINAL positions.
 ///
-/// Uniform: λ_ij = 1/valence over the one-ring.
+/// Uniform: λ_ij = 1/valence over the one-ring. Where the region carries polygon diagonals
+/// (FairingRegion::polygon_diagonal, a triangulated polygon mesh), over the polygon mesh's
+/// edges instead: λ_ij = 1/m_i for the m_i neighbours not across a diagonal, 0 across one,
+/// so that the vertex distribution does not depend on how the polygons were split into
+/// triangles. A vertex left with no such neighbour, or a free vertex with fewer than three,
+/// keeps its whole ring (row_sum then empty).
 ///
 /// Conformal (the paper's): λ_ij = w_ij / Σ_k w_ik with the cotangent weights
 /// w_ij = cot α_ij + cot β_ij of the mesh X0 itself, per ring slot: a discrete harmonic map

@@ -68,6 +68,11 @@ struct FairingRegion {
   OneRings rings;           ///< one-rings within the region's triangles (local ids)
   Triangles triangles;      ///< region triangles (local ids)
   Positions g1_normals;     ///< (n - n_free)×3 prescribed unit normals of V_B
+  /// Per ring slot of `rings` (empty: no polygons given): 1 where the edge from the vertex
+  /// to that neighbour is a diagonal of one of the caller's polygons (both its triangles
+  /// were tessellated from the same polygon, extract_region's polygon_ids), 0 where it is
+  /// an edge of the polygon mesh.
+  std::vector<std::uint8_t> polygon_diagonal;
 };
 
 /// How the normal of a G1 boundary vertex is estimated from the surface around the region.
@@ -132,11 +137,16 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
 ///        the estimate of estimate_boundary_normals is negative is an error (the normals or
 ///        the faces are flipped); vertices without an estimate are not checked. False for
 ///        callers that pass placeholder normals (the hierarchy alone).
+/// \param polygon_ids  #F polygon of the caller's mesh each triangle was tessellated from
+///        (Blender's loop triangles' polygon_index), or nullptr: fills
+///        region.polygon_diagonal. An edge is a diagonal where its two triangles carry the
+///        same id.
 /// \throw InvalidInputError if no vertex is free, a free vertex is in no triangle or on
 ///        the mesh border, a boundary normal is missing (no surrounding triangle), zero,
 ///        not unit length (|1-|n|| > 1e-6), not finite or pointing against the surface's
-///        orientation, or the topology is invalid.
+///        orientation, or the topology is invalid; if polygon_ids has not #F entries.
 FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                             const Positions* boundary_normals, bool check_orientation = true);
+                             const Positions* boundary_normals, bool check_orientation = true,
+                             const std::vector<int>* polygon_ids = nullptr);
 
 }  // namespace geofair

@@ -131,7 +131,7 @@ def defaults() -> dict:
     per free vertex), and "tuning" (dict: the solvers' numerical choices beyond the paper, by
     dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -151,8 +151,16 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
         least-squares quadric through the fixed vertices around it (error O(h²); earlier
         releases took the one-sided area-weighted normal, O(h)).
+    polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
+        triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
+        whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
+        an edge of the mesh. Read by inner_fairness="uniform" only (beyond the paper): its
+        umbrella runs over the polygon mesh's edges, so the vertex distribution of a quad mesh
+        does not depend on which diagonal split each quad. A vertex left with fewer than three
+        such neighbours (or a G1 boundary vertex with none) keeps its whole ring of triangles.
+        The surface (Δ_B H, mean curvature, normals) is always that of the triangles.
     inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
-        vertex distribution); "conformal" (the discrete harmonic map with the cotangent weights
+        vertex distribution; over the polygons' edges with polygon_ids); "conformal" (the discrete harmonic map with the cotangent weights
         of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
         that obtuse triangles make negative are clamped to 0, and a vertex whose remaining
         neighbours do not surround it, at a sharp cone point of the input, takes the mean
