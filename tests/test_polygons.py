@@ -101,3 +101,36 @@ def test_one_polygon_for_every_triangle_keeps_the_triangle_umbrella():
     same = geofair.fair(flat, faces, free, polygon_ids=np.zeros(len(faces), np.int32), max_iterations=3)
     plain = geofair.fair(flat, faces, free, max_iterations=3)
     np.testing.assert_array_equal(same.vertices, plain.vertices)
+
+
+def random_split_grid(n=10, jitter=0.3, seed=1):
+    """A planar grid of n×n unit-spaced quads, each split along a random diagonal, its
+    interior vertices jittered; (vertices, faces, free, polygon_ids, the regular grid)."""
+    rng = np.random.default_rng(seed)
+    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="xy")
+    grid = np.column_stack([i.ravel(), j.ravel(), np.zeros(i.size)]).astype(float)
+    free = ((i > 0) & (i < n) & (j > 0) & (j < n)).ravel()
+    vertices = grid.copy()
+    vertices[free, :2] += jitter * rng.uniform(-1, 1, (free.sum(), 2))
+    faces, polygon_ids = [], []
+    for q, (x, y) in enumerate((x, y) for y in range(n) for x in range(n)):
+        a, b, c, d = y * (n + 1) + x, y * (n + 1) + x + 1, (y + 1) * (n + 1) + x + 1, (y + 1) * (n + 1) + x
+        faces += [[a, b, c], [a, c, d]] if rng.random() < 0.5 else [[a, b, d], [b, c, d]]
+        polygon_ids += [q, q]
+    return vertices, np.array(faces), free, np.array(polygon_ids), grid
+
+
+def test_relax_inner_fairness_over_polygons_reaches_the_regular_grid():
+    # On a plane the uniform fixed point of the quads' umbrella is the regular grid; the
+    # triangles' umbrella of a random split pulls vertices towards the diagonals' ends.
+    vertices, faces, free, polygon_ids, grid = random_split_grid()
+    normals = np.tile([0.0, 0.0, 1.0], (len(vertices), 1))
+
+    def relaxed(**kw):
+        x = vertices
+        for _ in range(30):
+            x, _ = geofair.relax_inner_fairness(x, faces, free, normals, tangent_planes="fixed", **kw)
+        return x
+
+    assert np.abs(relaxed(polygon_ids=polygon_ids) - grid).max() < 1e-9
+    assert np.abs(relaxed() - grid).max() > 0.05

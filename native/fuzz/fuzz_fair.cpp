@@ -7,7 +7,9 @@
 // Input layout (little-endian bytes, all wrapped into range): n_vertices (1 byte, 3..66),
 // n_triangles (1 byte, 1..128), options (1 byte: inner, outer fairness, levels, normal
 // weighting), then per vertex 3 coordinates (int8 each, scaled by 1/16) and a free flag
-// (1 bit per vertex), then per triangle 3 vertex indices.
+// (1 bit per vertex), then per triangle 3 vertex indices, then per triangle a polygon id
+// (0..15: any grouping of triangles into polygons, bogus ones included; passed to fair only
+// where the first one is below 8).
 #include "geofair/fairing.h"
 #include "geofair/intrinsic_delaunay.h"
 #include "geofair/mean_curvature.h"
@@ -43,6 +45,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   geofair::Triangles F(nf, 3);
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < 3; ++c) F(f, c) = in.next() % nv;
+  std::vector<int> polygons(nf);
+  for (int f = 0; f < nf; ++f) polygons[f] = in.next() % 16;
 
   try {
     const Eigen::VectorXd H = geofair::mean_curvature(V, F, nullptr);
@@ -80,7 +84,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.levels = 1 + (flags >> 2) % 3;
   options.normal_weighting = static_cast<geofair::NormalWeighting>((flags >> 6) % 4);
   try {
-    const geofair::FairingResult r = geofair::fair(V, F, free, nullptr, options);
+    const geofair::FairingResult r =
+        geofair::fair(V, F, free, nullptr, options, polygons[0] < 8 ? &polygons : nullptr);
     if (!r.vertices.allFinite() || !std::isfinite(r.residual)) std::abort();
     for (int v = 0; v < nv; ++v)
       if (!free[v] && (r.vertices.row(v).array() != V.row(v).array()).any()) std::abort();

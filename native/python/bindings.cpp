@@ -554,10 +554,12 @@ void bind_solver_steps(py::module_& m) {
       "relax_inner_fairness",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
          const py::object& normals, const std::string& inner_fairness,
-         const std::string& tangent_planes) {
+         const std::string& tangent_planes, const py::object& polygon_ids) {
         const Positions V = to_positions(vertices, "vertices");
         const Triangles F = to_triangles(faces);
         const std::vector<bool> mask = to_mask(free, V.rows());
+        std::optional<std::vector<int>> polygons;
+        if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
         const Positions N_all = to_positions(normals, "normals");
         if (N_all.rows() != V.rows())
           throw InvalidInputError("normals must have the shape of vertices " +
@@ -570,7 +572,8 @@ void bind_solver_steps(py::module_& m) {
         double scale = 0.0;
         {
           py::gil_scoped_release release;
-          const FairingRegion region = extract_region(V, F, mask, &N_all);
+          const FairingRegion region =
+              extract_region(V, F, mask, &N_all, true, polygons ? &*polygons : nullptr);
           Positions X(region.n, 3), N(region.n, 3);
           for (int i = 0; i < region.n; ++i) {
             X.row(i) = V.row(region.global[i]);
@@ -590,6 +593,7 @@ void bind_solver_steps(py::module_& m) {
       },
       py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("normals"),
       py::arg("inner_fairness") = "uniform", py::arg("tangent_planes") = "turning",
+      py::arg("polygon_ids") = py::none(),
       R"doc(One global tangential solve of inner fairness, the step fair()'s Newton iteration
 repeats (Schneider & Kobbelt 2001, section 7.3's condition, linearized for all free
 vertices at once; beyond the paper): every free vertex moves in its tangent plane so that
@@ -611,6 +615,8 @@ tangent_planes : "turning" (default): Newton's linearization, with the first-ord
     the diagonal blocks); repeated solves converge quadratically. "fixed": the tangent
     planes held fixed (section 7.3's update, all vertices at once); repeated solves
     converge linearly.
+polygon_ids : (m,) integer array or None, as for fair(): uniform weights over the polygon
+    mesh's edges.
 
 Returns
 -------

@@ -304,7 +304,7 @@ void mark_polygon_diagonals(FairingRegion& region, const Triangles& F,
       const int a = local[F(t, c)], b = local[F(t, (c + 1) % 3)];
       if (a < 0 || b < 0) continue;
       const int polygon = polygon_ids[t];
-      const auto [it, first] = edges.try_emplace(key(a, b), EdgeTriangles{polygon, 0, true});
+      const auto it = edges.try_emplace(key(a, b), EdgeTriangles{polygon, 0, true}).first;
       it->second.same = it->second.same && it->second.polygon == polygon;
       ++it->second.count;
     }

@@ -320,7 +320,7 @@ def progressive_mesh(vertices: typing.Any, faces: typing.Any, free: typing.Any, 
     
     Raises ValueError for invalid input.
     """
-def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.Any, normals: typing.Any, inner_fairness: str = 'uniform', tangent_planes: str = 'turning') -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], float]:
+def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.Any, normals: typing.Any, inner_fairness: str = 'uniform', tangent_planes: str = 'turning', polygon_ids: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], float]:
     """
     One global tangential solve of inner fairness, the step fair()'s Newton iteration
     repeats (Schneider & Kobbelt 2001, section 7.3's condition, linearized for all free
@@ -343,6 +343,8 @@ def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.A
         the diagonal blocks); repeated solves converge quadratically. "fixed": the tangent
         planes held fixed (section 7.3's update, all vertices at once); repeated solves
         converge linearly.
+    polygon_ids : (m,) integer array or None, as for fair(): uniform weights over the polygon
+        mesh's edges.
     
     Returns
     -------
