@@ -392,21 +392,21 @@ polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that 
     whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
     an edge of the mesh. Read by inner_fairness="uniform" only (beyond the paper): its
     umbrella runs over the polygon mesh's edges, so the vertex distribution of a quad mesh
-    does not depend on which diagonal split each quad. A vertex left with fewer than three
-    such neighbours (or a G1 boundary vertex with none) keeps its whole ring of triangles.
+    does not depend on which diagonal split each quad. A free vertex left with fewer than
+    three such neighbours (a G1 boundary vertex: with none) keeps its whole ring.
     The surface (Δ_B H, mean curvature, normals) is always that of the triangles.
 inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
-    vertex distribution; over the polygons' edges with polygon_ids); "conformal" (the discrete harmonic map with the cotangent weights
-    of the input mesh: discrete-conformal to it, keeps texture distortion low; weights
-    that obtuse triangles make negative are clamped to 0, and a vertex whose remaining
-    neighbours do not surround it, at a sharp cone point of the input, takes the mean
-    value weights of its ring); or "conformal_intrinsic" (the
-    discrete harmonic map with the cotangent weights of the intrinsic Delaunay
-    triangulation of the input, Bobenko & Springborn 2007: never negative, nothing
-    clamped, so vertices land where the harmonic map puts them also on meshes of obtuse
-    triangles; identical to "conformal" on a mesh that needs no intrinsic flip. On rough
-    inputs (noise as large as the features) it can stall where "conformal" converges; see
-    docs/ACCURACY_AND_SPEED.md, "Negative cotangent weights").
+    vertex distribution; along the polygons' edges with polygon_ids); "conformal" (the
+    discrete harmonic map with the cotangent weights of the input mesh: discrete-conformal
+    to it, keeps texture distortion low; weights that obtuse triangles make negative are
+    clamped to 0, and a vertex whose remaining neighbours do not surround it, at a sharp
+    cone point of the input, takes the mean value weights of its ring); or
+    "conformal_intrinsic" (the discrete harmonic map with the cotangent weights of the
+    intrinsic Delaunay triangulation of the input, Bobenko & Springborn 2007: never
+    negative, nothing clamped, so vertices land where the harmonic map puts them also on
+    meshes of obtuse triangles; identical to "conformal" on a mesh that needs no intrinsic
+    flip. On rough inputs (noise as large as the features) it can stall where "conformal"
+    converges; see docs/ACCURACY_AND_SPEED.md, "Negative cotangent weights").
 outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
     of section 7.4 alone, for comparison).
 normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent

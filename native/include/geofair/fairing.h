@@ -116,10 +116,10 @@ struct FairingResult {
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
 ///
-/// \throw InvalidInputError for invalid input (see extract_region) or options (a tuning
-///        field outside its range, validate_tuning; polygon_ids of the wrong size); SolverError (not with
-///        Auto's iteration, see above) if a
-///        linear solve fails or the iteration diverges (non-finite or exploding residual).
+/// \throw InvalidInputError for invalid input (see extract_region; polygon_ids of the wrong
+///        size) or options (a tuning field outside its range, validate_tuning); SolverError
+///        (not with Auto's iteration, see above) if a linear solve fails or the iteration
+///        diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options,
                    const std::vector<int>* polygon_ids = nullptr);
