@@ -12,7 +12,8 @@ but fails when the environment variable CI is set.
 - check_mesh_data.py: only positions change (shape keys, modifiers, custom normals, UV maps, colour
   attributes byte-identical); Edit and Object Mode store the same shape keys; hidden faces.
 - check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
-- check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion.
+- check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion,
+  Blender's UV sphere with its cap flattened (quads split at random) faired back onto the sphere.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
 - examples/fair_object.py: the documented script runs.
 - check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.

@@ -11,6 +11,8 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
 - UV distortion of a grid whose UV map is the grid stretched by 2 along u:
   σ1/σ2 = 2 on every triangle, read through the add-on's mesh reading in both
   modes.
+- Blender's UV sphere with its cap flattened: faired back onto the sphere with the
+  defaults (uniform inner fairness over the quads' edges).
 """
 
 import pathlib
@@ -224,6 +226,58 @@ def check_uv_distortion(addon):
     bpy.data.objects.remove(grid)
 
 
+def check_flattened_uv_sphere_cap(addon):
+    """Blender's UV sphere (quads, a pole of valence 64): the cap above z = 0.25 flattened and faired
+    with the defaults (uniform inner fairness, the G1 normals estimated from the faces around) comes
+    back onto the unit sphere, also with its quads split along random diagonals: the add-on passes
+    Blender's polygons, so that the split does not decide where the vertices go (without them this
+    split does not converge, 0.3 off the sphere)."""
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=1.0)
+    sphere = bpy.context.active_object
+    # Blender splits a quad along its first corner's diagonal: start half of the quads, picked at
+    # random, one corner later, so that they are split along the other diagonal.
+    mesh = sphere.data
+    verts = np.empty(len(mesh.loops), dtype=np.int64)
+    edges = np.empty(len(mesh.loops), dtype=np.int64)
+    mesh.loops.foreach_get("vertex_index", verts)
+    mesh.loops.foreach_get("edge_index", edges)
+    sizes = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    first = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_start", first)
+    uvs = np.empty(2 * len(mesh.loops), dtype=np.float32)
+    mesh.uv_layers.active.data.foreach_get("uv", uvs)
+    uvs = uvs.reshape(-1, 2)
+    rng = np.random.default_rng(0)
+    for start in first[(sizes == 4) & (rng.random(len(sizes)) < 0.5)]:
+        corners = slice(start, start + 4)
+        for per_corner in (verts, edges, uvs):
+            per_corner[corners] = np.roll(per_corner[corners], -1, axis=0)
+    mesh.loops.foreach_set("vertex_index", verts)
+    mesh.loops.foreach_set("edge_index", edges)
+    mesh.uv_layers.active.data.foreach_set("uv", uvs.ravel())
+    mesh.update()
+    assert not mesh.validate(), "the rotated corners made an invalid mesh"
+    co = positions(sphere)
+    cap = co[:, 2] > 0.25
+    flat = co.copy()
+    flat[cap, 2] = 0.25
+    sphere.data.vertices.foreach_set("co", flat.astype(np.float32).ravel())
+    corners = np.empty(len(sphere.data.loops), dtype=np.int64)
+    sphere.data.loops.foreach_get("vertex_index", corners)
+    starts = np.empty(len(sphere.data.polygons), dtype=np.int64)
+    sphere.data.polygons.foreach_get("loop_start", starts)
+    faces = np.logical_or.reduceat(cap[corners], starts)  # the faces with a vertex above the plane
+    report = addon.fair_object(sphere, region=faces)
+    assert report.converged, report.summary()
+    after = positions(sphere)
+    radial = np.abs(np.linalg.norm(after[cap], axis=1) - 1.0).max()
+    assert radial < 1e-3, radial  # measured 7e-4 (float32 positions); the exact normals give 2e-5
+    assert np.array_equal(after[~cap], flat[~cap])
+    print(f"ok: the flattened UV-sphere cap faired back onto the sphere ({radial:.1e}): {report.summary()}")
+    bpy.data.objects.remove(sphere)
+
+
 def check_without_registering(folder):
     """fair_object needs no registered add-on (a script may just import the package)."""
     addon = sys.modules["geometric_fairing"]
@@ -261,6 +315,7 @@ def main():
     bpy.data.objects.remove(obj)
     check_shape_key(addon)
     check_uv_distortion(addon)
+    check_flattened_uv_sphere_cap(addon)
     disable_addon()
     check_without_registering(folder)
     print("check_scripting: all checks passed")
