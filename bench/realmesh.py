@@ -44,8 +44,8 @@ builds one, ``new_folds(...)`` counts folds: for tests to reuse):
 - ``blender/...``: primitives made by Blender through the ``bpy`` module (pip bpy; made
   in a subprocess, cached as .npz in --cache; without bpy these cases are skipped with a
   note), quads triangulated by ``bmesh.ops.triangulate`` and given to ``geofair.fair``
-  with their ``polygon_ids`` (the polygon each triangle came from), as the add-on gives
-  Blender's tessellation: the UV sphere (64 segments, 32
+  with their ``polygon_ids`` (the polygon each triangle came from), as the add-on passes
+  them: the UV sphere (64 segments, 32
   rings, radius 1) and icospheres of 4, 5, 6 (7 with --large) subdivisions (regular
   meshes), each with the cap above z = 0.25 free and flattened onto the plane z = 0.25
   (G1 normals: the exact sphere normals), radial error reported; Suzanne subdivided twice
@@ -197,7 +197,11 @@ def blender_mesh(name, cache=DEFAULT_CACHE):
     """(vertices, triangles, polygon of each triangle) of a Blender primitive; made (all of
     them at once) by a subprocess that imports bpy, cached as .npz."""
     path = os.path.join(cache, f"mesh_blender_{name}.npz")
-    if not os.path.exists(path) or "polygons" not in np.load(path).files:
+    if os.path.exists(path):
+        with np.load(path) as d:
+            if "polygons" not in d.files:  # made before the polygons were kept
+                os.remove(path)
+    if not os.path.exists(path):
         os.makedirs(cache, exist_ok=True)
         cmd = [sys.executable, os.path.abspath(__file__), "--make-blender", "--cache", cache]
         run = subprocess.run(cmd, capture_output=True, text=True)
