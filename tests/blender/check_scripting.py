@@ -230,8 +230,8 @@ def check_flattened_uv_sphere_cap(addon):
     """Blender's UV sphere (quads, a pole of valence 64): the cap above z = 0.25 flattened and faired
     with the defaults (uniform inner fairness, the G1 normals estimated from the faces around) comes
     back onto the unit sphere, also with its quads split along random diagonals: the add-on passes
-    Blender's polygons, so that the split does not decide where the vertices go (without them this
-    split does not converge, 0.3 off the sphere)."""
+    Blender's polygons, so that the split does not decide where the vertices go (an add-on that
+    does not pass them leaves this mesh unchanged, not converged)."""
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=1.0)
     sphere = bpy.context.active_object
     # Blender splits a quad along its first corner's diagonal: start half of the quads, picked at
@@ -250,9 +250,9 @@ def check_flattened_uv_sphere_cap(addon):
     uvs = uvs.reshape(-1, 2)
     rng = np.random.default_rng(0)
     for start in first[(sizes == 4) & (rng.random(len(sizes)) < 0.5)]:
-        corners = slice(start, start + 4)
+        quad = slice(start, start + 4)
         for per_corner in (verts, edges, uvs):
-            per_corner[corners] = np.roll(per_corner[corners], -1, axis=0)
+            per_corner[quad] = np.roll(per_corner[quad], -1, axis=0)
     mesh.loops.foreach_set("vertex_index", verts)
     mesh.loops.foreach_set("edge_index", edges)
     mesh.uv_layers.active.data.foreach_set("uv", uvs.ravel())
@@ -272,7 +272,7 @@ def check_flattened_uv_sphere_cap(addon):
     assert report.converged, report.summary()
     after = positions(sphere)
     radial = np.abs(np.linalg.norm(after[cap], axis=1) - 1.0).max()
-    assert radial < 1e-3, radial  # measured 7e-4 (float32 positions); the exact normals give 2e-5
+    assert radial < 1e-3, radial  # measured 7.0e-4 (float32 positions)
     assert np.array_equal(after[~cap], flat[~cap])
     print(f"ok: the flattened UV-sphere cap faired back onto the sphere ({radial:.1e}): {report.summary()}")
     bpy.data.objects.remove(sphere)
