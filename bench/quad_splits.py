@@ -9,9 +9,13 @@ split and umbrella: converged, the max distance of the free vertices from the un
 the max distance of each free vertex from where the a–c split puts it (with the same
 umbrella), time.
 
-    PYTHONPATH=build/python python3 bench/quad_splits.py
+    PYTHONPATH=build/python python3 bench/quad_splits.py [--inner conformal]
+
+--inner conformal: the same with conformal inner fairness (which does not read the
+polygons: both umbrella rows are the same solve).
 """
 
+import argparse
 import os
 import sys
 import time
@@ -23,12 +27,16 @@ from test_polygons import fair_flattened_cap, splits  # noqa: E402
 
 
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--inner", default="uniform", choices=("uniform", "conformal"))
+    inner = parser.parse_args().inner
+    print(f"# inner fairness {inner}")
     print(f"{'split':14s} {'umbrella':9s} {'converged':9s} {'radial':>8s} {'vs a-c':>8s} {'time [s]':>8s}")
     for polygons in (False, True):
         reference = None
         for name, split in splits().items():
             t = time.perf_counter()
-            r, free = fair_flattened_cap(split, polygons)
+            r, free = fair_flattened_cap(split, polygons, inner)
             seconds = time.perf_counter() - t
             x = r.vertices[free]
             radial = np.abs(np.linalg.norm(x, axis=1) - 1.0).max()

@@ -45,13 +45,14 @@ def splits():
     }
 
 
-def fair_flattened_cap(split, polygons):
-    """fair()'s result with uniform inner fairness, with or without the polygon ids, and the free mask."""
+def fair_flattened_cap(split, polygons, inner_fairness="uniform"):
+    """fair()'s result, with or without the polygon ids, and the free mask."""
     vertices, faces, polygon_ids = tessellated_uv_sphere(split)
     free = vertices[:, 2] > 0.25
     flat = vertices.copy()
     flat[free, 2] = 0.25
-    r = geofair.fair(flat, faces, free, inner_fairness="uniform", polygon_ids=polygon_ids if polygons else None)
+    polygon_ids = polygon_ids if polygons else None
+    r = geofair.fair(flat, faces, free, inner_fairness=inner_fairness, polygon_ids=polygon_ids)
     return r, free
 
 
