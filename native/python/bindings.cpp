@@ -51,13 +51,18 @@ Positions to_positions(const py::handle& obj, const char* name) {
   return Eigen::Map<const Positions>(c.data(), c.shape(0), 3);
 }
 
+// The integer array `a` (named `name` in the error) as C-ordered long long.
+py::array_t<long long> integer_array(const py::array& a, const char* name) {
+  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+    throw InvalidInputError(std::string(name) + " must have an integer dtype, got " + dtype_of(a));
+  return py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
 Triangles to_triangles(const py::handle& obj) {
   const py::array a = as_array(obj, "faces");
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw InvalidInputError("faces must have shape (m, 3) (triangles), got " + shape_of(a));
-  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
-    throw InvalidInputError("faces must have an integer dtype, got " + dtype_of(a));
-  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  const auto c = integer_array(a, "faces");
   Triangles F(c.shape(0), 3);
   const long long* p = c.data();
   for (py::ssize_t i = 0; i < 3 * c.shape(0); ++i) {
@@ -74,9 +79,7 @@ std::vector<int> to_polygon_ids(const py::handle& obj, py::ssize_t m) {
   if (a.ndim() != 1 || a.shape(0) != m)
     throw InvalidInputError("polygon_ids must have shape (" + std::to_string(m) +
                             ",) (one per triangle), got " + shape_of(a));
-  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
-    throw InvalidInputError("polygon_ids must have an integer dtype, got " + dtype_of(a));
-  const auto c = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  const auto c = integer_array(a, "polygon_ids");
   std::vector<int> ids(m);
   for (py::ssize_t t = 0; t < m; ++t) {
     const long long id = c.data()[t];

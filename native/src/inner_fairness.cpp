@@ -86,37 +86,31 @@ void drop_row_sums_unless_symmetric(InnerFairnessWeights& lambda) {
 
 // Uniform weights over the polygon mesh's edges: λ_ij = 1/m_i over the m_i ring neighbours
 // not across a polygon diagonal. A vertex left with none (or a free vertex with fewer than
-// three: bogus polygon ids, or a vertex inside a polygon's outline) keeps its whole ring.
-InnerFairnessWeights polygon_uniform_weights(const FairingRegion& region) {
+// three: bogus polygon ids, or a vertex inside a polygon's outline) keeps its whole ring,
+// the weights of `uniform` (the triangles' umbrella).
+InnerFairnessWeights polygon_uniform_weights(const FairingRegion& region,
+                                             InnerFairnessWeights uniform) {
   const OneRings& rings = region.rings;
-  InnerFairnessWeights lambda;
-  lambda.offset = rings.offset;
-  lambda.neighbour = rings.ring;
-  lambda.weight.assign(rings.ring.size(), 0.0);
-  lambda.row_sum.assign(region.n, 0.0);
+  const std::vector<std::uint8_t>& diagonal = region.polygon_diagonal;
+  std::vector<std::uint8_t> whole_ring(region.n, 1);
   for (int i = 0; i < region.n; ++i) {
     const int begin = rings.offset[i], m = rings.valence(i);
-    if (m == 0) continue;
     int edges = 0;
-    for (int k = begin; k < begin + m; ++k) edges += !region.polygon_diagonal[k];
-    const bool whole_ring = edges == 0 || (i < region.n_free && edges < 3);
-    for (int k = begin; k < begin + m; ++k)
-      lambda.weight[k] = whole_ring || !region.polygon_diagonal[k] ? 1.0 : 0.0;
-    lambda.row_sum[i] = normalize(lambda.weight.data() + begin, m);
+    for (int k = begin; k < begin + m; ++k) edges += !diagonal[k];
+    if (edges == 0 || (i < region.n_free && edges < 3)) continue;
+    whole_ring[i] = 0;
+    for (int k = begin; k < begin + m; ++k) uniform.weight[k] = diagonal[k] ? 0.0 : 1.0;
+    uniform.row_sum[i] = normalize(uniform.weight.data() + begin, m);
   }
-  // Symmetric (S_i λ_ij = S_j λ_ji) unless a vertex that kept its ring counts a diagonal
-  // that its neighbour leaves out.
-  for (int i = 0; i < region.n && !lambda.row_sum.empty(); ++i)
-    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
-      const int j = rings.ring[k];
-      for (int l = rings.offset[j]; l < rings.offset[j + 1]; ++l)
-        if (rings.ring[l] == i && (lambda.weight[k] > 0.0) != (lambda.weight[l] > 0.0)) {
-          lambda.row_sum.clear();
-          break;
-        }
-      if (lambda.row_sum.empty()) break;
-    }
-  return lambda;
+  // An edge of the polygon mesh counts at both ends; a diagonal only at an end that kept its
+  // ring: symmetric (S_i λ_ij = S_j λ_ji) unless a diagonal joins such an end to another.
+  for (int i = 0; i < region.n && !uniform.row_sum.empty(); ++i)
+    for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+      if (diagonal[k] && whole_ring[i] != whole_ring[rings.ring[k]]) {
+        uniform.row_sum.clear();
+        break;
+      }
+  return uniform;
 }
 
 }  // namespace
@@ -154,7 +148,7 @@ InnerFairnessWeights ring_inner_fairness_weights(const OneRings& rings, const Po
 InnerFairnessWeights inner_fairness_weights(const FairingRegion& region, const Positions& X0,
                                             InnerFairness type) {
   if (type == InnerFairness::Uniform && !region.polygon_diagonal.empty())
-    return polygon_uniform_weights(region);
+    return polygon_uniform_weights(region, ring_inner_fairness_weights(region.rings, X0, type));
   if (type != InnerFairness::ConformalIntrinsic)
     return ring_inner_fairness_weights(region.rings, X0, type);
   int flips = 0;

@@ -285,15 +285,14 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
 namespace {
 
 // region.polygon_diagonal: an edge of the region is a diagonal of a polygon where its two
-// triangles of F (inside the region or not) carry the same polygon id.
+// triangles of F (inside the region or not) carry the same polygon id. `local`: the caller's
+// vertex -> region id, or -1.
 void mark_polygon_diagonals(FairingRegion& region, const Triangles& F,
-                            const std::vector<int>& polygon_ids, int n_vertices) {
+                            const std::vector<int>& polygon_ids, const std::vector<int>& local) {
   struct EdgeTriangles {
     int polygon, count;
     bool same;
   };
-  std::vector<int> local(n_vertices, -1);
-  for (int i = 0; i < region.n; ++i) local[region.global[i]] = i;
   std::unordered_map<std::uint64_t, EdgeTriangles> edges;
   edges.reserve(3 * std::size_t(region.triangles.rows()));
   auto key = [&](int a, int b) {
@@ -366,7 +365,7 @@ FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vec
       throw InvalidInputError(prefix(fn) + "free vertex " + std::to_string(region.global[i]) +
                               " lies on the mesh border (its triangles do not close around "
                               "it); fix it or give it as a G1 boundary vertex");
-  if (polygon_ids) mark_polygon_diagonals(region, F, *polygon_ids, nv);
+  if (polygon_ids) mark_polygon_diagonals(region, F, *polygon_ids, local);
   return region;
 }
 
