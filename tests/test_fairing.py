@@ -132,12 +132,17 @@ def test_time_limit_stops_unconverged(iteration):
     assert np.array_equal(r.vertices[~s.free], v[~s.free]) and np.isfinite(r.vertices).all()
 
 
-def test_time_limit_zero_returns_the_input():
+@pytest.mark.parametrize("levels", [1, 2])
+def test_time_limit_zero_returns_the_input(levels):
+    # Spent before the first level starts: the input, with its own residual (the polls between
+    # the steps that report no progress; FairingOptions::stop_requested).
     s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
     v = s.disturbed(seed=7, amplitude=0.1)
-    r = fair(s, vertices=v, time_limit=0.0, levels=2)
+    r = fair(s, vertices=v, time_limit=0.0, levels=levels)
     assert not r.converged and "time limit" in r.message
     assert np.array_equal(r.vertices, v)
+    assert r.iterations == 0 and r.newton_iterations == 0
+    assert r.residual > 1.0  # the disturbed input's (44), not that of a solver's iterate
 
 
 @pytest.mark.parametrize("limit", [-1.0, float("nan")])

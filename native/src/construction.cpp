@@ -123,7 +123,7 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
   return report;
 }
 
-void Construction::relax_before_steps(Positions& X) {
+bool Construction::relax_before_steps(Positions& X) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
   // do not move vertices tangentially (docs/NEWTON.md, NewtonTuning::relaxations). At least two
@@ -131,11 +131,14 @@ void Construction::relax_before_steps(Positions& X) {
   // stretch limit cuts a solve short. The first holds the tangent planes fixed: far from
   // inner fairness turning planes made the base level of a large hierarchy stall.
   for (int p = 0; p < options_.tuning.newton.relaxations; ++p) {
+    // Each solve factorizes a system of the level's size (seconds at 10^5 vertices).
+    if (options_.stop_requested && options_.stop_requested()) return false;
     evaluate(X);  // the normals at X
     const double scale = tangential_solver_.relax(
         lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
     if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
   }
+  return true;
 }
 
 double Construction::local_step(Positions& X, double residual) {
@@ -205,9 +208,14 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   const OneRings& rings = region_.rings;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
-  if (tangential_) relax_before_steps(X);
+  const bool relaxed = !tangential_ || relax_before_steps(X);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
+  if (!relaxed) {
+    report.residual = residual;
+    report.cancelled = true;
+    return report;
+  }
   if (prolongated) residual = local_step(X, residual);
   const double first_residual = residual;
   double best = residual;

@@ -178,7 +178,22 @@ struct SolveRun {
   FairingResult result;
   Positions X;
   bool cancelled = false;
+  bool unchanged = false;  ///< X is the input: stopped before the finest level's solve
 };
+
+// True where options.stop_requested asks the solve to stop (fair's time limit).
+bool stop_requested(const FairingOptions& options) {
+  return options.stop_requested && options.stop_requested();
+}
+
+// A run stopped before it changed anything: the input, unconverged.
+SolveRun stopped_run(const Positions& X0, Iteration iteration) {
+  SolveRun run;
+  run.result.iteration = iteration;
+  run.X = X0;
+  run.cancelled = run.unchanged = true;
+  return run;
+}
 
 // Newton's method level by level on a progressive mesh of the region (section 7.4's
 // nested iteration with Newton steps as the solver of every level): the base level from
@@ -220,6 +235,12 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
   CoarseSpace coarser_space;  // the coarse space of level l - 1 (from level l - 2), if any
   const int n_levels = int(hierarchy.triangles.size());
   for (int l = 0; l < n_levels; ++l) {
+    if (stop_requested(options)) {  // before the level's initial mesh: the input unchanged
+      run.cancelled = run.unchanged = true;
+      result.converged = false;
+      solution.X = X0;
+      break;
+    }
     const bool finest = l + 1 == n_levels;
     const FairingRegion& lr =
         regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
@@ -281,7 +302,7 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
     if (report.cancelled) {
       // Cancelled on a coarse level: the input unchanged rather than a mix of levels.
       run.cancelled = true;
-      if (!finest) solution.X = X0;
+      if (!finest) solution.X = X0, run.unchanged = true;
       break;
     }
   }
@@ -397,7 +418,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
                    const std::vector<int>* polygon_ids) {
   check_options(options);
   // The time limit stops the iterations through the progress callback, which every
-  // iteration of the user's problem calls; the user's callback still sees each call.
+  // iteration of the user's problem calls (the user's callback still sees each call), and
+  // the steps in between through stop_requested.
   const auto start = std::chrono::steady_clock::now();
   const long n_free = std::count(free.begin(), free.end(), true);
   const double limit =
@@ -418,6 +440,19 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       return false;
     }
     return true;
+  };
+  // The long steps without progress reports (a level's initial mesh, the relaxations, the
+  // next attempt) poll the time limit too.
+  timed.stop_requested = [&] {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
+      timed_out = true;
+      return true;
+    }
+    if (options.stop_requested && options.stop_requested()) {
+      user_cancelled = true;
+      return true;
+    }
+    return false;
   };
   FairingResult result;
   try {
@@ -457,8 +492,9 @@ namespace {
 
 // Newton's method as Auto and Newton run it: on the hierarchy of newton_levels levels (or
 // options.levels), then, if a level fails there, on the finest level alone. True with the
-// run in `out` where it converged or was cancelled (and with Newton, where the last attempt
-// ended); false where Auto goes on with the paper's iteration.
+// run in `out` where it converged or was cancelled, also by options.stop_requested before
+// an attempt (and with Newton, where the last attempt ended); false where Auto goes on with
+// the paper's iteration.
 // \throw SolverError with Iteration::Newton if the last attempt diverges.
 bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_level,
                      const Positions& X0, const InnerFairnessWeights& lambda_finest,
@@ -471,6 +507,11 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
       levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
   for (const int attempt : attempts) {
     const bool last = attempt == attempts.back();
+    if (attempt != attempts.front() && stop_requested(options)) {
+      out = stopped_run(X0, Iteration::Newton);
+      out.result.newton_iterations = newton_iterations;
+      return true;
+    }
     SolveRun run;
     bool failed = false;
     try {
@@ -523,7 +564,14 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
   Multigrid multigrid(levels_built, options.tuning.multigrid);
   NewtonAttempts attempts(finest_level, lambda_finest, options, L);
   const int n_levels = int(hierarchy.triangles.size());
+  bool unchanged = false;
   for (int l = 0; l < n_levels; ++l) {
+    if (stop_requested(options)) {  // before the level's initial mesh: the input unchanged
+      result.converged = false;
+      solution.X = X0;
+      unchanged = true;
+      break;
+    }
     const bool finest = l + 1 == n_levels;
     MultigridLevel& level = levels_built.emplace_back();
     level.region = finest ? finest_level : level_region(region, hierarchy.triangles[l]);
@@ -598,6 +646,7 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
   SolveRun run;
   run.result = std::move(result);
   run.X = std::move(solution.X);
+  run.unchanged = unchanged;
   return run;
 }
 
@@ -632,9 +681,17 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
                       options.iteration != Iteration::Paper;
   if (!(newton && solve_by_newton(region, finest_level, X0, lambda_finest, options, L,
                                   newton_iterations, phases, run)))
-    run = paper_multigrid(region, finest_level, X0, lambda_finest, options, L,
-                          newton_iterations, phases);
+    run = newton && stop_requested(options)
+              ? stopped_run(X0, Iteration::Newton)
+              : paper_multigrid(region, finest_level, X0, lambda_finest, options, L,
+                                newton_iterations, phases);
   FairingResult& result = run.result;
+  if (run.unchanged) {  // the residual of what is returned: the input's
+    result.newton_iterations = newton_iterations;
+    result.residual =
+        Construction(finest_level, lambda_finest, options, L).evaluate(X0);
+    if (!std::isfinite(result.residual)) result.residual = std::numeric_limits<double>::max();
+  }
   result.phase_seconds = std::move(phases);
   result.vertices = V;
   for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = run.X.row(i);

@@ -76,7 +76,8 @@ class Construction {
   /// `polishes` times (all of options.tuning.newton).
   /// Stops like run(), and also when the residual has not halved in `patience`
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
-  /// linearization can fail to contract.
+  /// linearization can fail to contract; report.cancelled where options.stop_requested
+  /// stopped the tangential solves before the first step.
   /// \throw SolverError if the iteration diverges or the Newton system is singular.
   ///
   /// With `prolongated` (X prolongated from a coarser level, multigrid.h) one local step of
@@ -135,12 +136,13 @@ class Construction {
   Eigen::VectorXd target_curvatures(bool global);
   void curvatures(const Positions& X);
   void curvatures(const Positions& X, Positions& N, Eigen::VectorXd& H) const;
-  // The parts of run_newton: the tangential solves towards inner fairness before the steps;
+  // The parts of run_newton: the tangential solves towards inner fairness before the steps
+  // (false if options.stop_requested stopped them);
   // the local step after a prolongation, kept if it lowers `residual` (returns the residual
   // of X); one polish at a converged shape (returns the largest move in mean distances to
   // the neighbours); the continuation's M_i = Σ_j |w_ij| / h_i² (#V_I, 1/length²); and
   // J v by a forward difference of the defects d0 at X, everything recomputed at X + ε v N.
-  void relax_before_steps(Positions& X);
+  bool relax_before_steps(Positions& X);
   double local_step(Positions& X, double residual);
   double polish(Positions& X);
   void shift_mass(const Positions& X, Eigen::VectorXd& mass) const;

@@ -127,6 +127,11 @@ struct FairingOptions {
   double time_limit = -1.0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
+  /// Polled between the long steps that report no progress (a level's linear initial mesh,
+  /// each tangential relaxation before Newton's steps, the next attempt after a failed
+  /// one); returning true stops the solve there unconverged, as a progress callback
+  /// returning false does. fair() polls its time limit through it; may be empty.
+  std::function<bool()> stop_requested;
   /// The solvers' numerical choices beyond the paper's options (tuning.h).
   SolverTuning tuning;
 };
