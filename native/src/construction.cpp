@@ -202,7 +202,8 @@ void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d
 
 IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
                                          int iteration_offset, bool polish_at_convergence,
-                                         bool prolongated, int patience) {
+                                         bool prolongated, int patience,
+                                         bool from_initial_mesh) {
   const NewtonTuning& newton = options_.tuning.newton;
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
@@ -250,7 +251,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     report.residual = residual;
     report.converged = residual <= tolerance;
     if (residual < 0.5 * best) best = residual, best_at = k;
-    report.stalled = k - best_at >= patience;
+    report.stalled = k - best_at >= patience ||
+                     (from_initial_mesh && k == newton.far_steps && current_merit > newton.far_merit);
     if (report.converged || report.stalled || k >= max_iterations) break;
     if (options_.progress && !source_ && !options_.progress(iteration_offset + k, residual)) {
       report.cancelled = true;

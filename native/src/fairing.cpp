@@ -278,7 +278,8 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
                               : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
-                                finest ? tuning.newton.patience : tuning.newton.coarse_patience);
+                                finest ? tuning.newton.patience : tuning.newton.coarse_patience,
+                                /*from_initial_mesh=*/l == 0);
     laps.lap();
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
     phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);

@@ -91,10 +91,11 @@ class Construction {
   ///
   /// `patience`: the number of steps without a halving of the residual after which the run
   /// stops as stalled (NewtonTuning::patience; coarse levels of a hierarchy
-  /// coarse_patience).
+  /// coarse_patience). `from_initial_mesh` (X is a linear initial mesh): the run also stops
+  /// as stalled where its merit is above NewtonTuning::far_merit after far_steps steps.
   IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
                              int iteration_offset, bool polish_at_convergence, bool prolongated,
-                             int patience);
+                             int patience, bool from_initial_mesh = false);
 
   /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
   /// preconditioner (NewtonStep::analyze), which depends only on the mesh. fair() calls it

@@ -25,6 +25,12 @@ struct NewtonTuning {
   /// stopped making progress is abandoned for the single level (docs/REAL_MESHES.md,
   /// "Regular caps").
   int coarse_patience = 8;
+  /// A run from a linear initial mesh whose merit (Construction::merit) is still above
+  /// far_merit after far_steps steps stops as stalled: that start lies outside Newton's
+  /// region of convergence, and the steps up to `patience` would only delay the paper's
+  /// iteration (docs/NEWTON.md, "NewtonTuning::far_merit").
+  int far_steps = 5;
+  double far_merit = 1.0;
   /// Largest move of a vertex in one step, in mean distances to its neighbours.
   double max_step = 4.0;
   /// Tangential solves towards inner fairness before the first step, at most: more than one
@@ -196,6 +202,8 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("paper.tangential_iterations", t.paper.tangential_iterations, 1, inf, false, false);
   f("newton.patience", t.newton.patience, 1, inf, false, false);
   f("newton.coarse_patience", t.newton.coarse_patience, 1, inf, false, false);
+  f("newton.far_steps", t.newton.far_steps, 1, inf, false, false);
+  f("newton.far_merit", t.newton.far_merit, 0, inf, true, false);
   f("newton.max_step", t.newton.max_step, 0, inf, true, false);
   f("newton.relaxations", t.newton.relaxations, 1, inf, false, false);
   f("newton.polishes", t.newton.polishes, 0, inf, false, false);
