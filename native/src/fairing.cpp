@@ -431,11 +431,13 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
           : std::numeric_limits<double>::infinity();
   bool timed_out = false, user_cancelled = false;
   FairingOptions timed = options;
+  auto spent = [&] {
+    timed_out = timed_out ||
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit;
+    return timed_out;
+  };
   timed.progress = [&](int k, double residual) {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
-      timed_out = true;
-      return false;
-    }
+    if (spent()) return false;
     if (options.progress && !options.progress(k, residual)) {
       user_cancelled = true;
       return false;
@@ -445,10 +447,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   // The long steps without progress reports (a level's initial mesh, the relaxations, the
   // next attempt) poll the time limit too.
   timed.stop_requested = [&] {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
-      timed_out = true;
-      return true;
-    }
+    if (spent()) return true;
     if (options.stop_requested && options.stop_requested()) {
       user_cancelled = true;
       return true;
