@@ -397,6 +397,14 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
                     const Positions* boundary_normals, const FairingOptions& options,
                     const std::vector<int>* polygon_ids);
 
+// The residual (see fair) of X on `level` (region-local ids), or the largest finite double
+// where it is not finite (degenerate triangles), so that a result never carries NaN or ∞.
+double finite_residual(const FairingRegion& level, const InnerFairnessWeights& lambda,
+                       const FairingOptions& options, double L, const Positions& X) {
+  const double residual = Construction(level, lambda, options, L).evaluate(X);
+  return std::isfinite(residual) ? residual : std::numeric_limits<double>::max();
+}
+
 // The residual (see fair) of the input positions themselves; the largest finite double where
 // it is not finite (degenerate triangles), so that a result never carries NaN or ∞.
 double input_residual(const Positions& V, const Triangles& F, const std::vector<bool>& free,
@@ -406,10 +414,8 @@ double input_residual(const Positions& V, const Triangles& F, const std::vector<
   const Positions X0 = gather(V, region.global);
   std::iota(region.global.begin(), region.global.end(), 0);
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
-  Construction construction(region, inner_fairness_weights(region, X0, options.inner_fairness),
-                            options, L);
-  const double residual = construction.evaluate(X0);
-  return std::isfinite(residual) ? residual : std::numeric_limits<double>::max();
+  return finite_residual(region, inner_fairness_weights(region, X0, options.inner_fairness),
+                         options, L, X0);
 }
 
 }  // namespace
@@ -688,9 +694,7 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   FairingResult& result = run.result;
   if (run.unchanged) {  // the residual of what is returned: the input's
     result.newton_iterations = newton_iterations;
-    result.residual =
-        Construction(finest_level, lambda_finest, options, L).evaluate(X0);
-    if (!std::isfinite(result.residual)) result.residual = std::numeric_limits<double>::max();
+    result.residual = finite_residual(finest_level, lambda_finest, options, L, X0);
   }
   result.phase_seconds = std::move(phases);
   result.vertices = V;
