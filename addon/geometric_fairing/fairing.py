@@ -85,6 +85,9 @@ class FairingReport:
         iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
         iteration: the solver that produced the result, "newton" or "paper" (``iteration="AUTO"``
             picks one; "" when nothing was solved).
+        new_folds: edges with a free vertex whose two triangles the solver's result flips
+            over (faces pointing apart that did not before; ``geofair.FairingResult.new_folds``),
+            also where that result was not written.
         timings: wall time in seconds of the steps of the run: ``read`` (mesh to numpy),
             ``region``, ``uv`` (UV distortion before and after, with ``uv_read``, reading
             the UVs), ``solve``, ``write``.
@@ -108,6 +111,7 @@ class FairingReport:
     timings: dict = field(default_factory=dict)
     discarded: bool = False
     tolerance: float = float("nan")
+    new_folds: int = 0
 
     @property
     def changed(self):
@@ -132,7 +136,10 @@ class FairingReport:
             return text + ", cancelled: mesh unchanged"
         if self.discarded:
             return text + ", NOT converged: mesh unchanged"
-        return text + (", converged" if self.converged else ", NOT converged, result kept")
+        text += ", converged" if self.converged else ", NOT converged, result kept"
+        if self.new_folds:
+            text += f", but {self.new_folds} edge{'s' if self.new_folds > 1 else ''} folded over (triangles flipped)"
+        return text
 
 
 def short_number(x):
@@ -373,6 +380,7 @@ class FairingRun(_WorkerThread):
             timings=dict(self.timings),
             discarded=discarded,
             tolerance=float(self.options.tolerance),
+            new_folds=int(getattr(result, "new_folds", 0)),
         )
 
     def _uv_distortion(self, positions):

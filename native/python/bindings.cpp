@@ -342,6 +342,11 @@ void bind_result(py::module_& m) {
       .def_readonly("newton_iterations", &FairingResult::newton_iterations,
                     "Newton steps performed, including an attempt that iteration=\"auto\" "
                     "abandoned for the paper's iteration.")
+      .def_readonly("new_folds", &FairingResult::new_folds,
+                    "Edges with a free vertex whose two triangles face apart (normals with a "
+                    "negative dot product) in .vertices and did not in the input: triangles "
+                    "the result flips over. A converged result can have them where the G1 "
+                    "data turn faster than the mesh resolves; .message then says so.")
       .def_readonly("phase_seconds", &FairingResult::phase_seconds,
                     "Wall-clock seconds of the solve's phases, a list of (name, seconds) in "
                     "the order they ran: \"hierarchy\", then per level l (0 = coarsest) "
@@ -480,8 +485,8 @@ Returns
 -------
 FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
 .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-.iteration ("newton" or "paper"), .newton_iterations and .phase_seconds (wall-clock seconds
-per phase, for profiling).
+.iteration ("newton" or "paper"), .newton_iterations, .new_folds (edges whose triangles the
+result flips over) and .phase_seconds (wall-clock seconds per phase, for profiling).
 
 Raises
 ------

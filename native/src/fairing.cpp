@@ -485,6 +485,11 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   else
     result.message = "did not converge within max_iterations (" + figures + ")";
   if (!how.empty()) result.message += "; " + how;
+  result.new_folds = count_new_folds(V, result.vertices, F, free);
+  if (result.new_folds > 0)
+    result.message += "; " + std::to_string(result.new_folds) +
+                      (result.new_folds == 1 ? " edge folds" : " edges fold") +
+                      " over that did not in the input (triangles flipped)";
   // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
   // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
   if (!result.converged && !user_cancelled && options.inner_fairness == InnerFairness::Uniform &&

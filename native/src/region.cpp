@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <unordered_map>
 
 namespace geofair {
@@ -437,6 +438,36 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
   FairingRegion region = region_mesh(V, F, free, polygon_ids, fn);
   set_g1_normals(region, V, F, free, boundary_normals, check_orientation, fn);
   return region;
+}
+
+int count_new_folds(const Positions& before, const Positions& after, const Triangles& F,
+                    const std::vector<bool>& free) {
+  // (edge key, triangle) of every edge with a free endpoint, sorted so that an edge's
+  // triangles are adjacent.
+  const long long n = before.rows();
+  std::vector<std::pair<long long, int>> edges;
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (free[a] || free[b]) edges.emplace_back(std::min(a, b) * n + std::max(a, b), f);
+    }
+  std::sort(edges.begin(), edges.end());
+  auto normal = [&](const Positions& X, int f) -> Vec3 {
+    const Vec3 p = X.row(F(f, 0)).transpose();
+    return (Vec3(X.row(F(f, 1)).transpose()) - p).cross(Vec3(X.row(F(f, 2)).transpose()) - p);
+  };
+  int folds = 0;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 2) {
+      const int f = edges[i].second, g = edges[i + 1].second;
+      folds += normal(after, f).dot(normal(after, g)) < 0.0 &&
+               !(normal(before, f).dot(normal(before, g)) < 0.0);
+    }
+    i = j;
+  }
+  return folds;
 }
 
 }  // namespace geofair

@@ -9,6 +9,8 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
   tolerance in the error, the mesh byte-identical and no undo step; with *Keep Unconverged
   Result* ticked the mesh changes and a warning gives the residual. ``fair_object`` raises
   ``NotConvergedError`` unless ``keep_unconverged=True``.
+- A converged result that flips triangles over (the count simulated by a module whose
+  ``fair`` reports it): written, with a warning, and the count in the panel's figures.
 - A failure inside the compiled solver, simulated by replacing the loaded module's
   ``fair`` with one that raises (RuntimeError, ValueError, and an unexpected
   MemoryError), and a real one (a NaN vertex that the native code rejects): the
@@ -284,6 +286,52 @@ def check_unconverged(addon, obj):
     assert rna.name == "Keep Unconverged Result" and rna.default is False, (rna.name, rna.default)
 
 
+class FoldingModule:
+    """Stands in for the loaded ``geofair`` module: the real ``fair``, its result reporting ``folds`` flipped edges."""
+
+    def __init__(self, real, folds):
+        self.real, self.folds = real, folds
+
+    def fair(self, *args, **kwargs):
+        result = self.real.fair(*args, **kwargs)
+        names = ("vertices", "converged", "iterations", "iterations_per_level", "vertices_per_level", "residual",
+                 "message", "iteration", "newton_iterations", "phase_seconds")  # fmt: skip
+        return types.SimpleNamespace(**{name: getattr(result, name) for name in names}, new_folds=self.folds)
+
+    def __getattr__(self, name):
+        return getattr(self.real, name)
+
+
+def check_converged_with_folds(addon, obj):
+    """A converged result that flips triangles over is written, with a warning and the count in the panel."""
+    select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
+    bpy.ops.ed.undo_push(message="selected the brow (folds)")
+    before = edit_state(obj)
+    result, report = run_fairing(inner_fairness="CONFORMAL")
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert result == {"FINISHED"} and last.status == "CONVERGED" and last.new_folds == 0, (result, report)
+    assert "folded" not in last.message, last.message
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before
+
+    real = addon.native.geofair
+    addon.native.geofair = FoldingModule(real, 3)
+    try:
+        with printed() as output:
+            result, report = run_fairing(inner_fairness="CONFORMAL")
+    finally:
+        addon.native.geofair = real
+    assert result == {"FINISHED"} and report == "", (result, report)
+    assert edit_state(obj)["co"] != before["co"], "the converged result was not written"
+    assert last.status == "CONVERGED" and last.new_folds == 3, (last.status, last.new_folds)
+    assert last.message.endswith(", converged, but 3 edges folded over (triangles flipped)"), last.message
+    expected = f"Warning: Geometric Fairing: {last.message}"
+    assert expected in output[0].splitlines(), (expected, output)
+    print(f"ok: a converged result with folds -> FINISHED, written, warning: {expected}")
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before
+
+
 def check_fair_object_unconverged(addon, obj):
     """fair_object raises NotConvergedError (mesh unchanged) unless keep_unconverged=True."""
     bpy.ops.object.mode_set(mode="OBJECT")
@@ -384,6 +432,7 @@ def main():
     bpy.ops.object.mode_set(mode="EDIT")
     check_bad_selections(obj)
     check_unconverged(addon, obj)
+    check_converged_with_folds(addon, obj)
     check_solver_failure(
         addon, obj, RuntimeError("fair: diverged (simulated)"), "Error: Geometric Fairing: fair: diverged (simulated)"
     )

@@ -45,6 +45,11 @@ class FairingResult:
         How the solve ended, one sentence: "converged (...)" or why not (the time limit, max_iterations, cancelled), with the residual and tolerance.
         """
     @property
+    def new_folds(self) -> int:
+        """
+        Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices and did not in the input: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves; .message then says so.
+        """
+    @property
     def newton_iterations(self) -> int:
         """
         Newton steps performed, including an attempt that iteration="auto" abandoned for the paper's iteration.
@@ -241,8 +246,8 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
     -------
     FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
     .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-    .iteration ("newton" or "paper"), .newton_iterations and .phase_seconds (wall-clock seconds
-    per phase, for profiling).
+    .iteration ("newton" or "paper"), .newton_iterations, .new_folds (edges whose triangles the
+    result flips over) and .phase_seconds (wall-clock seconds per phase, for profiling).
     
     Raises
     ------
