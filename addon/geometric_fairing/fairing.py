@@ -85,9 +85,9 @@ class FairingReport:
         iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
         iteration: the solver that produced the result, "newton" or "paper" (``iteration="AUTO"``
             picks one; "" when nothing was solved).
-        new_folds: edges with a free vertex whose two triangles the solver's result flips
-            over (faces pointing apart that did not before; ``geofair.FairingResult.new_folds``),
-            also where that result was not written.
+        folds: edges with a free vertex whose two triangles face apart in the solver's
+            result (``geofair.FairingResult.folds``), also where that result was not written;
+            new_folds: those of them that did not in the mesh before.
         timings: wall time in seconds of the steps of the run: ``read`` (mesh to numpy),
             ``region``, ``uv`` (UV distortion before and after, with ``uv_read``, reading
             the UVs), ``solve``, ``write``.
@@ -111,6 +111,7 @@ class FairingReport:
     timings: dict = field(default_factory=dict)
     discarded: bool = False
     tolerance: float = float("nan")
+    folds: int = 0
     new_folds: int = 0
 
     @property
@@ -137,8 +138,8 @@ class FairingReport:
         if self.discarded:
             return text + ", NOT converged: mesh unchanged"
         text += ", converged" if self.converged else ", NOT converged, result kept"
-        if self.new_folds:
-            text += f", but {self.new_folds} edge{'s' if self.new_folds > 1 else ''} folded over (triangles flipped)"
+        if self.folds:
+            text += f", but {self.folds} edge{'s' if self.folds > 1 else ''} folded over (triangles flipped)"
         return text
 
 
@@ -380,6 +381,7 @@ class FairingRun(_WorkerThread):
             timings=dict(self.timings),
             discarded=discarded,
             tolerance=float(self.options.tolerance),
+            folds=int(getattr(result, "folds", 0)),
             new_folds=int(getattr(result, "new_folds", 0)),
         )
 

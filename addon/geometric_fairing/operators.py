@@ -253,7 +253,7 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
             self.report({"WARNING"}, f"Geometric Fairing: {message}")
         elif all(report.converged for report in reports):
             # A converged result that flips triangles over is written, with a warning (Ctrl+Z undoes it).
-            folded = any(report.new_folds for report in reports)
+            folded = any(report.folds for report in reports)
             self.report({"WARNING" if folded else "INFO"}, f"Geometric Fairing: {message}")
         else:
             residual = max(report.residual for report in reports if not report.converged)

@@ -306,8 +306,8 @@ RUN_FIGURES = (
     RunFigure("residual", "Residual", float, "The last normalized residual of Δ_B H = 0 (dimensionless); "
               "the largest of several objects", max, "{:.2g}".format),
     RunFigure("seconds", "Time", float, "Wall time of the solves, seconds", sum, "{:.2f} s".format),
-    RunFigure("new_folds", "Folded edges", int, "Edges whose two triangles the result flips over (faces pointing "
-              "apart that did not before)", sum, shown=bool),
+    RunFigure("folds", "Folded edges", int, "Edges of the free region whose two triangles face apart after the run "
+              "(triangles flipped over)", sum, shown=bool),
     RunFigure("iteration", "Solver", str, "The solver that produced the result: newton or paper (empty: none)",
               _solvers, str.title, bool),
 )

@@ -342,11 +342,13 @@ void bind_result(py::module_& m) {
       .def_readonly("newton_iterations", &FairingResult::newton_iterations,
                     "Newton steps performed, including an attempt that iteration=\"auto\" "
                     "abandoned for the paper's iteration.")
-      .def_readonly("new_folds", &FairingResult::new_folds,
+      .def_readonly("folds", &FairingResult::folds,
                     "Edges with a free vertex whose two triangles face apart (normals with a "
-                    "negative dot product) in .vertices and did not in the input: triangles "
-                    "the result flips over. A converged result can have them where the G1 "
-                    "data turn faster than the mesh resolves; .message then says so.")
+                    "negative dot product) in .vertices: triangles the result flips over. A "
+                    "converged result can have them where the G1 data turn faster than the "
+                    "mesh resolves, or keep them from a folded input; .message then says so.")
+      .def_readonly("new_folds", &FairingResult::new_folds,
+                    "Those of .folds whose two triangles did not face apart in the input.")
       .def_readonly("phase_seconds", &FairingResult::phase_seconds,
                     "Wall-clock seconds of the solve's phases, a list of (name, seconds) in "
                     "the order they ran: \"hierarchy\", then per level l (0 = coarsest) "
@@ -485,8 +487,9 @@ Returns
 -------
 FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
 .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-.iteration ("newton" or "paper"), .newton_iterations, .new_folds (edges whose triangles the
-result flips over) and .phase_seconds (wall-clock seconds per phase, for profiling).
+.iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
+triangles the result flips over, and those not folded in the input) and .phase_seconds
+(wall-clock seconds per phase, for profiling).
 
 Raises
 ------

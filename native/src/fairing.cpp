@@ -485,11 +485,14 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   else
     result.message = "did not converge within max_iterations (" + figures + ")";
   if (!how.empty()) result.message += "; " + how;
-  result.new_folds = count_new_folds(V, result.vertices, F, free);
-  if (result.new_folds > 0)
-    result.message += "; " + std::to_string(result.new_folds) +
-                      (result.new_folds == 1 ? " edge folds" : " edges fold") +
-                      " over that did not in the input (triangles flipped)";
+  const FoldCount folds = count_folds(V, result.vertices, F, free);
+  result.folds = folds.folds;
+  result.new_folds = folds.new_folds;
+  if (folds.folds > 0)
+    result.message += "; " + std::to_string(folds.folds) +
+                      (folds.folds == 1 ? " edge folds" : " edges fold") +
+                      " over (triangles flipped), " + std::to_string(folds.new_folds) +
+                      " of them not in the input";
   // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
   // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
   if (!result.converged && !user_cancelled && options.inner_fairness == InnerFairness::Uniform &&

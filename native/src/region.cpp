@@ -440,8 +440,8 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
   return region;
 }
 
-int count_new_folds(const Positions& before, const Positions& after, const Triangles& F,
-                    const std::vector<bool>& free) {
+FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
+                      const std::vector<bool>& free) {
   // (edge key, triangle) of every edge with a free endpoint, sorted so that an edge's
   // triangles are adjacent.
   const long long n = before.rows();
@@ -456,18 +456,20 @@ int count_new_folds(const Positions& before, const Positions& after, const Trian
     const Vec3 p = X.row(F(f, 0)).transpose();
     return (Vec3(X.row(F(f, 1)).transpose()) - p).cross(Vec3(X.row(F(f, 2)).transpose()) - p);
   };
-  int folds = 0;
+  FoldCount count;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].first == edges[i].first) ++j;
     if (j - i == 2) {
       const int f = edges[i].second, g = edges[i + 1].second;
-      folds += normal(after, f).dot(normal(after, g)) < 0.0 &&
-               !(normal(before, f).dot(normal(before, g)) < 0.0);
+      if (normal(after, f).dot(normal(after, g)) < 0.0) {
+        ++count.folds;
+        count.new_folds += !(normal(before, f).dot(normal(before, g)) < 0.0);
+      }
     }
     i = j;
   }
-  return folds;
+  return count;
 }
 
 }  // namespace geofair

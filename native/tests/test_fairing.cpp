@@ -91,20 +91,24 @@ TEST_P(StopRequested, AtEveryPollEndsTheRunThere) {
 INSTANTIATE_TEST_SUITE_P(Levels, StopRequested, ::testing::Values(1, 2));
 
 // The hexagon's centre moved outside it, across vertex 1: the two triangles at vertex 1 flip
-// over, so the two edges between a flipped and an unflipped triangle are new folds.
-TEST(CountNewFolds, CountsEdgesBetweenAFlippedAndAnUnflippedTriangle) {
+// over, so the two edges between a flipped and an unflipped triangle are folds.
+TEST(CountFolds, CountsEdgesBetweenAFlippedAndAnUnflippedTriangle) {
   const testing::Mesh m = testing::hexagon_fan();
   std::vector<bool> free(7, false);
   free[0] = true;
   Positions after = m.V;
   after.row(0) << 2.0, 0.0, 0.0;
-  EXPECT_EQ(count_new_folds(m.V, after, m.F, free), 2);
-  // Folds already in the input are not new, and edges without a free vertex are not counted.
-  EXPECT_EQ(count_new_folds(after, after, m.F, free), 0);
-  EXPECT_EQ(count_new_folds(m.V, after, m.F, std::vector<bool>(7, false)), 0);
+  FoldCount count = count_folds(m.V, after, m.F, free);
+  EXPECT_EQ(count.folds, 2);
+  EXPECT_EQ(count.new_folds, 2);
+  // Folds already in the input are not new; edges without a free vertex are not counted.
+  count = count_folds(after, after, m.F, free);
+  EXPECT_EQ(count.folds, 2);
+  EXPECT_EQ(count.new_folds, 0);
+  EXPECT_EQ(count_folds(m.V, after, m.F, std::vector<bool>(7, false)).folds, 0);
   // Raising or lowering the centre bends the fan without flipping a triangle.
   after.row(0) << 0.1, 0.0, -0.5;
-  EXPECT_EQ(count_new_folds(m.V, after, m.F, free), 0);
+  EXPECT_EQ(count_folds(m.V, after, m.F, free).folds, 0);
 }
 
 }  // namespace

@@ -27,10 +27,12 @@ struct FairingResult {
   Iteration iteration = Iteration::Paper;
   /// Newton steps performed, including those of an attempt that Auto abandoned.
   int newton_iterations = 0;
-  /// Edges with a free vertex whose two triangles face apart in `vertices` and did not in
-  /// the input (count_new_folds): triangles the result flips over. A converged result can
-  /// have them where the G1 data turn faster than the mesh resolves; `message` then says so.
-  int new_folds = 0;
+  /// Edges with a free vertex whose two triangles face apart in `vertices` (count_folds):
+  /// triangles the result flips over. A converged result can have them where the G1 data
+  /// turn faster than the mesh resolves, or keep them from a folded input; `message` then
+  /// says so.
+  int folds = 0;
+  int new_folds = 0;  ///< those of `folds` whose triangles did not face apart in the input
   /// Wall-clock seconds of the solve's phases in the order they ran (for profiling; beyond
   /// the paper): "hierarchy" (smoothed copy and progressive mesh), then per level ℓ
   /// (0 = coarsest) "level ℓ initial mesh" (the linear Δ²f = 0 solve or the prolongation),

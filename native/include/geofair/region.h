@@ -149,16 +149,21 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
                              const Positions* boundary_normals, bool check_orientation = true,
                              const std::vector<int>* polygon_ids = nullptr);
 
-/// Counts the new folds of a result: edges with a free endpoint whose two triangles face
-/// apart (the cross products of their edges have a negative dot product) in `after` and did
-/// not in `before`. Beyond the paper: a converged solve can flip triangles over where the
-/// surface turns faster than the mesh resolves (docs/REAL_MESHES.md), and fair reports it.
+/// Folded edges of a result (beyond the paper): edges with a free endpoint whose two
+/// triangles face apart (the cross products of their edges have a negative dot product).
+struct FoldCount {
+  int folds = 0;      ///< such edges in `after`
+  int new_folds = 0;  ///< those of them whose triangles did not face apart in `before`
+};
+
+/// Counts the folded edges of `after` and those that are new against `before`. A converged
+/// solve can flip triangles over where the surface turns faster than the mesh resolves, or
+/// keep folds of a folded input (docs/REAL_MESHES.md); fair reports both.
 ///
 /// \param before, after  #V×3 positions of one mesh, mesh units
 /// \param F       #F×3 consistently oriented triangles (edges in more than two are skipped)
 /// \param free    #V flags, true where a vertex may move
-/// \return the number of such edges (0 where `after` equals `before`)
-int count_new_folds(const Positions& before, const Positions& after, const Triangles& F,
-                    const std::vector<bool>& free);
+FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
+                      const std::vector<bool>& free);
 
 }  // namespace geofair

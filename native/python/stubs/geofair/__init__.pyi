@@ -25,6 +25,11 @@ class FairingResult:
         True if the residual reached the tolerance.
         """
     @property
+    def folds(self) -> int:
+        """
+        Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves, or keep them from a folded input; .message then says so.
+        """
+    @property
     def iteration(self) -> str:
         """
         The iteration that produced the result: "newton" or "paper".
@@ -47,7 +52,7 @@ class FairingResult:
     @property
     def new_folds(self) -> int:
         """
-        Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices and did not in the input: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves; .message then says so.
+        Those of .folds whose two triangles did not face apart in the input.
         """
     @property
     def newton_iterations(self) -> int:
@@ -246,8 +251,9 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
     -------
     FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
     .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-    .iteration ("newton" or "paper"), .newton_iterations, .new_folds (edges whose triangles the
-    result flips over) and .phase_seconds (wall-clock seconds per phase, for profiling).
+    .iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
+    triangles the result flips over, and those not folded in the input) and .phase_seconds
+    (wall-clock seconds per phase, for profiling).
     
     Raises
     ------
