@@ -395,9 +395,9 @@ def g1_normals(vertices, faces, free):
 
 def new_folds(vertices_before, vertices_after, faces, free):
     """Number of edges with a free endpoint and two triangles whose normals have a
-    negative dot product in vertices_after but not in vertices_before."""
+    negative dot product in vertices_after but not in vertices_before (None: all of them)."""
     faces = np.asarray(faces, np.int64)
-    n = len(vertices_before)
+    n = len(vertices_after)
     e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     e.sort(axis=1)
     owner = np.tile(np.arange(len(faces)), 3)
@@ -413,7 +413,8 @@ def new_folds(vertices_before, vertices_after, faces, free):
         cr = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
         return np.einsum("ij,ij->i", cr[f1], cr[f2]) < 0
 
-    return int((folded(np.asarray(vertices_after)) & ~folded(np.asarray(vertices_before))).sum())
+    after = folded(np.asarray(vertices_after))
+    return int((after if vertices_before is None else after & ~folded(np.asarray(vertices_before))).sum())
 
 
 # --------------------------------------------------------------------------------------

@@ -106,6 +106,7 @@ def test_diverging_auto_solve_returns_the_input_unconverged():
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"])
     assert not r.converged and "diverged" in r.message and "unchanged" in r.message
     assert np.array_equal(r.vertices, v) and np.isfinite(r.residual) and r.residual > 1e-4
+    assert (r.folds, r.new_folds) == (realmesh.new_folds(None, v, f, free), 0)
     with pytest.raises(RuntimeError, match="diverged"):
         geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], iteration="paper")
 

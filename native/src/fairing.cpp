@@ -460,6 +460,17 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     }
     return false;
   };
+  // The folded edges of the result, in the message too.
+  auto count_result_folds = [&](FairingResult& result) {
+    const FoldCount folds = count_folds(V, result.vertices, F, free);
+    result.folds = folds.folds;
+    result.new_folds = folds.new_folds;
+    if (folds.folds > 0)
+      result.message += "; " + std::to_string(folds.folds) +
+                        (folds.folds == 1 ? " edge folds" : " edges fold") +
+                        " over (triangles flipped), " + std::to_string(folds.new_folds) +
+                        " of them not in the input";
+  };
   FairingResult result;
   try {
     result = solve(V, F, free, boundary_normals, timed, polygon_ids);
@@ -471,6 +482,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.vertices = V;
     result.residual = input_residual(V, F, free, boundary_normals, options, polygon_ids);
     result.message = std::string(error.what()) + "; the input is returned unchanged";
+    count_result_folds(result);
     return result;
   }
   const std::string how = std::move(result.message);  // solve's note on the path taken, if any
@@ -485,14 +497,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   else
     result.message = "did not converge within max_iterations (" + figures + ")";
   if (!how.empty()) result.message += "; " + how;
-  const FoldCount folds = count_folds(V, result.vertices, F, free);
-  result.folds = folds.folds;
-  result.new_folds = folds.new_folds;
-  if (folds.folds > 0)
-    result.message += "; " + std::to_string(folds.folds) +
-                      (folds.folds == 1 ? " edge folds" : " edges fold") +
-                      " over (triangles flipped), " + std::to_string(folds.new_folds) +
-                      " of them not in the input";
+  count_result_folds(result);
   // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
   // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
   if (!result.converged && !user_cancelled && options.inner_fairness == InnerFairness::Uniform &&
