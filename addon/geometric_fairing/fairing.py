@@ -139,7 +139,8 @@ class FairingReport:
             return text + ", NOT converged: mesh unchanged"
         text += ", converged" if self.converged else ", NOT converged, result kept"
         if self.folds:
-            text += f", but {self.folds} edge{'s' if self.folds > 1 else ''} folded over (triangles flipped)"
+            but = ", but " if self.converged else ", "
+            text += f"{but}{self.folds} edge{'s' if self.folds > 1 else ''} folded over (triangles flipped)"
         return text
 
 

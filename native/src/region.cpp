@@ -13,8 +13,8 @@
 #include <cstdio>
 #include <limits>
 #include <string>
-#include <utility>
 #include <unordered_map>
+#include <utility>
 
 namespace geofair {
 namespace {
