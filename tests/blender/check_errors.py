@@ -293,14 +293,20 @@ class FoldingModule:
         self.real, self.folds = real, folds
 
     def fair(self, *args, **kwargs):
-        result = self.real.fair(*args, **kwargs)
-        names = ("vertices", "converged", "iterations", "iterations_per_level", "vertices_per_level", "residual",
-                 "message", "iteration", "newton_iterations", "phase_seconds")  # fmt: skip
-        values = {name: getattr(result, name) for name in names}
-        return types.SimpleNamespace(**values, folds=self.folds, new_folds=self.folds)
+        return FoldedResult(self.real.fair(*args, **kwargs), self.folds)
 
     def __getattr__(self, name):
         return getattr(self.real, name)
+
+
+class FoldedResult:
+    """A ``geofair.FairingResult`` whose ``folds`` and ``new_folds`` read ``folds``."""
+
+    def __init__(self, result, folds):
+        self.result, self.folds, self.new_folds = result, folds, folds
+
+    def __getattr__(self, name):
+        return getattr(self.result, name)
 
 
 def check_converged_with_folds(addon, obj):

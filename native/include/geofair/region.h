@@ -163,6 +163,8 @@ struct FoldCount {
 /// \param before, after  #V×3 positions of one mesh, mesh units
 /// \param F       #F×3 consistently oriented triangles (edges in more than two are skipped)
 /// \param free    #V flags, true where a vertex may move
+/// \pre the indices of F are in [0, #V) and before, after and free have #V rows (fair has
+///      checked them); nothing is raised. Degenerate triangles (zero normal) never fold.
 FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
                       const std::vector<bool>& free);
 
