@@ -10,13 +10,17 @@ vertices) of both.
 
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
-        [--iteration auto|newton|paper] [--phases] [--regular]
+        [--iteration auto|newton|paper] [--phases] [--caps irregular|regular|random|icosphere]
         [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
 disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same with
 ``irregular=False`` (concentric rings of 6k vertices, interior valence 6, so the free
-vertex count is the nearest 1 + 3K(K - 1)). CGAL gets the whole mesh (its second,
+vertex count is the nearest 1 + 3K(K - 1)); with ``--caps random`` or ``--caps icosphere``
+``tests/scenes.flattened_sphere_cap(n_free, construction, seed=1)``: a whole sphere of
+random samples or a geodesic icosphere, the cap above z = 0.3 pressed flat onto that plane
+(a modeller's flattened selection), the rest of the sphere fixed; geofair gets the exact
+normals on the random caps and estimates them on the icosphere caps. CGAL gets the whole mesh (its second,
 outer fixed ring gives it tangent continuity); geofair the same vertices and free mask with
 the exact sphere normals as G1 boundary normals. Generating the 1M-vertex irregular cap
 takes about 5 minutes and 1 GiB in tests/scenes.py (100k: 11 s), so scenes are cached as
@@ -56,27 +60,39 @@ def vm_hwm_mib():
     return float("nan")
 
 
-def scene_path(cache, n, regular=False):
-    kind = "regular" if regular else "irregular"
+CAPS = {
+    "irregular": "disturbed irregular caps (sphere_cap(irregular=True), 60°, exact G1 normals)",
+    "regular": "disturbed regular caps (sphere_cap, interior valence 6, exact G1 normals)",
+    "random": "flattened caps of random sphere samples (flattened_sphere_cap, exact G1 normals)",
+    "icosphere": "flattened icosphere caps (flattened_sphere_cap, the library's G1 normals)",
+}
+
+
+def scene_path(cache, n, kind="irregular"):
+    if kind in ("random", "icosphere"):
+        return os.path.join(cache, f"flattened_sphere_cap_{kind}_seed1_{n}.npz")
     return os.path.join(cache, f"sphere_cap_{kind}_seed1_rings2_{n}.npz")
 
 
-def load_scene(cache, n, regular=False):
-    """(vertices disturbed, faces, free, normals) of the cap with about n free vertices."""
-    path = scene_path(cache, n, regular)
+def load_scene(cache, n, kind="irregular"):
+    """(start vertices, faces, free, G1 normals or None) of the cap with about n free vertices."""
+    path = scene_path(cache, n, kind)
     if not os.path.exists(path):
         import scenes
 
         t = time.perf_counter()
-        s = scenes.sphere_cap(n_free=n, irregular=not regular, seed=1, boundary_rings=2)
-        v = s.disturbed(seed=2, amplitude=0.1)
+        if kind in ("random", "icosphere"):
+            s, v = scenes.flattened_sphere_cap(n, kind, seed=1)
+        else:
+            s = scenes.sphere_cap(n_free=n, irregular=kind == "irregular", seed=1, boundary_rings=2)
+            v = s.disturbed(seed=2, amplitude=0.1)
         os.makedirs(cache, exist_ok=True)
         tmp = path + ".tmp.npz"
         np.savez(tmp, vertices=v, faces=s.faces.astype(np.int32), free=s.free, normals=s.normals)
         os.replace(tmp, path)
         print(f"# generated {path} in {time.perf_counter() - t:.0f} s", file=sys.stderr, flush=True)
     d = np.load(path)
-    return d["vertices"], d["faces"], d["free"], d["normals"]
+    return d["vertices"], d["faces"], d["free"], None if kind == "icosphere" else d["normals"]
 
 
 def radial_error(vertices, free):
@@ -87,7 +103,7 @@ def child(args):
     """Runs one of our solves; prints a JSON line."""
     import geofair
 
-    v, f, free, normals = load_scene(args.cache, args.child, args.regular)
+    v, f, free, normals = load_scene(args.cache, args.child, args.caps)
     before = vm_hwm_mib()
     t = time.perf_counter()
     r = geofair.fair(
@@ -126,8 +142,7 @@ def run_ours(args, n):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
     cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
-    if args.regular:
-        cmd.append("--regular")
+    cmd += ["--caps", args.caps]
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
@@ -157,11 +172,14 @@ def main():
     parser.add_argument("--iteration", default="auto", help="auto (default), newton or paper")
     parser.add_argument("--no-cgal", action="store_true")
     parser.add_argument("--phases", action="store_true", help="print the time of each phase")
-    parser.add_argument("--regular", action="store_true", help="regular caps (interior valence 6)")
+    parser.add_argument("--caps", default="irregular", choices=sorted(CAPS), help="the caps' construction")
+    parser.add_argument("--regular", action="store_true", help="the same as --caps regular")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.regular:
+        args.caps = "regular"
     if args.child is not None:
         child(args)
         return
@@ -170,7 +188,7 @@ def main():
 
     use_cgal = not args.no_cgal and cgal_fair.available()
     print(
-        f"# {'regular' if args.regular else 'irregular'} caps; geofair.fair: iteration={args.iteration}, "
+        f"# {CAPS[args.caps]}; geofair.fair: iteration={args.iteration}, "
         f"normal_weighting={args.normal_weighting}, "
         f"inner_fairness={args.inner}, "
         f"default tolerance and levels; {os.cpu_count()} cores, load average "
@@ -183,7 +201,7 @@ def main():
     )
     ns, ours_t, cgal_t = [], [], []
     for n in args.sizes:
-        load_scene(args.cache, n, args.regular)  # generate outside the timed children
+        load_scene(args.cache, n, args.caps)  # generate outside the timed children
         r = run_ours(args, n)
         failed = r.pop("failed", None) if r else None
         if failed:
@@ -191,7 +209,7 @@ def main():
             r = None
         c = None
         if use_cgal:
-            v, f, free, _ = load_scene(args.cache, n, args.regular)
+            v, f, free, _ = load_scene(args.cache, n, args.caps)
             c = cgal_fair.cgal_fair(v, f, free)
             c_err = radial_error(c.vertices, free)
             n_free = int(free.sum())

@@ -869,3 +869,60 @@ def torus_patch(
         "torus_patch", dom, n_free, irregular, seed, boundary_rings, to_surface,
         (distance, boundary_distance), min(dom.U, dom.V), math.nan,
     )  # fmt: skip
+
+
+def _random_directions(n, rng, relaxations=3):
+    """n uniformly random unit vectors, lightly relaxed (half-steps towards the mean of their
+    convex-hull neighbours), and their convex-hull triangles: an irregular sampling with
+    valences 3 to 11 and thin triangles, unlike the lattices of `_triangulate`."""
+    d = _unit(rng.normal(size=(n, 3)))
+    for _ in range(relaxations):
+        e = edges(ConvexHull(d).simplices.astype(np.int64))
+        e = np.concatenate([e, e[:, ::-1]])
+        mean = np.stack([np.bincount(e[:, 0], d[e[:, 1], c], minlength=n) for c in range(3)], 1)
+        mean /= np.bincount(e[:, 0], minlength=n)[:, None]
+        d = _unit(0.5 * (d + mean))
+    return d, ConvexHull(d).simplices.astype(np.int64)
+
+
+def flattened_sphere_cap(
+    n_free: int = 2000,
+    construction: str = "random",
+    seed: int = 0,
+    height: float = 0.3,
+    jitter: float = 0.01,
+) -> tuple[Scene, np.ndarray]:
+    """A modeller's flattened selection on the unit sphere: the cap above z = `height` of a
+    whole sphere mesh, pressed flat onto that plane.
+
+    `construction`: "random" (uniformly random points, lightly relaxed, triangulated by
+    their convex hull: irregular, valences 3 to 11) or "icosphere" (a geodesic icosphere of
+    the frequency that gives about `n_free` cap vertices: regular, valence 6 but for a few
+    5s). Free: the vertices above the plane; the rest of the sphere stays fixed. Returns the
+    scene (exact sphere positions and normals, H = -1) and the start positions: the free
+    vertices projected onto z = `height`, moved by `jitter` mean edge lengths (uniform in
+    each coordinate, seeded by `seed`).
+    """
+    fraction = (1.0 - height) / 2.0  # of the sphere's area (and vertices) above the plane
+    rng = np.random.default_rng(seed)
+    n = max(int(round(n_free / fraction)), 50)
+    if construction == "random":
+        d, faces = _random_directions(n, rng)
+    elif construction == "icosphere":
+        d, faces = _icosphere_directions(n)
+    else:
+        raise ValueError(f"flattened_sphere_cap: construction {construction!r}")
+    faces = _orient_each(d, d, faces)
+    free = d[:, 2] > height
+    uv = np.column_stack([np.arctan2(d[:, 1], d[:, 0]), np.arccos(np.clip(d[:, 2], -1, 1))])
+    polar = math.acos(height)
+    scene = Scene(
+        f"flattened_sphere_cap({construction})", d.copy(), faces, free, d.copy(), uv,
+        _sphere_distance(np.zeros(3), 1.0), lambda p: np.arccos(np.clip(_unit(p)[:, 2], -1, 1)) - polar,
+        1.0, polar, np.where(free, (d[:, 2] - height) / (1 - height), 0.0),
+    )  # fmt: skip
+    h = np.linalg.norm(d[faces[:, 0]] - d[faces[:, 1]], axis=1).mean()
+    start = d.copy()
+    start[free, 2] = height
+    start[free] += jitter * h * rng.uniform(-1, 1, size=(int(free.sum()), 3))
+    return scene, start

@@ -78,6 +78,28 @@ def test_non_finite_input(cap):
         geofair.fair(cap.vertices, cap.faces, cap.free, boundary_normals=n)
 
 
+@pytest.mark.parametrize("normals", ["given", "estimated"])
+def test_non_finite_vertex_outside_the_region(normals):
+    # A fixed vertex two rings away from the free ones: not read by the solve, but returned.
+    s = scenes.sphere_cap(n_free=300, boundary_rings=3)
+    near = np.zeros(len(s.vertices), bool)
+    near[s.faces[s.free[s.faces].any(axis=1)].ravel()] = True
+    i = int(np.flatnonzero(~near)[0])
+    v = s.vertices.copy()
+    v[i, 0] = np.inf
+    bn = s.normals if normals == "given" else None
+    with pytest.raises(geofair.InvalidInputError, match=f"vertex {i} has a non-finite coordinate"):
+        geofair.fair(v, s.faces, s.free, boundary_normals=bn)
+
+
+def test_non_finite_vertex_in_no_triangle_is_returned_as_it_is(cap):
+    v = np.vstack([cap.vertices, [np.nan, np.nan, np.nan]])
+    free = np.append(cap.free, False)
+    r = geofair.fair(v, cap.faces, free, boundary_normals=np.vstack([cap.normals, [0, 0, 1]]))
+    assert r.converged and np.isnan(r.vertices[-1]).all()
+    assert np.isfinite(r.vertices[:-1]).all()
+
+
 def test_zero_or_non_unit_normals(cap):
     b = int(np.flatnonzero(~cap.free)[0])
     for scale, message in ((0.0, "length 0"), (1.01, "not a unit vector")):

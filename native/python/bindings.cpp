@@ -193,6 +193,7 @@ py::dict defaults_py() {
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
   d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free;
+  d["time_limit_hard_factor"] = o.tuning.schedule.time_limit_hard_factor;
   py::dict tuning;
   for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
                                       bool) { tuning[key] = value; });
@@ -214,6 +215,7 @@ std::string fair_doc(std::string doc) {
   const SolverTuning t;
   replace("{time_limit_base}", number(t.schedule.time_limit_base));
   replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free * 1e3));
+  replace("{time_limit_hard_factor}", number(t.schedule.time_limit_hard_factor));
   replace("{newton_step}", number(t.newton.max_step));
   replace("{polished_move}", number(t.newton.polished_move));
   replace("{polishes}", number(t.newton.polishes));
@@ -374,8 +376,9 @@ Returns
 dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
 "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
 "damping" (float), "time_limit" (None: automatic), the automatic time limit of
-iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
-per free vertex), and "tuning" (dict: the solvers' numerical choices beyond the paper, by
+iteration="auto" (time without a halving of the residual), "time_limit_base" (seconds) plus
+"time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
+"time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
 dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).)doc");
 
   const FairingOptions d;
@@ -472,10 +475,13 @@ levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times
     "paper": one level up to 1000 free vertices and
     about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
     multigrid cycles on the coarser ones.
-time_limit : seconds (float) the whole call may take, or None (default): {time_limit_base} s plus
-    {time_limit_per_free_ms} ms per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
-    max_iterations); float("inf") for no limit. Once spent, the result is returned with
-    converged=False and a message saying so (the input positions if no level finished).
+time_limit : seconds (float) the whole call may take, or None (default): automatic with
+    iteration="auto", a limit on time without progress: Newton's attempts end by their own rule
+    (see iteration), the paper's iteration once its residual has not halved for {time_limit_base} s
+    plus {time_limit_per_free_ms} ms per free vertex, and the whole call in any case after {time_limit_hard_factor} times that; no limit with
+    "newton" or "paper" (they run to max_iterations); float("inf") for no limit. Once spent,
+    the result is returned with converged=False and a message saying so (the input
+    positions if no level finished).
 progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
     returning False stops the run early (converged is then False).
 tuning : dict or None (default): overrides of the solvers' numerical choices beyond the

@@ -427,22 +427,41 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
   // The time limit stops the iterations through the progress callback, which every
   // iteration of the user's problem calls (the user's callback still sees each call), and
   // the steps in between through stop_requested.
-  const auto start = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   const long n_free = std::count(free.begin(), free.end(), true);
-  const double limit =
-      options.time_limit >= 0.0 ? options.time_limit
-      : options.iteration == Iteration::Auto
-          ? options.tuning.schedule.time_limit_base +
-                options.tuning.schedule.time_limit_per_free * double(n_free)
-          : std::numeric_limits<double>::infinity();
-  bool timed_out = false, user_cancelled = false;
+  const ScheduleTuning& schedule = options.tuning.schedule;
+  const bool automatic = options.time_limit < 0.0 && options.iteration == Iteration::Auto;
+  // The automatic limit: `stall` seconds without a halving of the residual, `limit` in all.
+  const double stall = automatic ? schedule.time_limit_base +
+                                       schedule.time_limit_per_free * double(n_free)
+                                 : std::numeric_limits<double>::infinity();
+  const double limit = options.time_limit >= 0.0 ? options.time_limit
+                       : automatic ? schedule.time_limit_hard_factor * stall
+                                   : std::numeric_limits<double>::infinity();
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  Clock::time_point last_fall = start;  // when the residual last halved
+  double fallen_to = std::numeric_limits<double>::infinity();
+  bool counting = false;  // the attempt whose time without progress is limited has started
+  bool timed_out = false, stalled = false, user_cancelled = false;
   FairingOptions timed = options;
   auto spent = [&] {
-    timed_out = timed_out ||
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit;
-    return timed_out;
+    timed_out = timed_out || seconds_since(start) > limit;
+    stalled = stalled || (counting && seconds_since(last_fall) > stall);
+    return timed_out || stalled;
+  };
+  timed.attempt_started = [&](bool paper) {
+    counting = paper;
+    fallen_to = std::numeric_limits<double>::infinity();
+    last_fall = Clock::now();
   };
   timed.progress = [&](int k, double residual) {
+    if (std::isfinite(residual) && residual <= 0.5 * fallen_to) {
+      fallen_to = residual;
+      last_fall = Clock::now();
+    }
     if (spent()) return false;
     if (options.progress && !options.progress(k, residual)) {
       user_cancelled = true;
@@ -492,6 +511,9 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.message = "converged (" + figures + ")";
   else if (timed_out)
     result.message = "stopped at the time limit of " + scientific(limit) + " s (" + figures + ")";
+  else if (stalled)
+    result.message = "stopped: the residual did not halve in " + scientific(stall) +
+                     " s, the automatic time limit (" + figures + ")";
   else if (user_cancelled)
     result.message = "cancelled (" + figures + ")";
   else
@@ -533,6 +555,7 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
     }
     SolveRun run;
     bool failed = false;
+    if (options.attempt_started) options.attempt_started(false);
     try {
       run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
                              newton_iterations, phases);
@@ -699,21 +722,25 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   const bool newton = options.outer_fairness == OuterFairness::Intrinsic &&
                       options.iteration != Iteration::Paper;
   if (!(newton && solve_by_newton(region, finest_level, X0, lambda_finest, options, L,
-                                  newton_iterations, phases, run)))
-    run = newton && stop_requested(options)
-              ? stopped_run(X0, Iteration::Newton)
-              : paper_multigrid(region, finest_level, X0, lambda_finest, options, L,
-                                newton_iterations, phases);
+                                  newton_iterations, phases, run))) {
+    if (newton && stop_requested(options)) {
+      run = stopped_run(X0, Iteration::Newton);
+    } else {
+      if (options.attempt_started) options.attempt_started(true);
+      run = paper_multigrid(region, finest_level, X0, lambda_finest, options, L,
+                            newton_iterations, phases);
+    }
+  }
   FairingResult& result = run.result;
   if (run.unchanged) {  // the residual of what is returned: the input's
     result.newton_iterations = newton_iterations;
     result.residual = finite_residual(finest_level, lambda_finest, options, L, X0);
   }
   result.phase_seconds = std::move(phases);
+  if (!run.X.topRows(region.n_free).allFinite())
+    throw SolverError("fair: the iteration produced non-finite positions");
   result.vertices = V;
   for (int i = 0; i < region.n_free; ++i) result.vertices.row(region.global[i]) = run.X.row(i);
-  if (!result.vertices.allFinite())
-    throw SolverError("fair: the iteration produced non-finite positions");
   return result;
 }
 

@@ -189,6 +189,12 @@ void check_indices(const Positions& V, const Triangles& F, const std::vector<boo
         throw InvalidInputError(prefix(fn) + "triangle " + std::to_string(f) +
                                 " has vertex index " + std::to_string(F(f, c)) +
                                 ", out of range [0, " + std::to_string(nv) + ")");
+  // Every vertex a triangle uses, also far from the region: its positions are returned.
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (!V.row(F(f, c)).allFinite())
+        throw InvalidInputError(prefix(fn) + "vertex " + std::to_string(F(f, c)) +
+                                " has a non-finite coordinate");
 }
 
 }  // namespace

@@ -118,7 +118,13 @@ struct FairingResult {
 ///                diagonals that split its polygons (inner_fairness_weights; beyond the
 ///                paper). The surface itself is that of the triangles either way.
 ///
-/// The whole call stops unconverged once options.time_limit is spent (result.message). With
+/// The whole call stops unconverged once options.time_limit is spent (result.message). The
+/// automatic limit (time_limit < 0, Iteration::Auto) is a limit on time without progress:
+/// Newton's attempts end by their own rule (no halving of the residual in newton.patience
+/// steps); the paper's iteration, the last attempt, stops once its residual has not fallen
+/// below half of its value at the last such fall for T = time_limit_base +
+/// time_limit_per_free × free vertices seconds; and the whole call stops after
+/// time_limit_hard_factor × T. With
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
 ///

@@ -152,10 +152,13 @@ struct BilaplacianTuning {
 
 /// fair()'s schedule: levels, budgets and the time limit (fairing.h).
 struct ScheduleTuning {
-  /// The automatic time limit (FairingOptions::time_limit < 0): this many seconds ...
+  /// The automatic time limit (FairingOptions::time_limit < 0) stops the paper's iteration
+  /// once its residual has not halved for this many seconds ...
   double time_limit_base = 5.0;
-  /// ... plus this many seconds per free vertex.
+  /// ... plus this many seconds per free vertex ...
   double time_limit_per_free = 2e-4;
+  /// ... and any solve after this many times that span (a hard cap).
+  double time_limit_hard_factor = 5.0;
   /// Iteration::Auto, where it runs the paper's iteration: Newton's method is tried from the
   /// paper's iterate after this many iterations of the finest level and after each doubling
   /// (docs/REAL_MESHES.md, "Newton from the paper's iterate") ...
@@ -243,6 +246,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("bilaplacian.exact_residual", t.bilaplacian.exact_residual, 0, 1, true, true);
   f("schedule.time_limit_base", t.schedule.time_limit_base, 0, inf, false, false);
   f("schedule.time_limit_per_free", t.schedule.time_limit_per_free, 0, inf, false, false);
+  f("schedule.time_limit_hard_factor", t.schedule.time_limit_hard_factor, 1, inf, false, false);
   f("schedule.newton_attempt_first", t.schedule.newton_attempt_first, 1, inf, false, false);
   f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);
   f("schedule.newton_min_base_free", t.schedule.newton_min_base_free, 1, inf, false, false);

@@ -120,10 +120,11 @@ struct FairingOptions {
   /// level, fairing.cpp; Paper: default_levels, one level up to 1000 free vertices).
   int levels = 0;
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
-  /// spent (FairingResult::message says so). Negative: automatic, time_limit_base +
-  /// time_limit_per_free × free vertices (tuning.schedule) with Iteration::Auto, none with
-  /// an iteration chosen explicitly (the reference iterations run to max_iterations);
-  /// infinity: none.
+  /// spent (FairingResult::message says so). Negative: automatic with Iteration::Auto (the
+  /// solve stops once its residual has not halved for T = time_limit_base +
+  /// time_limit_per_free × free vertices seconds, or after time_limit_hard_factor × T in
+  /// all; tuning.schedule), none with an iteration chosen explicitly (the reference
+  /// iterations run to max_iterations); infinity: none.
   double time_limit = -1.0;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
@@ -132,6 +133,11 @@ struct FairingOptions {
   /// one); returning true stops the solve there unconverged, as a progress callback
   /// returning false does. fair() polls its time limit through it; may be empty.
   std::function<bool()> stop_requested;
+  /// Called at the start of each attempt of fair()'s schedule (Newton's method on the
+  /// hierarchy, on the finest level alone, the paper's iteration), with true for the
+  /// paper's iteration, which ends no other way than by converging or max_iterations:
+  /// fair()'s automatic time limit counts the time without progress from there. May be empty.
+  std::function<void(bool paper)> attempt_started;
   /// The solvers' numerical choices beyond the paper's options (tuning.h).
   SolverTuning tuning;
 };

@@ -137,8 +137,9 @@ def defaults() -> dict:
     dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
     "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
     "damping" (float), "time_limit" (None: automatic), the automatic time limit of
-    iteration="auto", "time_limit_base" (seconds) plus "time_limit_per_free_vertex" (seconds
-    per free vertex), and "tuning" (dict: the solvers' numerical choices beyond the paper, by
+    iteration="auto" (time without a halving of the residual), "time_limit_base" (seconds) plus
+    "time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
+    "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
     dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
 def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
@@ -236,10 +237,13 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         "paper": one level up to 1000 free vertices and
         about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
         multigrid cycles on the coarser ones.
-    time_limit : seconds (float) the whole call may take, or None (default): 5 s plus
-        0.2 ms per free vertex with iteration="auto", no limit with "newton" or "paper" (they run to
-        max_iterations); float("inf") for no limit. Once spent, the result is returned with
-        converged=False and a message saying so (the input positions if no level finished).
+    time_limit : seconds (float) the whole call may take, or None (default): automatic with
+        iteration="auto", a limit on time without progress: Newton's attempts end by their own rule
+        (see iteration), the paper's iteration once its residual has not halved for 5 s
+        plus 0.2 ms per free vertex, and the whole call in any case after 5 times that; no limit with
+        "newton" or "paper" (they run to max_iterations); float("inf") for no limit. Once spent,
+        the result is returned with converged=False and a message saying so (the input
+        positions if no level finished).
     progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
         returning False stops the run early (converged is then False).
     tuning : dict or None (default): overrides of the solvers' numerical choices beyond the

@@ -1,0 +1,44 @@
+"""Sphere caps built unlike bench/speed.py's (issue: regressions): a whole sphere mesh of
+random samples or a geodesic icosphere, the cap above z = 0.3 pressed flat onto that plane
+as a modeller's flattened selection (scenes.flattened_sphere_cap), faired with the
+defaults (uniform inner fairness, the automatic time limit). The sphere is the answer."""
+
+import numpy as np
+import pytest
+
+import geofair
+import scenes
+
+
+def fair_cap(n_free, construction, seed, exact_normals):
+    s, start = scenes.flattened_sphere_cap(n_free, construction, seed=seed)
+    normals = s.normals if exact_normals else None
+    r = geofair.fair(start, s.faces, s.free, boundary_normals=normals)
+    return s, r, np.abs(s.distance(r.vertices[s.free])).max()
+
+
+@pytest.mark.parametrize(("n_free", "seed"), [(2000, 1), (2000, 2), (7000, 1), (7000, 2)])
+def test_random_samples_cap_comes_back_onto_the_sphere(n_free, seed):
+    s, r, error = fair_cap(n_free, "random", seed, exact_normals=True)
+    assert r.converged, r.message
+    assert r.new_folds == 0
+    assert error <= 1e-5  # unit sphere, mesh units
+
+
+@pytest.mark.parametrize("n_free", [7000, 13000])
+def test_icosphere_cap_with_estimated_normals_comes_back_onto_the_sphere(n_free):
+    # The library's G1 normals (quadric fit) carry an O(h²) error of their own.
+    s, r, error = fair_cap(n_free, "icosphere", 1, exact_normals=False)
+    assert r.converged, r.message
+    assert error <= 2e-3
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open: the coarse levels' vertex distribution of a flattened "
+    "input is far from uniform inner fairness's (docs/DESIGN_NOTES.md, 'Flattened caps')",
+)
+def test_random_samples_cap_converges_on_the_newton_hierarchy():
+    # Today seed 2 converges only through the paper's iteration (Newton from its iterate).
+    s, r, error = fair_cap(7000, "random", 2, exact_normals=True)
+    assert r.converged and r.iteration == "newton" and len(r.iterations_per_level) > 1
