@@ -551,7 +551,7 @@ def load_case(desc, cache=DEFAULT_CACHE):
         return {"vertices": d["vertices"], "faces": d["faces"], "free": d["free"], "boundary_normals": d["normals"],
                 "polygon_ids": None, "meta": meta}  # fmt: skip
     if kind == "regular_cap":
-        v, f, free, normals = speed.load_scene(cache, desc["n"], regular=True)
+        v, f, free, normals = speed.load_scene(cache, desc["n"], "regular")
         meta.update(sphere=True)
         return {"vertices": v, "faces": f, "free": free, "boundary_normals": normals, "polygon_ids": None,
                 "meta": meta}  # fmt: skip

@@ -189,7 +189,11 @@ void check_indices(const Positions& V, const Triangles& F, const std::vector<boo
         throw InvalidInputError(prefix(fn) + "triangle " + std::to_string(f) +
                                 " has vertex index " + std::to_string(F(f, c)) +
                                 ", out of range [0, " + std::to_string(nv) + ")");
-  // Every vertex a triangle uses, also far from the region: its positions are returned.
+}
+
+// Every vertex a triangle uses has finite coordinates, also far from the region (fair()
+// returns its position).
+void check_finite(const Positions& V, const Triangles& F, const char* fn) {
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c)
       if (!V.row(F(f, c)).allFinite())
@@ -438,6 +442,7 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
                              const std::vector<int>* polygon_ids) {
   const char* fn = "fair";
   check_indices(V, F, free, fn);
+  check_finite(V, F, fn);
   if (polygon_ids && Eigen::Index(polygon_ids->size()) != F.rows())
     throw InvalidInputError(prefix(fn) + "polygon_ids has " + std::to_string(polygon_ids->size()) +
                             " entries for " + std::to_string(F.rows()) + " triangles");
