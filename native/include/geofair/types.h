@@ -121,9 +121,9 @@ struct FairingOptions {
   int levels = 0;
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
   /// spent (FairingResult::message says so). Negative: automatic with Iteration::Auto (the
-  /// solve stops once its residual has not halved for T = time_limit_base +
-  /// time_limit_per_free × free vertices seconds, or after time_limit_hard_factor × T in
-  /// all; tuning.schedule), none with an iteration chosen explicitly (the reference
+  /// paper's iteration stops once its residual has not halved for T = time_limit_base +
+  /// time_limit_per_free × free vertices seconds, the call after time_limit_hard_factor × T;
+  /// tuning.schedule, fairing.h), none with an iteration chosen explicitly (the reference
   /// iterations run to max_iterations); infinity: none.
   double time_limit = -1.0;
   /// Called once per iteration; may be empty.
