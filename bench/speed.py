@@ -66,10 +66,11 @@ CAPS = {
     "random": "flattened caps of random sphere samples (flattened_sphere_cap, exact G1 normals)",
     "icosphere": "flattened icosphere caps (flattened_sphere_cap, the library's G1 normals)",
 }
+FLATTENED = ("random", "icosphere")  # scenes.flattened_sphere_cap's constructions
 
 
 def scene_path(cache, n, kind="irregular"):
-    if kind in ("random", "icosphere"):
+    if kind in FLATTENED:
         return os.path.join(cache, f"flattened_sphere_cap_{kind}_seed1_{n}.npz")
     return os.path.join(cache, f"sphere_cap_{kind}_seed1_rings2_{n}.npz")
 
@@ -81,7 +82,7 @@ def load_scene(cache, n, kind="irregular"):
         import scenes
 
         t = time.perf_counter()
-        if kind in ("random", "icosphere"):
+        if kind in FLATTENED:
             s, v = scenes.flattened_sphere_cap(n, kind, seed=1)
         else:
             s = scenes.sphere_cap(n_free=n, irregular=kind == "irregular", seed=1, boundary_rings=2)

@@ -665,16 +665,21 @@ def _fibonacci_directions(n, rng):
         move = np.unique(s[(triangle_angles(d, s) < MIN_ANGLE_DEG + 2).any(axis=1)])
         if len(move) == 0:
             break
-        e = edges(s)
-        e = np.concatenate([e, e[:, ::-1]])
-        mean = np.stack([np.bincount(e[:, 0], d[e[:, 1], c], minlength=n) for c in range(3)], 1)
-        mean /= np.bincount(e[:, 0], minlength=n)[:, None]
-        d[move] = _unit(0.5 * (d[move] + mean[move]))
+        d[move] = _unit(0.5 * (d[move] + _neighbour_mean(d, s)[move]))
     return d, s
 
 
 def _unit(v):
     return v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+def _neighbour_mean(points, faces):
+    """(n, 3): the mean of each point's neighbours along the edges of `faces`."""
+    n = len(points)
+    e = edges(faces)
+    e = np.concatenate([e, e[:, ::-1]])
+    mean = np.stack([np.bincount(e[:, 0], points[e[:, 1], c], minlength=n) for c in range(3)], 1)
+    return mean / np.bincount(e[:, 0], minlength=n)[:, None]
 
 
 def sphere(
@@ -877,11 +882,7 @@ def _random_directions(n, rng, relaxations=3):
     valences 3 to 11 and thin triangles, unlike the lattices of `_triangulate`."""
     d = _unit(rng.normal(size=(n, 3)))
     for _ in range(relaxations):
-        e = edges(ConvexHull(d).simplices.astype(np.int64))
-        e = np.concatenate([e, e[:, ::-1]])
-        mean = np.stack([np.bincount(e[:, 0], d[e[:, 1], c], minlength=n) for c in range(3)], 1)
-        mean /= np.bincount(e[:, 0], minlength=n)[:, None]
-        d = _unit(0.5 * (d + mean))
+        d = _unit(0.5 * (d + _neighbour_mean(d, ConvexHull(d).simplices.astype(np.int64))))
     return d, ConvexHull(d).simplices.astype(np.int64)
 
 
