@@ -12,9 +12,13 @@ Settings: "bilaplacian" = outer_fairness="bilaplacian"; "paper" = normal_weighti
 (Schneider & Kobbelt 2001, section 6), everything else default; "defaults" = geofair.fair's
 defaults (normal_weighting="quadric"). All with uniform inner fairness, tolerance 1e-4.
 
-    PYTHONPATH=build/python python3 bench/accuracy.py [--quick] [--only patches|torus]
+Flattened caps (scenes.flattened_sphere_cap: random samples of the unit sphere or an
+icosphere, the cap above z = 0.3 pressed onto that plane, not disturbed): the max radial
+error; exact G1 normals for the random caps, the library's for the icosphere caps.
 
---quick: a quarter of the vertices; --only: the patch rows or the torus row alone.
+    PYTHONPATH=build/python python3 bench/accuracy.py [--quick] [--only patches|flattened|torus]
+
+--quick: a quarter of the vertices; --only: those rows alone.
 """
 
 import argparse
@@ -39,24 +43,32 @@ PATCHES = [
     ("cylinder", scenes.cylinder_patch, 5000),
     ("catenoid", scenes.catenoid_patch, 5000),
 ]
+FLATTENED = [
+    ("random", 2000, 1),
+    ("random", 7000, 1),
+    ("random", 7000, 2),
+    ("random", 13000, 2),
+    ("icosphere", 13000, 1),
+]
 
 
-def fair(scene, settings):
-    v = scene.disturbed(seed=2, amplitude=0.1)
+def fair(scene, settings, start=None, normals=True):
+    v = scene.disturbed(seed=2, amplitude=0.1) if start is None else start
     t = time.perf_counter()
-    r = geofair.fair(v, scene.faces, scene.free, boundary_normals=scene.normals, max_iterations=50000, **settings)
+    normals = scene.normals if normals else None
+    r = geofair.fair(v, scene.faces, scene.free, boundary_normals=normals, max_iterations=50000, **settings)
     return r, time.perf_counter() - t
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", choices=("patches", "torus"), help="print only these rows")
+    parser.add_argument("--only", choices=("patches", "flattened", "torus"), help="print only these rows")
     args = parser.parse_args()
     scale = 0.25 if args.quick else 1.0
     print("| scene | mesh | free | " + " | ".join(SETTINGS) + " | iterations (paper, defaults) | time [s] |")
     print("|---|---|---:|" + "---:|" * len(SETTINGS) + "---|---:|")
-    for name, make, n in PATCHES if args.only != "torus" else []:
+    for name, make, n in PATCHES if args.only in (None, "patches") else []:
         for irregular in (False, True):
             s = make(n_free=round(n * scale), irregular=irregular, seed=1)
             cells, iterations, total = [], [], 0.0
@@ -69,7 +81,19 @@ def main():
             mesh = "irregular" if irregular else "regular"
             row = [name, mesh, str(s.n_free), *cells, ", ".join(iterations), f"{total:.0f}"]
             print("| " + " | ".join(row) + " |", flush=True)
-    if args.only == "patches":
+    for construction, n, seed in FLATTENED if args.only in (None, "flattened") else []:
+        s, start = scenes.flattened_sphere_cap(round(n * scale), construction, seed=seed)
+        cells, iterations, total = [], [], 0.0
+        for key, settings in SETTINGS.items():
+            r, t = fair(s, settings, start=start, normals=construction == "random")
+            total += t
+            cells.append(f"{np.abs(s.distance(r.vertices[s.free])).max():.1e}")
+            if key != "bilaplacian":
+                iterations.append(f"{r.iterations}" + ("" if r.converged else " (not converged)"))
+        name = f"flattened cap, seed {seed}"
+        row = [name, construction, str(s.n_free), *cells, ", ".join(iterations), f"{total:.0f}"]
+        print("| " + " | ".join(row) + " |", flush=True)
+    if args.only in ("patches", "flattened"):
         return
     pair = [scenes.torus_patch(n_free=round(10000 * scale), irregular=irr, seed=1) for irr in (False, True)]
     cells, iterations, total = [], [], 0.0

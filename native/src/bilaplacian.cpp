@@ -132,4 +132,43 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   return Y;
 }
 
+Positions membrane_positions(const FairingRegion& region, const InnerFairnessWeights& lambda,
+                             const Positions& X) {
+  const int nf = region.n_free;
+  if (lambda.row_sum.size() != std::size_t(lambda.size()))
+    throw InvalidInputError("membrane_positions: the inner fairness weights are not symmetric");
+  // Row i scaled by S_i: S_i f_i − Σ_j w_ij f_j = Σ_{j fixed} w_ij x_j with w_ij = S_i λ_ij.
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(std::size_t(lambda.offset[nf]) + std::size_t(nf));
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
+  for (int i = 0; i < nf; ++i) {
+    const double S = lambda.row_sum[i];
+    triplets.emplace_back(i, i, S);
+    for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k) {
+      const int j = lambda.neighbour[k];
+      if (j < 0) continue;
+      const double w = S * lambda.weight[k];
+      if (j < nf)
+        triplets.emplace_back(i, j, -w);
+      else
+        rhs.row(i) += w * X.row(j);
+    }
+  }
+  Eigen::SparseMatrix<double> K(nf, nf);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  {
+    const BlasThreads threads(factorization_blas_threads(nf));
+    llt.compute(K);
+  }
+  if (llt.info() != Eigen::Success)
+    throw SolverError("fair: the membrane system Δf = 0 could not be factorized");
+  const Eigen::MatrixXd f = llt.solve(rhs);
+  if (llt.info() != Eigen::Success || !f.allFinite())
+    throw SolverError("fair: the membrane system Δf = 0 has no finite solution");
+  Positions Y = X;
+  Y.topRows(nf) = f;
+  return Y;
+}
+
 }  // namespace geofair

@@ -159,18 +159,26 @@ int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
 // The inner fairness weights of a coarse level of the Newton hierarchy, whose vertex
 // distribution only starts the next level. Conformal ones: those of the original mesh at
 // the level's connectivity (the collapses keep the vertices, so that is the original mesh
-// replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of the smoothed
-// copy Xs. A decimated level's own uniform weights place its vertices unlike the finest
+// replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of a reference
+// geometry Xr (coarse_reference), where the finest level's uniform weights are about at
+// equilibrium. A decimated level's own uniform weights place its vertices unlike the finest
 // level's, and its own cotangent weights are negative at obtuse triangles; either makes
 // consecutive levels' vertex distributions differ by many edge lengths
 // (docs/REAL_MESHES.md, "Regular caps").
 InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Positions& X0,
-                                          const Positions& Xs, InnerFairness inner) {
+                                          const Positions& Xr, InnerFairness inner) {
   if (inner == InnerFairness::Uniform)
-    return inner_fairness_weights(level, gather(Xs, level.global),
+    return inner_fairness_weights(level, gather(Xr, level.global),
                                   InnerFairness::ConformalIntrinsic);
   return inner_fairness_weights(level, gather(X0, level.global), inner);
 }
+
+// The reference geometry of a uniform hierarchy's coarse weights (coarse_level_weights).
+// Smoothed: the smoothed copy Xs of the input, whose vertex distribution is about uniform
+// where the input's is (regular meshes, of any metric). Membrane: the membrane of the finest
+// uniform weights (membrane_positions), the distribution an irregular connectivity asks for,
+// which Xs does not know (random samples of a surface: docs/DESIGN_NOTES.md, "Flattened caps").
+enum class CoarseReference { Smoothed, Membrane };
 
 // The outcome of newton_multigrid or paper_multigrid: the result without its vertices (nor
 // its phases), the region's positions.
@@ -209,7 +217,7 @@ SolveRun stopped_run(const Positions& X0, Iteration iteration) {
 SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& finest_level,
                            const Positions& X0, const InnerFairnessWeights& lambda_finest,
                            const FairingOptions& options, double L, int levels,
-                           int& newton_iterations, Phases& phases) {
+                           CoarseReference reference, int& newton_iterations, Phases& phases) {
   // The finest level's construction does not depend on the hierarchy: it is set up, with
   // the symbolic analysis of its Newton preconditioner, on another thread while this one
   // decimates and solves the coarser levels, which take longer (docs/DESIGN_NOTES.md,
@@ -225,6 +233,9 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
   const ProgressiveMesh hierarchy =
       build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation,
                       options.tuning.hierarchy, Xs);
+  const Positions Xr = reference == CoarseReference::Membrane && hierarchy.triangles.size() > 1
+                           ? membrane_positions(region, lambda_finest, X0)
+                           : Xs;
   SolveRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
@@ -245,7 +256,7 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
     const FairingRegion& lr =
         regions.emplace_back(finest ? finest_level : level_region(region, hierarchy.triangles[l]));
     InnerFairnessWeights coarse_lambda =
-        finest ? InnerFairnessWeights{} : coarse_level_weights(lr, X0, Xs, options.inner_fairness);
+        finest ? InnerFairnessWeights{} : coarse_level_weights(lr, X0, Xr, options.inner_fairness);
     const InnerFairnessWeights& lambda = finest ? lambda_finest : coarse_lambda;
     Positions Y;
     VertexSplits level_splits;
@@ -276,14 +287,29 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
         options.tolerance * (finest ? 1.0 : tuning.schedule.coarse_tolerance);
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
+    // With the membrane's weights Newton's method does not converge from the base level's
+    // linear initial mesh (rough where the connectivity is irregular): that level is solved
+    // with the smoothed copy's weights first, and from there with its own.
+    bool presolved = false;
+    IterationReport first;  // that first solve's
+    if (l == 0 && !finest && reference == CoarseReference::Membrane) {
+      Construction smoothed(lr, coarse_level_weights(lr, X0, Xs, options.inner_fairness),
+                            options, L);
+      first = smoothed.run_newton(Y, budget, tolerance, newton_iterations, false, false,
+                                  tuning.newton.coarse_patience, /*from_initial_mesh=*/true);
+      newton_iterations += first.iterations;
+      presolved = first.converged;
+    }
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
                                 finest ? tuning.newton.patience : tuning.newton.coarse_patience,
-                                /*from_initial_mesh=*/l == 0);
+                                /*from_initial_mesh=*/l == 0 && !presolved);
     laps.lap();
-    phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
-    phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
-    phases.emplace_back(level_phase(l, "polishes"), report.polish_seconds);
+    phases.emplace_back(level_phase(l, "inner fairness"),
+                        first.relax_seconds + report.relax_seconds);
+    phases.emplace_back(level_phase(l, "Newton steps"), first.step_seconds + report.step_seconds);
+    phases.emplace_back(level_phase(l, "polishes"),
+                        first.polish_seconds + report.polish_seconds);
     newton_iterations += report.iterations;
     if (!finest && !report.converged && !report.cancelled) {
       // A coarse level that did not converge would start the next one from a worse mesh
@@ -543,12 +569,21 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
                      Phases& phases, SolveRun& out) {
   const int levels =
       options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
-  // The hierarchy first; if a level fails there, the finest level alone.
-  const std::vector<int> attempts =
-      levels > 1 ? std::vector<int>{levels, 1} : std::vector<int>{1};
-  for (const int attempt : attempts) {
-    const bool last = attempt == attempts.back();
-    if (attempt != attempts.front() && stop_requested(options)) {
+  // The hierarchy first; if a level fails there, with uniform inner fairness the hierarchy
+  // again with the membrane as the coarse levels' reference; then the finest level alone.
+  using Attempt = std::pair<int, CoarseReference>;
+  std::vector<Attempt> attempts;
+  if (levels > 1) {
+    attempts.emplace_back(levels, CoarseReference::Smoothed);
+    if (options.inner_fairness == InnerFairness::Uniform &&
+        lambda_finest.row_sum.size() == std::size_t(lambda_finest.size()))
+      attempts.emplace_back(levels, CoarseReference::Membrane);
+  }
+  attempts.emplace_back(1, CoarseReference::Smoothed);
+  for (std::size_t a = 0; a < attempts.size(); ++a) {
+    const auto [attempt, reference] = attempts[a];
+    const bool last = a + 1 == attempts.size();
+    if (a > 0 && stop_requested(options)) {
       out = stopped_run(X0, Iteration::Newton);
       out.result.newton_iterations = newton_iterations;
       return true;
@@ -558,7 +593,7 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
     if (options.attempt_started) options.attempt_started(false);
     try {
       run = newton_multigrid(region, finest_level, X0, lambda_finest, options, L, attempt,
-                             newton_iterations, phases);
+                             reference, newton_iterations, phases);
     } catch (const SolverError&) {
       if (options.iteration == Iteration::Newton && last) throw;
       failed = true;

@@ -10,6 +10,20 @@
 
 namespace geofair {
 
+/// The membrane of the inner fairness weights: solves Δf(q_i) = Σ_j λ_ij f_j − f_i = 0 at
+/// every free vertex for the free positions, the fixed ones held. With uniform weights and a
+/// planar boundary that is Tutte's embedding of the region: the vertex distribution the
+/// connectivity itself asks for, whatever the input's metric. Requires symmetric weights
+/// (InnerFairnessWeights::row_sum given): the system scaled by the row sums is symmetric
+/// positive definite, solved by a sparse Cholesky factorization (CHOLMOD).
+///
+/// \param X       #region×3 positions (boundary rows are the fixed data)
+/// \param lambda  inner fairness weights of every region vertex, with row sums
+/// \return #region×3 positions with the free rows replaced.
+/// \throw InvalidInputError if lambda has no row sums; SolverError if the factorization fails.
+Positions membrane_positions(const FairingRegion& region, const InnerFairnessWeights& lambda,
+                             const Positions& X);
+
 /// Solves Δ(Δf)(q_i) = 0 at every free vertex for the free positions, with the
 /// generalized Laplacian Δf(q_i) = Σ_j λ_ij f_j − f_i of the chosen inner fairness.
 ///

@@ -134,7 +134,8 @@ struct FairingOptions {
   /// returning false does. fair() polls its time limit through it; may be empty.
   std::function<bool()> stop_requested;
   /// Called at the start of each attempt of fair()'s schedule (Newton's method on the
-  /// hierarchy, on the finest level alone, the paper's iteration), with true for the
+  /// hierarchy, on it with the membrane's coarse weights, on the finest level alone, the
+  /// paper's iteration), with true for the
   /// paper's iteration, which ends no other way than by converging or max_iterations:
   /// fair()'s automatic time limit counts the time without progress from there. May be empty.
   std::function<void(bool paper)> attempt_started;
