@@ -1,12 +1,14 @@
 """Build the Blender extension zip with Blender's own ``extension build`` and validate it.
 
-    python3 scripts/build_extension.py [--wheel dist/geofair-*.whl] [--out dist]
+    python3 scripts/build_extension.py [--wheel dist/geofair-*.whl ...] [--out dist]
 
 Stages build/extension/geometric_fairing/: the add-on's Python files and its
 blender_manifest.toml as the CMake build stamped them (build/addon/geometric_fairing/, so
 ``cmake --build build`` first), without the compiled module and the OpenMesh libraries,
-plus the self-contained wheel (scripts/build_wheel.sh) in wheels/, listed in the manifest
-as ``wheels = [...]``. Then runs what ``blender --command extension build --split-platforms``
+plus the self-contained wheels (scripts/build_wheel.sh) in wheels/, listed in the manifest
+as ``wheels = [...]``: by default the cp311 wheel (Blender 4.2 to 5.0) and, if built, the
+cp313 one (Blender 5.1 and later); Blender installs the one of its Python. Then runs what
+``blender --command extension build --split-platforms``
 and ``... validate`` run, Blender's bl_pkg command line, here through the bpy module from
 PyPI (no Blender binary of 4.2+ needed), and writes
 dist/geometric_fairing-<version>-linux_x64.zip. Blender 4.2+ installs it with
@@ -15,6 +17,7 @@ Get Extensions › Install from Disk, and installs the wheel for the add-on.
 """
 
 import argparse
+import json
 import pathlib
 import re
 import shutil
@@ -43,40 +46,49 @@ def blender_extension_command(args, python=sys.executable):
     return output
 
 
-def stage(addon, wheel, folder):
-    """Copy the add-on without compiled files and the wheel to ``folder``; list the wheel in its manifest."""
+def stage(addon, wheels, folder):
+    """Copy the add-on without compiled files and the wheels to ``folder``; list the wheels in its manifest."""
     shutil.rmtree(folder, ignore_errors=True)
     (folder / "wheels").mkdir(parents=True)
     for file in sorted(addon.iterdir()):
         if file.is_file() and file.suffix in (".py", ".toml"):
             shutil.copy(file, folder / file.name)
-    shutil.copy(wheel, folder / "wheels" / wheel.name)
+    for wheel in wheels:
+        shutil.copy(wheel, folder / "wheels" / wheel.name)
     manifest = folder / "blender_manifest.toml"
     text = manifest.read_text()
     assert tomllib.loads(text)["version"] == VERSION, "build/addon is stale: cmake --build build"
     # A top-level key: before the first table ([permissions]).
     first_table = re.search(r"^\[", text, re.MULTILINE).start()
-    text = f'{text[:first_table]}wheels = ["./wheels/{wheel.name}"]\n\n{text[first_table:]}'
+    listed = [f"./wheels/{wheel.name}" for wheel in wheels]
+    text = f"{text[:first_table]}wheels = {json.dumps(listed)}\n\n{text[first_table:]}"
     manifest.write_text(text)
-    assert tomllib.loads(text)["wheels"] == [f"./wheels/{wheel.name}"]
+    assert tomllib.loads(text)["wheels"] == listed
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--wheel", type=pathlib.Path, help="default: the one dist/geofair-<version>-*.whl")
+    parser.add_argument(
+        "--wheel",
+        type=pathlib.Path,
+        action="append",
+        help="repeatable; default: dist/geofair-<version>-cp311-*.whl and, if built, -cp313-",
+    )
     parser.add_argument("--addon", type=pathlib.Path, default=REPO / "build" / "addon" / "geometric_fairing")
     parser.add_argument("--out", type=pathlib.Path, default=REPO / "dist")
     args = parser.parse_args()
-    wheel = args.wheel
-    if wheel is None:
-        wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-*manylinux*.whl"))
-        if len(wheels) != 1:
-            raise SystemExit(
-                f"expected one dist/geofair-{VERSION}-*manylinux*.whl, found {wheels}: scripts/build_wheel.sh"
-            )
-        (wheel,) = wheels
+    wheels = args.wheel
+    if wheels is None:
+        wheels = []
+        for tag in ("cp311", "cp313"):
+            found = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-*manylinux*.whl"))
+            if len(found) > 1 or (tag == "cp311" and not found):
+                raise SystemExit(
+                    f"expected one dist/geofair-{VERSION}-{tag}-*manylinux*.whl, found {found}: scripts/build_wheel.sh"
+                )
+            wheels += found
     folder = REPO / "build" / "extension" / "geometric_fairing"
-    stage(args.addon, wheel.resolve(), folder)
+    stage(args.addon, [wheel.resolve() for wheel in wheels], folder)
     args.out.mkdir(parents=True, exist_ok=True)
     archive = args.out.resolve() / f"geometric_fairing-{VERSION}-linux_x64.zip"
     archive.unlink(missing_ok=True)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what geofair needs on Debian 12 (apt-get, pip) and builds it: build/ (CMake: the
 # module, the legacy add-on zip), dist/ (the self-contained wheel and the Blender extension
-# zip, docs/PACKAGING.md) and the bpy 5.0 venv the tests use. Run as root or with sudo available.
+# zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs the tests use. Run as root or with sudo available.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
@@ -25,6 +25,15 @@ if ! "$BPY5_VENV/bin/python" -c "import importlib.metadata as m; assert m.versio
   rm -rf "$BPY5_VENV"
   python3 -m venv "$BPY5_VENV"
   "$BPY5_VENV/bin/python" -m pip install -q --disable-pip-version-check "bpy==5.0.*"
+fi
+# Blender 5.2 LTS as a Python module (Python 3.13, pyenv's), for the extension's cp313 wheel.
+BPY52_VENV="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/bpy52-venv"
+PYTHON313=$(ls -d "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.13.*/bin/python3.13 2>/dev/null | sort -V | tail -1 || true)
+if [ -n "$PYTHON313" ] && ! "$BPY52_VENV/bin/python" -c \
+    "import importlib.metadata as m; assert m.version('bpy').startswith('5.2.')" 2>/dev/null; then
+  rm -rf "$BPY52_VENV"
+  "$PYTHON313" -m venv "$BPY52_VENV"
+  "$BPY52_VENV/bin/python" -m pip install -q --disable-pip-version-check "bpy==5.2.*"
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

@@ -1,16 +1,17 @@
-"""The Blender extension zip (scripts/build_extension.py) in bpy 4.5 and bpy 5.0.
+"""The Blender extension zip (scripts/build_extension.py) in bpy 4.5, 5.0 and 5.2.
 
 - the zip is built by Blender's own ``extension build`` from the built add-on and the
-  repaired wheel (dist/), and ``extension validate`` of bpy 4.5 and of bpy 5.0 accepts it;
-  it holds the wheel byte for byte, no compiled module of its own, and the manifest's
-  version, licence, copyright, platform and permissions;
+  repaired wheels (dist/: cp311 for Blender 4.2 to 5.0, cp313 for 5.1 and later), and
+  ``extension validate`` of every bpy accepts it; it holds the wheels byte for byte, no
+  compiled module of its own, and the manifest's version, licence, copyright, platform and permissions;
 - tests/blender/check_extension.py installs it into a fresh user folder of bpy 4.5 (this
-  Python's) and of bpy 5.0 (its own venv, ``$XDG_CACHE_HOME/geofair/bpy5-venv`` made by
-  scripts/setup.sh, or GEOFAIR_BPY5_PYTHON), and the operator fairs the UV sphere's cap with
-  geofair from the wheel; the faired positions must be those the build tree's module
+  Python's), of bpy 5.0 (Python 3.11, its own venv, ``$XDG_CACHE_HOME/geofair/bpy5-venv``
+  made by scripts/setup.sh, or GEOFAIR_BPY5_PYTHON) and of bpy 5.2 (Python 3.13,
+  ``.../bpy52-venv`` or GEOFAIR_BPY52_PYTHON), and the operator fairs the UV sphere's cap
+  with geofair from the wheel of that Python; the faired positions must be those the build tree's module
   computes for the same region and options, and the cap must have changed.
 
-A missing wheel, bpy or bpy 5.0 venv is skipped locally and fails when CI is set.
+A missing wheel, bpy or bpy venv is skipped locally and fails when CI is set.
 """
 
 import importlib.util
@@ -31,7 +32,11 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
 CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache")
-BPY5_PYTHON = pathlib.Path(os.environ.get("GEOFAIR_BPY5_PYTHON", CACHE / "geofair" / "bpy5-venv" / "bin" / "python"))
+BPY_VENVS = {  # variant: (the venv's python, its environment override, its Python's wheel tag)
+    "bpy-5.0": (os.environ.get("GEOFAIR_BPY5_PYTHON", CACHE / "geofair" / "bpy5-venv" / "bin" / "python"), "cp311"),
+    "bpy-5.2": (os.environ.get("GEOFAIR_BPY52_PYTHON", CACHE / "geofair" / "bpy52-venv" / "bin" / "python"), "cp313"),
+}
+VARIANTS = ["bpy-4.5", *BPY_VENVS]
 sys.path.insert(0, str(REPO / "scripts"))
 from build_extension import BLENDER_COMMAND  # noqa: E402
 
@@ -47,9 +52,10 @@ def bpy_python(variant):
         if importlib.util.find_spec("bpy") is None:
             _unavailable(f"the bpy module is not installed for {sys.executable}")
         return sys.executable
-    if not BPY5_PYTHON.is_file():
-        _unavailable(f"no bpy 5.0 venv at {BPY5_PYTHON}: scripts/setup.sh makes it")
-    return str(BPY5_PYTHON)
+    python = pathlib.Path(BPY_VENVS[variant][0])
+    if not python.is_file():
+        _unavailable(f"no {variant} venv at {python}: scripts/setup.sh makes it")
+    return str(python)
 
 
 def run(command, **kwargs):
@@ -64,9 +70,13 @@ def run(command, **kwargs):
 @pytest.fixture(scope="module")
 def extension_zip(tmp_path_factory):
     """The zip that scripts/build_extension.py builds (with bpy 4.5) from build/addon and dist/'s wheel."""
-    wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-*manylinux*.whl"))
-    if not wheels:
-        _unavailable("no repaired wheel in dist/: run scripts/build_wheel.sh")
+    wheels = [
+        wheel
+        for tag in ("cp311", "cp313")
+        for wheel in sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux*.whl"))
+    ]
+    if [w.name.split("-")[2] for w in wheels] != ["cp311", "cp313"]:
+        _unavailable(f"no repaired cp311 and cp313 wheels in dist/ ({wheels}): run scripts/build_wheel.sh")
     if not (BUILD / "addon" / "geometric_fairing" / "blender_manifest.toml").is_file():
         _unavailable(f"no built add-on in {BUILD / 'addon'}")
     bpy_python("bpy-4.5")
@@ -83,17 +93,19 @@ def extension_zip(tmp_path_factory):
     )
     archive = out / f"geometric_fairing-{VERSION}-linux_x64.zip"
     assert archive.is_file(), list(out.iterdir())
-    return archive, wheels[0]
+    return archive, wheels
 
 
-def test_the_zip_holds_the_wheel_and_a_complete_manifest(extension_zip):
-    archive, wheel = extension_zip
+def test_the_zip_holds_the_wheels_and_a_complete_manifest(extension_zip):
+    archive, wheels = extension_zip
     with zipfile.ZipFile(archive) as zipped:
         names = zipped.namelist()
         manifest = tomllib.loads(zipped.read("blender_manifest.toml").decode())
-        assert zipped.read(f"wheels/{wheel.name}") == wheel.read_bytes()
+        for wheel in wheels:
+            assert zipped.read(f"wheels/{wheel.name}") == wheel.read_bytes()
     assert manifest["version"] == VERSION and manifest["id"] == "geometric_fairing"
-    assert manifest["wheels"] == [f"./wheels/{wheel.name}"]
+    assert manifest["wheels"] == [f"./wheels/{wheel.name}" for wheel in wheels]
+    assert manifest["blender_version_min"] == "4.2.0"
     assert manifest["platforms"] == ["linux-x64"] and manifest["license"] == ["SPDX:GPL-3.0-or-later"]
     assert set(manifest["permissions"]) == {"files"}
     credited = " ".join(manifest["copyright"])
@@ -103,7 +115,7 @@ def test_the_zip_holds_the_wheel_and_a_complete_manifest(extension_zip):
     assert not [n for n in names if n.endswith(".so") or ".so." in n], names  # the module comes from the wheel
 
 
-@pytest.mark.parametrize("variant", ["bpy-4.5", "bpy-5.0"])
+@pytest.mark.parametrize("variant", VARIANTS)
 def test_blender_validates_the_zip(variant, extension_zip):
     archive, _ = extension_zip
     output = run([bpy_python(variant), "-c", BLENDER_COMMAND, "validate", archive], cwd=archive.parent)
@@ -129,7 +141,7 @@ def reference(data):
     )
 
 
-@pytest.mark.parametrize("variant", ["bpy-4.5", "bpy-5.0"])
+@pytest.mark.parametrize("variant", VARIANTS)
 def test_the_extension_installs_and_fairs_the_sphere_cap(variant, extension_zip, tmp_path):
     archive, _ = extension_zip
     user = {
@@ -142,9 +154,11 @@ def test_the_extension_installs_and_fairs_the_sphere_cap(variant, extension_zip,
     output = run(command, env=user, cwd=tmp_path)
     assert "check_extension: all checks passed" in output, output
     data = np.load(out)
-    assert str(data["blender"]).startswith("4.5" if variant == "bpy-4.5" else "5.0"), str(data["blender"])
+    assert str(data["blender"]).startswith(variant.removeprefix("bpy-")), str(data["blender"])
     module = pathlib.Path(str(data["module"]))
     assert tmp_path in module.parents and "site-packages" in module.parts, module
+    tag = BPY_VENVS[variant][1] if variant in BPY_VENVS else "cp311"
+    assert f"cpython-{tag.removeprefix('cp')}" in module.name, module  # the wheel of Blender's Python
     free, before, after = data["free"], data["before"], data["after"]
     assert 700 < free.sum() < 900, free.sum()  # the cap above z = 0.25 less its boundary ring
     assert np.array_equal(after[~free], before[~free]), "vertices outside the region moved"

@@ -1,8 +1,9 @@
-"""The self-contained wheel (scripts/build_wheel.sh) in a fresh virtual environment.
+"""The self-contained wheels (scripts/build_wheel.sh) in fresh virtual environments.
 
-The wheel ``dist/geofair-<version>-cp311-cp311-manylinux_*_x86_64.whl`` is installed into a
-new venv (with the system's site-packages for numpy, scipy and pytest, but not build/python:
-PYTHONPATH is cleared); then
+Each wheel ``dist/geofair-<version>-cpXY-cpXY-manylinux_*_x86_64.whl`` (CPython 3.11, 3.12
+and 3.13: this python3 and pyenv's) is installed into a new venv of its Python (3.11: with
+the system's site-packages for numpy, scipy, matplotlib, pytest and mypy; the others get
+them from PyPI; never build/python: PYTHONPATH is cleared); then
 
 - the module's tests (every tests/test_*.py that tests geofair, not the add-on or Blender)
   pass against it (conftest.py leaves build/python off sys.path with GEOFAIR_TEST_INSTALLED=1);
@@ -12,7 +13,8 @@ PYTHONPATH is cleared); then
 - the stubs and py.typed are installed and mypy's stubtest finds them consistent with the
   module (tests/stubtest_allowlist.txt: what every pybind11 module differs in).
 
-Missing wheel: skipped locally, a failure when CI is set (scripts/setup.sh builds it).
+Missing wheel or Python: skipped locally, a failure when CI is set (scripts/setup.sh builds
+them).
 """
 
 import json
@@ -43,13 +45,31 @@ def _unavailable(reason):
     pytest.skip(reason)
 
 
-def built_wheel():
-    """The repaired wheel of this version in dist/ (skip or fail when there is none)."""
-    wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-cp311-cp311-manylinux_*_x86_64.whl"))
+TAGS = ("cp311", "cp312", "cp313")
+TEST_REQUIREMENTS = ("numpy", "scipy", "matplotlib", "pytest", "mypy")  # of the module's tests
+PYENV = pathlib.Path(os.environ.get("PYENV_ROOT") or pathlib.Path.home() / ".pyenv")
+
+
+def built_wheel(tag):
+    """The repaired wheel of this version for CPython ``tag`` in dist/ (skip or fail when there is none)."""
+    wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux_*_x86_64.whl"))
     if not wheels:
-        _unavailable(f"no repaired wheel geofair-{VERSION}-*manylinux* in dist/: run scripts/build_wheel.sh")
+        _unavailable(f"no repaired {tag} wheel geofair-{VERSION}-*manylinux* in dist/: run scripts/build_wheel.sh")
     assert len(wheels) == 1, wheels
     return wheels[0]
+
+
+def interpreter(tag):
+    """The Python of ``tag``: this one for cp311 (the system's packages), pyenv's for the others."""
+    if tag == "cp311":
+        if sys.version_info[:2] != (3, 11):
+            _unavailable(f"the cp311 wheel needs Python 3.11, this is {sys.version.split()[0]}")
+        return pathlib.Path(sys.executable)
+    minor = tag.removeprefix("cp3")
+    found = sorted(PYENV.glob(f"versions/3.{minor}.*/bin/python3.{minor}"))
+    if not found:
+        _unavailable(f"no Python 3.{minor} under {PYENV}/versions")
+    return found[-1]
 
 
 def clean_env(**extra):
@@ -58,15 +78,22 @@ def clean_env(**extra):
     return dict(env, **extra)
 
 
-@pytest.fixture(scope="module")
-def venv(tmp_path_factory):
-    """``(python, package folder)`` of a fresh venv with the wheel installed."""
-    wheel = built_wheel()
-    if sys.version_info[:2] != (3, 11):
-        _unavailable(f"the wheel is cp311, this is Python {sys.version.split()[0]}")
-    folder = tmp_path_factory.mktemp("venv")
-    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(folder)], check=True)
+@pytest.fixture(scope="module", params=TAGS)
+def venv(request, tmp_path_factory):
+    """``(python, package folder, wheel)`` of a fresh venv of the wheel's Python with the wheel installed."""
+    tag = request.param
+    wheel = built_wheel(tag)
+    base = interpreter(tag)
+    folder = tmp_path_factory.mktemp(f"venv-{tag}")
+    system = ["--system-site-packages"] if tag == "cp311" else []
+    subprocess.run([base, "-m", "venv", *system, str(folder)], check=True)
     python = folder / "bin" / "python"
+    if tag != "cp311":
+        subprocess.run(
+            [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", *TEST_REQUIREMENTS],
+            check=True,
+            env=clean_env(),
+        )
     subprocess.run(
         [python, "-m", "pip", "install", "-q", "--no-deps", "--no-index", "--disable-pip-version-check", wheel],
         check=True,
@@ -83,11 +110,11 @@ def venv(tmp_path_factory):
     package = pathlib.Path(where[0]).parent
     assert folder in package.parents and package.name == "geofair", f"geofair imported from {where[0]}"
     assert where[1] == VERSION
-    return python, package
+    return python, package, wheel
 
 
 def test_module_tests_pass_against_the_wheel(venv):
-    python, package = venv
+    python, package, _ = venv
     tests = sorted(p.name for p in (REPO / "tests").glob("test_*.py") if p.name not in NOT_MODULE_TESTS)
     assert "test_fairing.py" in tests and "test_multigrid.py" in tests
     command = [python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-x", *(f"tests/{t}" for t in tests)]
@@ -133,10 +160,11 @@ def ldd(path):
 
 
 def test_every_library_beyond_the_manylinux_allow_list_resolves_inside_the_wheel(venv):
-    _, package = venv
-    tag = re.search(r"-(manylinux_\d+_\d+_x86_64)\.whl$", built_wheel().name).group(1)
+    _, package, wheel = venv
+    tag = re.search(r"-(manylinux_\d+_\d+_x86_64)\.whl$", wheel.name).group(1)
     allowed = manylinux_allowed(tag) | {"ld-linux-x86-64.so.2"}
-    (module,) = package.glob("__init__.cpython-311-*.so")
+    python_tag = wheel.name.split("-")[2].removeprefix("cp")
+    (module,) = package.glob(f"__init__.cpython-{python_tag}-*.so")
     libs = (package.parent / "geofair.libs").resolve()
     libraries = ldd(module)
     assert all(libraries.values()), f"unresolved: {[n for n, p in libraries.items() if p is None]}"
@@ -163,8 +191,9 @@ def test_every_library_beyond_the_manylinux_allow_list_resolves_inside_the_wheel
     assert "$ORIGIN/../geofair.libs" in runpath, runpath
 
 
-def test_auditwheel_show_agrees_with_the_platform_tag():
-    wheel = built_wheel()
+@pytest.mark.parametrize("python_tag", TAGS)
+def test_auditwheel_show_agrees_with_the_platform_tag(python_tag):
+    wheel = built_wheel(python_tag)
     completed = subprocess.run(
         [sys.executable, "-m", "auditwheel", "show", str(wheel)], capture_output=True, text=True, check=True
     )
@@ -173,7 +202,7 @@ def test_auditwheel_show_agrees_with_the_platform_tag():
 
 
 def test_stubs_installed_and_consistent_with_the_module(venv, tmp_path):
-    python, package = venv
+    python, package, _ = venv
     shipped = (REPO / "native" / "python" / "stubs" / "geofair" / "__init__.pyi").read_text()
     assert (package / "__init__.pyi").read_text() == shipped
     assert (package / "py.typed").is_file()
