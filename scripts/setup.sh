@@ -38,5 +38,9 @@ fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
+# The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS), whose module the tests
+# also run against (scripts/run_tests.sh).
+cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
+cmake --build build-portable -j"$(nproc)" --target geofair
 bash scripts/build_wheel.sh
 python3 scripts/build_extension.py

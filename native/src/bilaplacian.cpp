@@ -3,19 +3,34 @@
 
 #include "geofair/sparse_lu.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
+#ifdef GEOFAIR_PORTABLE
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#else
+#include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
+#endif
 
 namespace geofair {
 namespace {
+
+// The sparse Cholesky and LU factorizations: SuiteSparse's (CHOLMOD's supernodal LLᵀ,
+// UMFPACK), or in a portable build Eigen's own.
+#ifdef GEOFAIR_PORTABLE
+using CholeskyLLT = Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+using SparseLUFactorization = Eigen::SparseLU<Eigen::SparseMatrix<double>>;
+#else
+using CholeskyLLT = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+using SparseLUFactorization = Eigen::UmfPackLU<Eigen::SparseMatrix<double>>;
+#endif
 
 // The preconditioner I₃ ⊗ K_s⁻¹ for Eigen's ConjugateGradient (the interface of Eigen's
 // preconditioners): the three coordinate blocks of a vector solved at once with one
 // Cholesky factorization (CHOLMOD) of the scalar matrix K_s.
 struct CoordinateBlocks {
-  const Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>* llt = nullptr;
+  const CholeskyLLT* llt = nullptr;
   template <class M> CoordinateBlocks& analyzePattern(const M&) { return *this; }
   template <class M> CoordinateBlocks& factorize(const M&) { return *this; }
   template <class M> CoordinateBlocks& compute(const M&) { return *this; }
@@ -94,7 +109,7 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   if (scaled) {
     Eigen::SparseMatrix<double> Ks(nf, nf);
     Ks.setFromTriplets(scalar.begin(), scalar.end());
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+    CholeskyLLT llt;
     {
       const BlasThreads threads(factorization_blas_threads(nf));
       llt.compute(Ks);
@@ -114,7 +129,7 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
   // Otherwise (weights without symmetric row sums, e.g. a vertex whose weights fell back to
   // uniform, or CG not converging) UMFPACK's LU of K.
   if (!solved) {
-    Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+    SparseLUFactorization lu;
     {
       const BlasThreads threads(factorization_blas_threads(3 * nf));
       lu.compute(K);
@@ -156,7 +171,7 @@ Positions membrane_positions(const FairingRegion& region, const InnerFairnessWei
   }
   Eigen::SparseMatrix<double> K(nf, nf);
   K.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  CholeskyLLT llt;
   {
     const BlasThreads threads(factorization_blas_threads(nf));
     llt.compute(K);

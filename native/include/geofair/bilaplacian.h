@@ -15,7 +15,8 @@ namespace geofair {
 /// planar boundary that is Tutte's embedding of the region: the vertex distribution the
 /// connectivity itself asks for, whatever the input's metric. Requires symmetric weights
 /// (InnerFairnessWeights::row_sum given): the system scaled by the row sums is symmetric
-/// positive definite, solved by a sparse Cholesky factorization (CHOLMOD).
+/// positive definite, solved by a sparse Cholesky factorization (CHOLMOD; Eigen's in a
+/// portable build).
 ///
 /// \param X       #region×3 positions (boundary rows are the fixed data)
 /// \param lambda  inner fairness weights of every region vertex, with row sums

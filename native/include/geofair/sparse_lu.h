@@ -2,9 +2,14 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#ifdef GEOFAIR_PORTABLE
+#include <Eigen/SparseLU>
+#else
 #include <Eigen/UmfPackSupport>
+#endif
 
 #include <algorithm>
+#include <cstdint>
 
 namespace geofair {
 
@@ -92,12 +97,16 @@ class PatternLU {
 
  private:
   // UMFPACK with Index as its index type: int (umfpack_di_*) or SuiteSparse_long
-  // (umfpack_dl_*).
+  // (umfpack_dl_*); in a portable build (GEOFAIR_PORTABLE) Eigen's SparseLU with COLAMD.
   template <class Index>
   struct Factors {
     using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, Index>;
     Matrix matrix;
+#ifdef GEOFAIR_PORTABLE
+    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<Index>> lu;
+#else
     Eigen::UmfPackLU<Matrix> lu;
+#endif
     bool analyzed = false, factorized = false;
 
     void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
@@ -105,7 +114,11 @@ class PatternLU {
       for (int c = 0; c < matrix.outerSize(); ++c)
         for (typename Matrix::InnerIterator it(matrix, c); it; ++it)
           it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+#ifndef GEOFAIR_PORTABLE
       if (nested_dissection) lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
+#else
+      (void)nested_dissection;  // no METIS: COLAMD's ordering
+#endif
       analyze_matrix();
     }
     bool factorize(const Eigen::SparseMatrix<double>& A) {
@@ -120,7 +133,9 @@ class PatternLU {
     }
     // The symbolic analysis of matrix's pattern; solves without iterative refinement.
     void analyze_matrix() {
+#ifndef GEOFAIR_PORTABLE
       lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
+#endif
       lu.analyzePattern(matrix);
       analyzed = true;
     }
@@ -134,7 +149,11 @@ class PatternLU {
     }
   };
   Factors<int> narrow_factors_;
+#ifdef GEOFAIR_PORTABLE
+  Factors<std::int64_t> wide_factors_;
+#else
   Factors<SuiteSparse_long> wide_factors_;
+#endif
   bool wide_ = false;  // the factors in use: wide_factors_ (kWideIndexMin unknowns or more)
 };
 
