@@ -39,8 +39,8 @@ fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS), whose module the tests
-# also run against (scripts/run_tests.sh).
+# also run against (scripts/run_tests.sh), and its legacy add-on zip (no SuiteSparse, no BLAS).
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
-cmake --build build-portable -j"$(nproc)" --target geofair
+cmake --build build-portable -j"$(nproc)" --target geofair addon
 bash scripts/build_wheel.sh
 python3 scripts/build_extension.py

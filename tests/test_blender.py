@@ -14,7 +14,8 @@ but fails when the environment variable CI is set.
 - check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion,
   Blender's UV sphere with its cap flattened (quads split at random) faired back onto the sphere.
-- check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+.
+- check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+; the
+  portable build's legacy add-on in Blender 3.4, without SuiteSparse or BLAS.
 - examples/fair_object.py: the documented script runs.
 - check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.
 """
@@ -120,6 +121,26 @@ def test_packaging(variant, tmp_path):
         "BLENDER_USER_CONFIG": str(tmp_path / "config"),
     }
     output = _run([*command, "--", str(_built_addon())], env=user)
+    assert "check_packaging: all checks passed" in output, output
+
+
+def test_portable_legacy_addon_needs_no_suitesparse(tmp_path):
+    # The legacy zip of the portable build (scripts/setup.sh: build-portable/, Eigen's sparse
+    # solvers) loads no SuiteSparse, METIS or BLAS, and installs and fairs in Blender 3.4.
+    addon = REPO / "build-portable" / "addon"
+    modules = list((addon / "geometric_fairing").glob("geofair*.so"))
+    if not modules:
+        _unavailable(f"no portable build's add-on in {addon}: scripts/setup.sh builds it")
+    needed = subprocess.run(["ldd", str(modules[0])], capture_output=True, text=True, check=True).stdout
+    for library in ("umfpack", "cholmod", "metis", "blas", "lapack", "suitesparse"):
+        assert library not in needed.lower(), needed
+    user = {
+        "BLENDER_USER_RESOURCES": str(tmp_path),
+        "BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
+        "BLENDER_USER_CONFIG": str(tmp_path / "config"),
+    }
+    command = _blender_command(CHECKS / "check_packaging.py")
+    output = _run([*command, "--", str(addon)], env=user)
     assert "check_packaging: all checks passed" in output, output
 
 
