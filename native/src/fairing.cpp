@@ -160,7 +160,7 @@ int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
 // distribution only starts the next level. Conformal ones: those of the original mesh at
 // the level's connectivity (the collapses keep the vertices, so that is the original mesh
 // replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of a reference
-// geometry Xr (coarse_reference), where the finest level's uniform weights are about at
+// geometry Xr (CoarseReference, below), where the finest level's uniform weights are about at
 // equilibrium. A decimated level's own uniform weights place its vertices unlike the finest
 // level's, and its own cotangent weights are negative at obtuse triangles; either makes
 // consecutive levels' vertex distributions differ by many edge lengths
@@ -295,10 +295,12 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
     if (l == 0 && !finest && reference == CoarseReference::Membrane) {
       Construction smoothed(lr, coarse_level_weights(lr, X0, Xs, options.inner_fairness),
                             options, L);
-      first = smoothed.run_newton(Y, budget, tolerance, newton_iterations, false, false,
+      Positions Z = Y;
+      first = smoothed.run_newton(Z, budget, tolerance, newton_iterations, false, false,
                                   tuning.newton.coarse_patience, /*from_initial_mesh=*/true);
       newton_iterations += first.iterations;
       presolved = first.converged;
+      if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
     }
     const IterationReport report =
         construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
