@@ -42,3 +42,25 @@ def test_random_samples_cap_converges_on_the_newton_hierarchy(n_free, seed):
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) > 1
     assert error <= 1e-5
+
+
+def test_base_level_that_newton_cannot_start_falls_back_to_the_paper_iteration():
+    # The base level of this cap's hierarchy is too rough for Newton's method from its linear
+    # initial mesh: it is solved by the paper's iteration with Newton attempts (a phase of
+    # its own) and the hierarchy goes on from there (docs/DESIGN_NOTES.md, "Coarse levels of
+    # large irregular caps").
+    s, r, error = fair_cap(13000, "random", 1, exact_normals=True)
+    assert r.converged, r.message
+    assert r.iteration == "newton" and len(r.iterations_per_level) > 1
+    assert "level 0 paper iterations" in dict(r.phase_seconds)
+    assert r.new_folds == 0
+    assert error <= 1e-5
+
+
+def test_large_icosphere_cap_converges_on_the_newton_hierarchy():
+    # Its level 2 crawls at a max-norm residual of 0.4 with a merit of 4e-3; as a coarse level
+    # it still starts the finest one (NewtonTuning::coarse_merit). Before: not converged.
+    s, r, error = fair_cap(100000, "icosphere", 1, exact_normals=False)
+    assert r.converged, r.message
+    assert r.iteration == "newton" and len(r.iterations_per_level) == 4
+    assert error <= 2e-3

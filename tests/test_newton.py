@@ -130,18 +130,20 @@ def test_phase_seconds_account_for_the_solve():
     assert min(seconds.values()) >= 0.0 and sum(seconds.values()) <= wall
     assert seconds["level 0 polishes"] == 0.0 < seconds["level 1 polishes"]
     assert seconds["level 1 Newton steps"] > 0.0 and seconds["level 1 inner fairness"] > 0.0
-    # One step per level does not converge: "auto" tries Newton's method on two levels (given
-    # up at the base level, which did not converge), again with the membrane's coarse weights
-    # (uniform inner fairness), and on one, then the paper's iteration, and keeps the phases
-    # of all four attempts.
+    # One step per level does not converge: "auto" tries Newton's method on two levels (the
+    # base level, not converged in one step, by one paper iteration and a Newton attempt:
+    # a phase of its own; then the finest level, not converged), again with the membrane's
+    # and with the levels' own coarse weights (uniform inner fairness), and on one level,
+    # then the paper's iteration, and keeps the phases of all five attempts.
     auto, wall = timed(max_iterations=1)
     assert auto.iteration == "paper" and not auto.converged
     names = [name for name, _ in auto.phase_seconds]
-    base_only, membrane_base_only, one_level = names[:6], names[6:12], names[12:18]
-    assert base_only == ["hierarchy"] + [f"level 0 {what}" for what in per_level]
-    assert membrane_base_only == base_only
+    hierarchy = ["hierarchy"] + [f"level 0 {what}" for what in per_level] + ["level 0 paper iterations"]
+    hierarchy += [f"level 1 {what}" for what in per_level]
+    assert names[:36] == 3 * hierarchy
+    one_level = names[36:42]
     assert one_level == ["hierarchy"] + [f"level 0 {what}" for what in per_level]
-    assert names[18:] == ["hierarchy"] + [
+    assert names[42:] == ["hierarchy"] + [
         f"level {level} {what}" for level in (0, 1) for what in ("initial mesh", "set-up", "iterations")
     ]
     assert sum(t for _, t in auto.phase_seconds) <= wall

@@ -221,6 +221,7 @@ std::string fair_doc(std::string doc) {
   replace("{polishes}", number(t.newton.polishes));
   replace("{patience}", number(t.newton.patience));
   replace("{coarse_patience}", number(t.newton.coarse_patience));
+  replace("{coarse_merit}", number(t.newton.coarse_merit));
   replace("{attempt_first}", number(t.schedule.newton_attempt_first));
   replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
   replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
@@ -455,8 +456,13 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     level's size), repeated while the next one would move a vertex by more than {polished_move} mean
     neighbour distances (predicted from the last move by the quadratic convergence), at
     most {polishes} times (the steps go on where one raised the residual). A level stops when the
-    residual has not halved in {patience} steps (a coarse level in {coarse_patience}); where a coarse level does
-    not converge, the finest level is solved alone.
+    residual has not halved in {patience} steps (a coarse level in {coarse_patience}). Where Newton's
+    method fails on the base level from its linear initial mesh, the base level runs
+    {attempt_first} iterations of the paper's iteration and one Newton attempt from there; a
+    coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
+    most {coarse_merit} still starts the next. Where a coarse level fails, the hierarchy is solved
+    again with other coarse weights (uniform inner fairness: from the membrane of the
+    finest weights, then each level's own uniform weights), then the finest level alone.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
     start, with Newton's method tried from the paper's iterate after {attempt_first},

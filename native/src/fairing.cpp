@@ -161,12 +161,15 @@ int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
 // the level's connectivity (the collapses keep the vertices, so that is the original mesh
 // replayed alongside). Uniform: the intrinsic Delaunay cotangent weights of a reference
 // geometry Xr (CoarseReference, below), where the finest level's uniform weights are about at
-// equilibrium. A decimated level's own uniform weights place its vertices unlike the finest
-// level's, and its own cotangent weights are negative at obtuse triangles; either makes
-// consecutive levels' vertex distributions differ by many edge lengths
+// equilibrium; the level's own uniform weights where Xr is empty (CoarseReference::Own). On
+// a regular mesh a decimated level's own uniform weights place its vertices unlike the
+// finest level's, and its own cotangent weights are negative at obtuse triangles; either
+// makes consecutive levels' vertex distributions differ by many edge lengths
 // (docs/REAL_MESHES.md, "Regular caps").
 InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Positions& X0,
                                           const Positions& Xr, InnerFairness inner) {
+  if (inner == InnerFairness::Uniform && Xr.rows() == 0)  // CoarseReference::Own
+    return inner_fairness_weights(level, gather(X0, level.global), InnerFairness::Uniform);
   if (inner == InnerFairness::Uniform)
     return inner_fairness_weights(level, gather(Xr, level.global),
                                   InnerFairness::ConformalIntrinsic);
@@ -178,7 +181,10 @@ InnerFairnessWeights coarse_level_weights(const FairingRegion& level, const Posi
 // where the input's is (regular meshes, of any metric). Membrane: the membrane of the finest
 // uniform weights (membrane_positions), the distribution an irregular connectivity asks for,
 // which Xs does not know (random samples of a surface: docs/DESIGN_NOTES.md, "Flattened caps").
-enum class CoarseReference { Smoothed, Membrane };
+// Own: no reference; each coarse level takes its own uniform weights, whose distribution
+// follows the finest one's where decimation keeps the connectivity about as irregular (the
+// 1M-vertex irregular cap: docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
+enum class CoarseReference { Smoothed, Membrane, Own };
 
 // The outcome of newton_multigrid or paper_multigrid: the result without its vertices (nor
 // its phases), the region's positions.
@@ -201,6 +207,112 @@ SolveRun stopped_run(const Positions& X0, Iteration iteration) {
   run.X = X0;
   run.cancelled = run.unchanged = true;
   return run;
+}
+
+// Newton's method from the iterates of the paper's iteration on a level (the finest, or the
+// base level of the Newton hierarchy).
+class NewtonAttempts {
+ public:
+  // `patience`: steps without a halving of the residual that end an attempt.
+  NewtonAttempts(const FairingRegion& level, const InnerFairnessWeights& lambda,
+                 const FairingOptions& options, double L, int patience)
+      : level_(level), lambda_(lambda), options_(options), L_(L), patience_(patience) {}
+
+  // Runs Newton's method from a copy of Y, the iterate after `paper_iterations` iterations of
+  // the level. If it converges, Y becomes its result and `report` says so; else Y and
+  // `report` are left as they are (report.cancelled set if the progress callback stopped
+  // the attempt).
+  void try_from(Positions& Y, double tolerance, int paper_iterations, int iteration_offset,
+                IterationReport& report) {
+    if (!construction_) construction_ = std::make_unique<Construction>(level_, lambda_, options_, L_);
+    Positions Z = Y;
+    IterationReport attempt;
+    try {
+      attempt = construction_->run_newton(Z, options_.tuning.schedule.newton_attempt_steps,
+                                          tolerance, iteration_offset,
+                                          /*polish_at_convergence=*/true, /*prolongated=*/false,
+                                          patience_);
+    } catch (const SolverError&) {
+      return;  // diverged or singular from this iterate: the paper's iteration goes on
+    }
+    steps_ += attempt.iterations;
+    if (attempt.converged) {
+      Y = std::move(Z);
+      report.converged = true;
+      report.residual = attempt.residual;
+      converged_after_ = paper_iterations;
+    }
+    report.cancelled = report.cancelled || attempt.cancelled;
+  }
+
+  int steps() const { return steps_; }
+  // Paper iterations before the first attempt (each later one after a doubling).
+  int first_after() const { return options_.tuning.schedule.newton_attempt_first; }
+  // The iterations of the level's paper iteration after which an attempt converged, or -1.
+  int converged_after() const { return converged_after_; }
+
+ private:
+  const FairingRegion& level_;
+  const InnerFairnessWeights& lambda_;
+  const FairingOptions& options_;
+  double L_;
+  int patience_;
+  std::unique_ptr<Construction> construction_;
+  int steps_ = 0, converged_after_ = -1;
+};
+
+// Solves the base level (coarser than the finest) of the Newton hierarchy from its linear
+// initial mesh Y, which becomes the level's solution: Newton's method, and where that fails
+// from so far a start (a base level decimated a thousandfold is rough), the paper's iteration
+// and a Newton attempt from its iterate, as fair() solves a single level. With the
+// membrane's weights the level is solved with the smoothed copy's weights first, and from
+// there with its own (Newton's method does not converge from the linear initial mesh with
+// them, rough where the connectivity is irregular). Returns the report of the last solve,
+// its `iterations` the Newton steps not yet added to `newton_iterations`; `paper_seconds`:
+// the time of the paper's iteration.
+IterationReport solve_base_level(const FairingRegion& level, Construction& construction,
+                                 Positions& Y, const Positions& X0, const Positions& Xs,
+                                 CoarseReference reference, const FairingOptions& options,
+                                 double L, int budget, double tolerance, int& newton_iterations,
+                                 double& paper_seconds) {
+  const NewtonTuning& newton = options.tuning.newton;
+  const Positions initial = Y;
+  bool presolved = false;
+  IterationReport first;  // the smoothed copy's solve
+  if (reference == CoarseReference::Membrane) {
+    Construction smoothed(level, coarse_level_weights(level, X0, Xs, options.inner_fairness),
+                          options, L);
+    Positions Z = Y;
+    first = smoothed.run_newton(Z, budget, tolerance, newton_iterations, false, false,
+                                newton.coarse_patience, /*from_initial_mesh=*/true);
+    newton_iterations += first.iterations;
+    presolved = first.converged;
+    if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
+  }
+  IterationReport report =
+      construction.run_newton(Y, budget, tolerance, newton_iterations, false, false,
+                              newton.coarse_patience, /*from_initial_mesh=*/!presolved);
+  report.relax_seconds += first.relax_seconds;
+  report.step_seconds += first.step_seconds;
+  report.polish_seconds += first.polish_seconds;
+  if (report.converged || report.cancelled) return report;
+  newton_iterations += report.iterations;
+  // One slice of the paper's iteration and one Newton attempt from its iterate: where that
+  // fails too, the next attempt of the hierarchy is the better use of the time.
+  Laps laps;
+  Y = initial;
+  NewtonAttempts attempts(level, construction.lambda(), options, L, newton.coarse_patience);
+  IterationReport fallback = construction.run(
+      Y, std::min(options.max_iterations, attempts.first_after()), tolerance, newton_iterations);
+  if (!fallback.converged && !fallback.cancelled)
+    attempts.try_from(Y, tolerance, fallback.iterations, newton_iterations, fallback);
+  construction.evaluate(Y);  // its normals and H (an attempt's construction solved it)
+  paper_seconds = laps.lap();
+  fallback.iterations = attempts.steps();
+  fallback.relax_seconds = report.relax_seconds;
+  fallback.step_seconds = report.step_seconds;
+  fallback.polish_seconds = report.polish_seconds;
+  return fallback;
 }
 
 // Newton's method level by level on a progressive mesh of the region (section 7.4's
@@ -230,12 +342,13 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
       });
   Laps laps;
   Positions Xs;
-  const ProgressiveMesh hierarchy =
-      build_hierarchy(region, X0, lambda_finest, levels, kNewtonDecimation,
-                      options.tuning.hierarchy, Xs);
-  const Positions Xr = reference == CoarseReference::Membrane && hierarchy.triangles.size() > 1
-                           ? membrane_positions(region, lambda_finest, X0)
-                           : Xs;
+  ProgressiveMesh hierarchy = build_hierarchy(region, X0, lambda_finest, levels,
+                                              kNewtonDecimation, options.tuning.hierarchy, Xs);
+  // The coarse weights' reference geometry (coarse_level_weights; empty: their own).
+  Positions Xr = reference == CoarseReference::Own ? Positions()
+                 : reference == CoarseReference::Membrane && hierarchy.triangles.size() > 1
+                     ? membrane_positions(region, lambda_finest, X0)
+                     : Xs;
   SolveRun run;
   FairingResult& result = run.result;
   result.iteration = Iteration::Newton;
@@ -270,6 +383,7 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level_splits, level_weights,
                                local, options.tuning.multigrid.prolongation_sweeps);
     }
+    if (finest) hierarchy = ProgressiveMesh(), Xs = Xr = Positions();  // memory of the finest steps
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     const std::unique_ptr<Construction> level_construction =
         finest ? finest_construction.get()
@@ -287,36 +401,28 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
         options.tolerance * (finest ? 1.0 : tuning.schedule.coarse_tolerance);
     const int budget = finest ? options.max_iterations
                               : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
-    // With the membrane's weights Newton's method does not converge from the base level's
-    // linear initial mesh (rough where the connectivity is irregular): that level is solved
-    // with the smoothed copy's weights first, and from there with its own.
-    bool presolved = false;
-    IterationReport first;  // that first solve's
-    if (l == 0 && !finest && reference == CoarseReference::Membrane) {
-      Construction smoothed(lr, coarse_level_weights(lr, X0, Xs, options.inner_fairness),
-                            options, L);
-      Positions Z = Y;
-      first = smoothed.run_newton(Z, budget, tolerance, newton_iterations, false, false,
-                                  tuning.newton.coarse_patience, /*from_initial_mesh=*/true);
-      newton_iterations += first.iterations;
-      presolved = first.converged;
-      if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
+    IterationReport report;
+    double paper_seconds = 0.0;
+    if (l == 0 && !finest) {
+      report = solve_base_level(lr, construction, Y, X0, Xs, reference, options, L, budget,
+                                tolerance, newton_iterations, paper_seconds);
+    } else {
+      report = construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
+                                       finest ? tuning.newton.patience : tuning.newton.coarse_patience,
+                                       /*from_initial_mesh=*/l == 0);
     }
-    const IterationReport report =
-        construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
-                                finest ? tuning.newton.patience : tuning.newton.coarse_patience,
-                                /*from_initial_mesh=*/l == 0 && !presolved);
     laps.lap();
-    phases.emplace_back(level_phase(l, "inner fairness"),
-                        first.relax_seconds + report.relax_seconds);
-    phases.emplace_back(level_phase(l, "Newton steps"), first.step_seconds + report.step_seconds);
-    phases.emplace_back(level_phase(l, "polishes"),
-                        first.polish_seconds + report.polish_seconds);
+    phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
+    phases.emplace_back(level_phase(l, "Newton steps"), report.step_seconds);
+    phases.emplace_back(level_phase(l, "polishes"), report.polish_seconds);
+    if (paper_seconds > 0.0) phases.emplace_back(level_phase(l, "paper iterations"), paper_seconds);
     newton_iterations += report.iterations;
-    if (!finest && !report.converged && !report.cancelled) {
-      // A coarse level that did not converge would start the next one from a worse mesh
-      // than its own linear initial mesh: the hierarchy is abandoned (the caller solves
-      // the finest level alone).
+    // A coarse level that did not converge would start the next one from a worse mesh than
+    // its own linear initial mesh: the hierarchy is abandoned (the caller solves the finest
+    // level alone). One that stopped with a small merit (the RMS of the scaled defects) is
+    // converged but for a few vertices, which the next level's steps reach.
+    if (!finest && !report.converged && !report.cancelled &&
+        construction.merit() > tuning.newton.coarse_merit) {
       result.residual = report.residual;
       result.converged = false;
       break;
@@ -338,55 +444,6 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
   run.X = std::move(solution.X);
   return run;
 }
-
-// Newton's method from the iterates of the paper's iteration on the finest level.
-class NewtonAttempts {
- public:
-  NewtonAttempts(const FairingRegion& level, const InnerFairnessWeights& lambda,
-                 const FairingOptions& options, double L)
-      : level_(level), lambda_(lambda), options_(options), L_(L) {}
-
-  // Runs Newton's method from a copy of Y, the iterate after `paper_iterations` iterations of
-  // the level. If it converges, Y becomes its result and `report` says so; else Y and
-  // `report` are left as they are (report.cancelled set if the progress callback stopped
-  // the attempt).
-  void try_from(Positions& Y, double tolerance, int paper_iterations, int iteration_offset,
-                IterationReport& report) {
-    if (!construction_) construction_ = std::make_unique<Construction>(level_, lambda_, options_, L_);
-    Positions Z = Y;
-    IterationReport attempt;
-    try {
-      attempt = construction_->run_newton(Z, options_.tuning.schedule.newton_attempt_steps,
-                                          tolerance, iteration_offset,
-                                          /*polish_at_convergence=*/true, /*prolongated=*/false,
-                                          options_.tuning.newton.patience);
-    } catch (const SolverError&) {
-      return;  // diverged or singular from this iterate: the paper's iteration goes on
-    }
-    steps_ += attempt.iterations;
-    if (attempt.converged) {
-      Y = std::move(Z);
-      report.converged = true;
-      report.residual = attempt.residual;
-      converged_after_ = paper_iterations;
-    }
-    report.cancelled = report.cancelled || attempt.cancelled;
-  }
-
-  int steps() const { return steps_; }
-  // Paper iterations before the first attempt (each later one after a doubling).
-  int first_after() const { return options_.tuning.schedule.newton_attempt_first; }
-  // The iterations of the level's paper iteration after which an attempt converged, or -1.
-  int converged_after() const { return converged_after_; }
-
- private:
-  const FairingRegion& level_;
-  const InnerFairnessWeights& lambda_;
-  const FairingOptions& options_;
-  double L_;
-  std::unique_ptr<Construction> construction_;
-  int steps_ = 0, converged_after_ = -1;
-};
 
 // The paper's iteration on the finest level (`paper(budget, iteration_offset)` runs up to
 // `budget` iterations on Y and reports), in slices ending after attempts.first_after(), 2×,
@@ -572,7 +629,8 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
   const int levels =
       options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
   // The hierarchy first; if a level fails there, with uniform inner fairness the hierarchy
-  // again with the membrane as the coarse levels' reference; then the finest level alone.
+  // again with the membrane as the coarse levels' reference, and again with each level's
+  // own uniform weights; then the finest level alone.
   using Attempt = std::pair<int, CoarseReference>;
   std::vector<Attempt> attempts;
   if (levels > 1) {
@@ -580,6 +638,8 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
     if (options.inner_fairness == InnerFairness::Uniform &&
         lambda_finest.row_sum.size() == std::size_t(lambda_finest.size()))
       attempts.emplace_back(levels, CoarseReference::Membrane);
+    if (options.inner_fairness == InnerFairness::Uniform)
+      attempts.emplace_back(levels, CoarseReference::Own);
   }
   attempts.emplace_back(1, CoarseReference::Smoothed);
   for (std::size_t a = 0; a < attempts.size(); ++a) {
@@ -641,7 +701,7 @@ SolveRun paper_multigrid(const FairingRegion& region, const FairingRegion& fines
     coarse_options.normal_weighting = NormalWeighting::Max;
   std::deque<MultigridLevel> levels_built;
   Multigrid multigrid(levels_built, options.tuning.multigrid);
-  NewtonAttempts attempts(finest_level, lambda_finest, options, L);
+  NewtonAttempts attempts(finest_level, lambda_finest, options, L, options.tuning.newton.patience);
   const int n_levels = int(hierarchy.triangles.size());
   bool unchanged = false;
   for (int l = 0; l < n_levels; ++l) {

@@ -457,6 +457,7 @@ FoldCount count_folds(const Positions& before, const Positions& after, const Tri
   // triangles are adjacent.
   const long long n = before.rows();
   std::vector<std::pair<long long, int>> edges;
+  edges.reserve(3 * std::size_t(F.rows()));  // no doubling: at 1M vertices, 100 MiB each
   for (int f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = F(f, k), b = F(f, (k + 1) % 3);

@@ -78,10 +78,14 @@ struct FairingResult {
 /// offsets per step from one inexact Newton step with the exact Jacobian's products. Its
 /// hierarchy coarsens the G1 boundary too (kNewtonDecimation in progressive_mesh.h), so the
 /// base level can be small, with a few steps on each level where the paper's iteration
-/// takes thousands (docs/NEWTON.md, README). Where a coarse level fails, with uniform inner
-/// fairness the hierarchy is solved once more with the coarse levels' weights taken from
-/// the membrane of the finest uniform weights (membrane_positions in bilaplacian.h: the
-/// distribution an irregular connectivity asks for) instead of the smoothed copy; where that
+/// takes thousands (docs/NEWTON.md, README). Where Newton's method fails on the base level
+/// from its linear initial mesh, that level runs the paper's iteration with Newton attempts
+/// from its iterate (as below); a coarse level that stops unconverged with a merit of at
+/// most NewtonTuning::coarse_merit still starts the next. Where a coarse level fails, with
+/// uniform inner fairness the hierarchy is solved once more with the coarse levels' weights
+/// taken from the membrane of the finest uniform weights (membrane_positions in
+/// bilaplacian.h: the distribution an irregular connectivity asks for) instead of the
+/// smoothed copy, and once more with each coarse level's own uniform weights; where that
 /// fails too the finest level is solved alone; where that stalls or fails, Auto starts over with the paper's steps below,
 /// with Newton's method tried again from their iterate on the finest level
 /// (after ScheduleTuning::newton_attempt_first iterations and each doubling); Paper runs
@@ -92,8 +96,8 @@ struct FairingResult {
 /// iterations also move the vertices tangentially by a global inner-fairness step
 /// (inner_fairness.h); the hierarchy is measured on a smoothed copy of the input and keeps
 /// valences and the ratio of free to boundary vertices in bounds (progressive_mesh.h); the
-/// coarse levels use discrete-conformal weights of that copy (or of the membrane, above)
-/// whatever the inner fairness,
+/// coarse levels use discrete-conformal weights of that copy (or of the membrane, or their
+/// own uniform weights, above) whatever the inner fairness,
 /// because uniform weights pull free vertices against a boundary that is denser than the
 /// coarse interior (docs/DESIGN_NOTES.md); only the finest level's inner fairness decides
 /// the result. The coarse levels stop at a

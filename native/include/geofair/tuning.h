@@ -25,6 +25,11 @@ struct NewtonTuning {
   /// stopped making progress is abandoned for the single level (docs/REAL_MESHES.md,
   /// "Regular caps").
   int coarse_patience = 8;
+  /// A coarse level that stops unconverged with its merit (Construction::merit, the RMS of
+  /// the scaled defects; dimensionless, like the residual) at most this starts the next
+  /// level all the same: its max-norm residual is that of a few vertices (docs/DESIGN_NOTES.md,
+  /// "Coarse levels of large irregular caps").
+  double coarse_merit = 1e-2;
   /// A run from a linear initial mesh whose merit (Construction::merit) is still above
   /// far_merit after far_steps steps stops as stalled: that start lies outside Newton's
   /// region of convergence, and the steps up to `patience` would only delay the paper's
@@ -205,6 +210,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("paper.tangential_iterations", t.paper.tangential_iterations, 1, inf, false, false);
   f("newton.patience", t.newton.patience, 1, inf, false, false);
   f("newton.coarse_patience", t.newton.coarse_patience, 1, inf, false, false);
+  f("newton.coarse_merit", t.newton.coarse_merit, 0, inf, false, false);
   f("newton.far_steps", t.newton.far_steps, 1, inf, false, false);
   f("newton.far_merit", t.newton.far_merit, 0, inf, true, false);
   f("newton.max_step", t.newton.max_step, 0, inf, true, false);

@@ -217,8 +217,13 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         level's size), repeated while the next one would move a vertex by more than 0.001 mean
         neighbour distances (predicted from the last move by the quadratic convergence), at
         most 8 times (the steps go on where one raised the residual). A level stops when the
-        residual has not halved in 20 steps (a coarse level in 8); where a coarse level does
-        not converge, the finest level is solved alone.
+        residual has not halved in 20 steps (a coarse level in 8). Where Newton's
+        method fails on the base level from its linear initial mesh, the base level runs
+        100 iterations of the paper's iteration and one Newton attempt from there; a
+        coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
+        most 0.01 still starts the next. Where a coarse level fails, the hierarchy is solved
+        again with other coarse weights (uniform inner fairness: from the membrane of the
+        finest weights, then each level's own uniform weights), then the finest level alone.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
         start, with Newton's method tried from the paper's iterate after 100,
