@@ -200,10 +200,8 @@ void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d
   out = (probe_dirichlet_.defects(probe_H_) - d0) / eps;
 }
 
-IterationReport Construction::run_newton(Positions& X, int max_iterations, double tolerance,
-                                         int iteration_offset, bool polish_at_convergence,
-                                         bool prolongated, int patience,
-                                         bool from_initial_mesh) {
+IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_run) {
+  const double tolerance = newton_run.tolerance;
   const NewtonTuning& newton = options_.tuning.newton;
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
@@ -217,7 +215,7 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     report.cancelled = true;
     return report;
   }
-  if (prolongated) residual = local_step(X, residual);
+  if (newton_run.prolongated) residual = local_step(X, residual);
   const double first_residual = residual;
   double best = residual;
   int best_at = 0, polishes = 0;
@@ -232,8 +230,8 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
   double current_merit = merit();
   Eigen::VectorXd mass(nf);
   for (int k = 0;; ++k) {
-    check_divergence(residual, first_residual, iteration_offset + k);
-    while (residual <= tolerance && tangential_ && polish_at_convergence && !polished) {
+    check_divergence(residual, first_residual, newton_run.iteration_offset + k);
+    while (residual <= tolerance && tangential_ && newton_run.polish_at_convergence && !polished) {
       // Inner fairness at the converged shape; go on if it moved the residual up.
       report.step_seconds += laps.lap();
       const double move = polish(X);
@@ -251,10 +249,12 @@ IterationReport Construction::run_newton(Positions& X, int max_iterations, doubl
     report.residual = residual;
     report.converged = residual <= tolerance;
     if (residual < 0.5 * best) best = residual, best_at = k;
-    report.stalled = k - best_at >= patience ||
-                     (from_initial_mesh && k == newton.far_steps && current_merit > newton.far_merit);
-    if (report.converged || report.stalled || k >= max_iterations) break;
-    if (options_.progress && !source_ && !options_.progress(iteration_offset + k, residual)) {
+    report.stalled = k - best_at >= newton_run.patience ||
+                     (newton_run.from_initial_mesh && k == newton.far_steps &&
+                      current_merit > newton.far_merit);
+    if (report.converged || report.stalled || k >= newton_run.max_iterations) break;
+    if (options_.progress && !source_ &&
+        !options_.progress(newton_run.iteration_offset + k, residual)) {
       report.cancelled = true;
       break;
     }

@@ -228,10 +228,13 @@ class NewtonAttempts {
     Positions Z = Y;
     IterationReport attempt;
     try {
-      attempt = construction_->run_newton(Z, options_.tuning.schedule.newton_attempt_steps,
-                                          tolerance, iteration_offset,
-                                          /*polish_at_convergence=*/true, /*prolongated=*/false,
-                                          patience_);
+      NewtonRun run;
+      run.max_iterations = options_.tuning.schedule.newton_attempt_steps;
+      run.tolerance = tolerance;
+      run.iteration_offset = iteration_offset;
+      run.patience = patience_;
+      run.polish_at_convergence = true;
+      attempt = construction_->run_newton(Z, run);
     } catch (const SolverError&) {
       return;  // diverged or singular from this iterate: the paper's iteration goes on
     }
@@ -277,21 +280,26 @@ IterationReport solve_base_level(const FairingRegion& level, Construction& const
                                  double& paper_seconds) {
   const NewtonTuning& newton = options.tuning.newton;
   const Positions initial = Y;
+  NewtonRun run;
+  run.max_iterations = budget;
+  run.tolerance = tolerance;
+  run.patience = newton.coarse_patience;
+  run.from_initial_mesh = true;
   bool presolved = false;
   IterationReport first;  // the smoothed copy's solve
   if (reference == CoarseReference::Membrane) {
     Construction smoothed(level, coarse_level_weights(level, X0, Xs, options.inner_fairness),
                           options, L);
     Positions Z = Y;
-    first = smoothed.run_newton(Z, budget, tolerance, newton_iterations, false, false,
-                                newton.coarse_patience, /*from_initial_mesh=*/true);
+    run.iteration_offset = newton_iterations;
+    first = smoothed.run_newton(Z, run);
     newton_iterations += first.iterations;
     presolved = first.converged;
     if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
   }
-  IterationReport report =
-      construction.run_newton(Y, budget, tolerance, newton_iterations, false, false,
-                              newton.coarse_patience, /*from_initial_mesh=*/!presolved);
+  run.iteration_offset = newton_iterations;
+  run.from_initial_mesh = !presolved;
+  IterationReport report = construction.run_newton(Y, run);
   report.relax_seconds += first.relax_seconds;
   report.step_seconds += first.step_seconds;
   report.polish_seconds += first.polish_seconds;
@@ -407,9 +415,15 @@ SolveRun newton_multigrid(const FairingRegion& region, const FairingRegion& fine
       report = solve_base_level(lr, construction, Y, X0, Xs, reference, options, L, budget,
                                 tolerance, newton_iterations, paper_seconds);
     } else {
-      report = construction.run_newton(Y, budget, tolerance, newton_iterations, finest, l > 0,
-                                       finest ? tuning.newton.patience : tuning.newton.coarse_patience,
-                                       /*from_initial_mesh=*/l == 0);
+      NewtonRun newton_run;
+      newton_run.max_iterations = budget;
+      newton_run.tolerance = tolerance;
+      newton_run.iteration_offset = newton_iterations;
+      newton_run.patience = finest ? tuning.newton.patience : tuning.newton.coarse_patience;
+      newton_run.polish_at_convergence = finest;
+      newton_run.prolongated = l > 0;
+      newton_run.from_initial_mesh = l == 0;
+      report = construction.run_newton(Y, newton_run);
     }
     laps.lap();
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);

@@ -25,6 +25,17 @@ struct IterationReport {
   double relax_seconds = 0.0, polish_seconds = 0.0, step_seconds = 0.0;
 };
 
+/// How Construction::run_newton runs on a level and when it stops.
+struct NewtonRun {
+  int max_iterations = 0;              ///< Newton steps at most
+  double tolerance = 0.0;              ///< the residual that ends the run converged
+  int iteration_offset = 0;            ///< the first step's number in progress reports
+  int patience = 20;                   ///< steps without a halving of the residual: stalled
+  bool polish_at_convergence = false;  ///< inner fairness at the converged shape (finest level)
+  bool prolongated = false;            ///< X prolongated from a coarser level: a local step first
+  bool from_initial_mesh = false;      ///< X a linear initial mesh: the far-start rule
+};
+
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix
 /// S and the CG solver, reused across iterations.
 class Construction {
@@ -65,8 +76,8 @@ class Construction {
   /// (switched evolution relaxation), so σ vanishes as the merit falls and the steps
   /// become Newton's again. Above shift_max the run stops as stalled. The tangential
   /// (inner-fairness) relaxation is not interleaved with the steps: if
-  /// `polish_at_convergence` is set, where the residual reaches the tolerance one tangential
-  /// solve with turning tangent planes restores inner fairness (direct, or on the two-grid
+  /// `newton_run.polish_at_convergence` is set, where the residual reaches the tolerance one
+  /// tangential solve with turning tangent planes restores inner fairness (direct, or on the two-grid
   /// preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
   /// normal over its tangential move d; that changes the discretization of H, so the
   /// residual may rise and the steps go on. The polish repeats (at once if the residual is
@@ -74,28 +85,26 @@ class Construction {
   /// move a vertex by more than polished_move mean distances to its neighbours (predicted
   /// from the last one's move by the quadratic convergence, polish_contraction), at most
   /// `polishes` times (all of options.tuning.newton).
-  /// Stops like run(), and also when the residual has not halved in `patience`
+  /// Stops like run(), and also when the residual has not halved in `newton_run.patience`
   /// iterations (report.stalled): far from a solution on a badly shaped mesh the
   /// linearization can fail to contract; report.cancelled where options.stop_requested
   /// stopped the tangential solves before the first step.
   /// \throw SolverError if the iteration diverges or the Newton system is singular.
   ///
-  /// With `prolongated` (X prolongated from a coarser level, multigrid.h) one local step of
-  /// the construction (a Gauss–Seidel sweep for H̃, eq. (12), and the vertex update along
-  /// the normals of section 7.2 without coupling factors or tangential move) comes between
-  /// the relaxation and the first Newton step: the "smooth the level" after the
-  /// prolongation. The prolongation leaves errors of the size of an edge at the new
+  /// With `newton_run.prolongated` (X prolongated from a coarser level, multigrid.h) one
+  /// local step of the construction (a Gauss–Seidel sweep for H̃, eq. (12), and the vertex
+  /// update along the normals of section 7.2 without coupling factors or tangential move)
+  /// comes between the relaxation and the first Newton step: the "smooth the level"
+  /// after the prolongation. The prolongation leaves errors of the size of an edge at the new
   /// vertices, where H is far from linear in their offsets; the local step, which solves
   /// for each vertex's H on its own, takes them out. The step is kept only if it lowers the
   /// residual. Not on the linear initial mesh, whose error is smooth (docs/NEWTON.md).
   ///
-  /// `patience`: the number of steps without a halving of the residual after which the run
-  /// stops as stalled (NewtonTuning::patience; coarse levels of a hierarchy
-  /// coarse_patience). `from_initial_mesh` (X is a linear initial mesh): the run also stops
-  /// as stalled where its merit is above NewtonTuning::far_merit after far_steps steps.
-  IterationReport run_newton(Positions& X, int max_iterations, double tolerance,
-                             int iteration_offset, bool polish_at_convergence, bool prolongated,
-                             int patience, bool from_initial_mesh = false);
+  /// `newton_run.patience`: the number of steps without a halving of the residual after
+  /// which the run stops as stalled (NewtonTuning::patience; coarse levels of a hierarchy
+  /// coarse_patience). `newton_run.from_initial_mesh` (X is a linear initial mesh): the run
+  /// also stops as stalled where its merit is above NewtonTuning::far_merit after far_steps
+  IterationReport run_newton(Positions& X, const NewtonRun& newton_run);
 
   /// Prepares run_newton ahead of the level's turn: the symbolic analysis of its Newton
   /// preconditioner (NewtonStep::analyze), which depends only on the mesh. fair() calls it
