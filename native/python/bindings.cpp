@@ -222,6 +222,8 @@ std::string fair_doc(std::string doc) {
   replace("{patience}", number(t.newton.patience));
   replace("{coarse_patience}", number(t.newton.coarse_patience));
   replace("{coarse_merit}", number(t.newton.coarse_merit));
+  replace("{min_base_free}", number(t.schedule.newton_min_base_free));
+  replace("{retry_min_free}", number(t.schedule.newton_retry_min_free));
   replace("{attempt_first}", number(t.schedule.newton_attempt_first));
   replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
   replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
@@ -462,7 +464,9 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
     most {coarse_merit} still starts the next. Where a coarse level fails, the hierarchy is solved
     again with other coarse weights (uniform inner fairness: from the membrane of the
-    finest weights, then each level's own uniform weights), then the finest level alone.
+    finest weights, then each level's own uniform weights), then the finest level alone;
+    a region solved as one level (fewer than 4 × {min_base_free} free vertices) with at least
+    {retry_min_free} free vertices tries two levels where the one fails.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
     "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
     start, with Newton's method tried from the paper's iterate after {attempt_first},

@@ -644,7 +644,8 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
       options.levels > 0 ? options.levels : newton_levels(region, options.tuning.schedule);
   // The hierarchy first; if a level fails there, with uniform inner fairness the hierarchy
   // again with the membrane as the coarse levels' reference, and again with each level's
-  // own uniform weights; then the finest level alone.
+  // own uniform weights; then the finest level alone; then, for a region solved as one
+  // level by default, two levels.
   using Attempt = std::pair<int, CoarseReference>;
   std::vector<Attempt> attempts;
   if (levels > 1) {
@@ -656,6 +657,10 @@ bool solve_by_newton(const FairingRegion& region, const FairingRegion& finest_le
       attempts.emplace_back(levels, CoarseReference::Own);
   }
   attempts.emplace_back(1, CoarseReference::Smoothed);
+  // A region a little too small for the default hierarchy: two levels where one fails.
+  if (levels == 1 && options.levels == 0 &&
+      region.n_free >= options.tuning.schedule.newton_retry_min_free)
+    attempts.emplace_back(2, CoarseReference::Smoothed);
   for (std::size_t a = 0; a < attempts.size(); ++a) {
     const auto [attempt, reference] = attempts[a];
     const bool last = a + 1 == attempts.size();

@@ -86,7 +86,9 @@ struct FairingResult {
 /// taken from the membrane of the finest uniform weights (membrane_positions in
 /// bilaplacian.h: the distribution an irregular connectivity asks for) instead of the
 /// smoothed copy, and once more with each coarse level's own uniform weights; where that
-/// fails too the finest level is solved alone; where that stalls or fails, Auto starts over with the paper's steps below,
+/// fails too the finest level is solved alone (and a region solved as one level by default
+/// tries two, ScheduleTuning::newton_retry_min_free); where that stalls or fails, Auto
+/// starts over with the paper's steps below,
 /// with Newton's method tried again from their iterate on the finest level
 /// (after ScheduleTuning::newton_attempt_first iterations and each doubling); Paper runs
 /// them alone.

@@ -172,8 +172,12 @@ struct ScheduleTuning {
   /// without halving its residual).
   int newton_attempt_steps = 60;
   /// The Newton hierarchy keeps at least this many free vertices on its base level (one
-  /// level below twice this; docs/DESIGN_NOTES.md, "Coarse levels").
+  /// level below four times this; docs/DESIGN_NOTES.md, "Coarse levels").
   int newton_min_base_free = 700;
+  /// A region solved as one level with at least this many free vertices where Newton's
+  /// method fails on that level tries two levels before the paper's iteration
+  /// (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
+  int newton_retry_min_free = 1400;
   /// Steps of a coarse level of the Newton hierarchy at most: it only starts the next
   /// level.
   int coarse_newton_steps = 30;
@@ -256,6 +260,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("schedule.newton_attempt_first", t.schedule.newton_attempt_first, 1, inf, false, false);
   f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);
   f("schedule.newton_min_base_free", t.schedule.newton_min_base_free, 1, inf, false, false);
+  f("schedule.newton_retry_min_free", t.schedule.newton_retry_min_free, 1, inf, false, false);
   f("schedule.coarse_newton_steps", t.schedule.coarse_newton_steps, 1, inf, false, false);
   f("schedule.coarse_tolerance", t.schedule.coarse_tolerance, 1, inf, false, false);
   f("schedule.coarse_iterations", t.schedule.coarse_iterations, 1, inf, false, false);

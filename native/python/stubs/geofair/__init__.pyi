@@ -223,7 +223,9 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
         most 0.01 still starts the next. Where a coarse level fails, the hierarchy is solved
         again with other coarse weights (uniform inner fairness: from the membrane of the
-        finest weights, then each level's own uniform weights), then the finest level alone.
+        finest weights, then each level's own uniform weights), then the finest level alone;
+        a region solved as one level (fewer than 4 × 700 free vertices) with at least
+        1400 free vertices tries two levels where the one fails.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
         start, with Newton's method tried from the paper's iterate after 100,
