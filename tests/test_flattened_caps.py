@@ -75,3 +75,15 @@ def test_small_random_samples_cap_converges_on_two_levels(seed):
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) == 2
     assert error <= 1e-5
+
+
+def test_a_far_prolongated_start_ends_its_hierarchy_attempt_after_far_steps():
+    # This cap's first hierarchy attempt prolongates onto a finest level whose merit stays
+    # above newton.far_merit: that attempt stops after newton.far_steps steps there instead
+    # of wandering until patience (75 Newton steps in all before), and the next attempt's
+    # coarse weights converge (docs/NEWTON.md, "The same rule for prolongated levels").
+    s, r, error = fair_cap(13000, "random", 2, exact_normals=True)
+    assert r.converged, r.message
+    assert [name for name, _ in r.phase_seconds].count("hierarchy") == 2
+    assert r.newton_iterations <= 30
+    assert error <= 1e-5

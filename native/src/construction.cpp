@@ -250,8 +250,8 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
     report.converged = residual <= tolerance;
     if (residual < 0.5 * best) best = residual, best_at = k;
     report.stalled = k - best_at >= newton_run.patience ||
-                     (newton_run.from_initial_mesh && k == newton.far_steps &&
-                      current_merit > newton.far_merit);
+                     ((newton_run.from_initial_mesh || newton_run.prolongated) &&
+                      k == newton.far_steps && current_merit > newton.far_merit);
     if (report.converged || report.stalled || k >= newton_run.max_iterations) break;
     if (options_.progress && !source_ &&
         !options_.progress(newton_run.iteration_offset + k, residual)) {

@@ -30,10 +30,10 @@ struct NewtonTuning {
   /// level all the same: its max-norm residual is that of a few vertices (docs/DESIGN_NOTES.md,
   /// "Coarse levels of large irregular caps").
   double coarse_merit = 1e-2;
-  /// A run from a linear initial mesh whose merit (Construction::merit) is still above
-  /// far_merit after far_steps steps stops as stalled: that start lies outside Newton's
-  /// region of convergence, and the steps up to `patience` would only delay the paper's
-  /// iteration (docs/NEWTON.md, "NewtonTuning::far_merit").
+  /// A run from a linear initial mesh or from a prolongated coarser level whose merit
+  /// (Construction::merit) is still above far_merit after far_steps steps stops as stalled:
+  /// that start lies outside Newton's region of convergence, and the steps up to `patience`
+  /// would only delay the next attempt (docs/NEWTON.md, "NewtonTuning::far_merit").
   int far_steps = 5;
   double far_merit = 1.0;
   /// Largest move of a vertex in one step, in mean distances to its neighbours.
