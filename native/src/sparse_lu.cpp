@@ -1,7 +1,10 @@
 // The BLAS threads under UMFPACK, see sparse_lu.h.
 #include "geofair/sparse_lu.h"
 
+#if !defined(GEOFAIR_PORTABLE) && !defined(_WIN32)
 #include <dlfcn.h>
+#define GEOFAIR_OPENBLAS_LOOKUP
+#endif
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -15,10 +18,13 @@ using SetThreads = void (*)(int);
 using GetThreads = int (*)();
 // OpenBLAS's call `name`: in the global scope, else in an OpenBLAS already loaded as a
 // dependency of UMFPACK (RTLD_NOLOAD: never loads one).
-void* openblas_symbol(const char* name) {
+// None in the portable build (no BLAS under Eigen's solvers) or on Windows (no dlfcn.h).
+void* openblas_symbol([[maybe_unused]] const char* name) {
+#ifdef GEOFAIR_OPENBLAS_LOOKUP
   if (void* f = dlsym(RTLD_DEFAULT, name)) return f;
   if (void* library = dlopen("libopenblas.so.0", RTLD_LAZY | RTLD_NOLOAD))
     return dlsym(library, name);
+#endif
   return nullptr;
 }
 SetThreads set_threads() {
@@ -45,7 +51,7 @@ BlasThreads::~BlasThreads() {
   if (previous_ > 0 && previous_ != get_threads()()) set_threads()(previous_);
 }
 
-int factorization_blas_threads(int n) {
+int factorization_blas_threads([[maybe_unused]] int n) {
 #ifdef _OPENMP
   return n >= kThreadedBlasMin ? omp_get_max_threads() : 1;
 #else
