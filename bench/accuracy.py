@@ -22,16 +22,12 @@ error; exact G1 normals for the random caps, the library's for the icosphere cap
 """
 
 import argparse
-import os
-import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-import geofair  # noqa: E402
-import measures  # noqa: E402
-import scenes  # noqa: E402
+import geofair
+from geofair_dev import measures, scenes
 
 SETTINGS = {
     "bilaplacian": dict(outer_fairness="bilaplacian"),

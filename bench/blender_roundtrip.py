@@ -8,9 +8,9 @@
 or the same arguments with the ``bpy`` module from PyPI: ``python3 bench/blender_roundtrip.py
 [n_free ...] [...]``.
 
-Scene (default n_free 100000): ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1,
+Scene (default n_free 100000): ``geofair_dev.scenes.sphere_cap(n_free, irregular=True, seed=1,
 boundary_rings=2)`` disturbed by ``disturbed(seed=2, amplitude=0.1)``, loaded from the .npz
-cache of bench/speed.py (generated there if missing), as a mesh object with a UV map (the
+cache of bench/speed.py (geofair_dev.caps; generated there if missing), as a mesh object with a UV map (the
 x, y projection; ``--no-uv``: none) and the faces with a free vertex selected. The add-on
 then finds the free vertices itself (those all of whose faces are selected: the scene's,
 about 100k) and the boundary normals from the unselected faces.
@@ -53,11 +53,8 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 # isort: split
 import numpy as np
 
-REPO = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO / "bench"))
-sys.path.insert(0, str(REPO / "tests" / "blender"))
-import helpers  # noqa: E402 (tests/blender/helpers.py: enables the add-on as Preferences does)
-import speed  # noqa: E402 (the scene cache of bench/speed.py)
+from geofair_dev import blender as helpers  # enables the add-on as Preferences does
+from geofair_dev import caps, paths  # caps: the scene cache of bench/speed.py
 
 
 def parse_args():
@@ -69,7 +66,7 @@ def parse_args():
         argv = []
     parser = argparse.ArgumentParser(prog="blender_roundtrip.py", description=__doc__.splitlines()[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[100000], help="free vertices of the caps")
-    parser.add_argument("--addon", type=pathlib.Path, default=REPO / "build" / "addon")
+    parser.add_argument("--addon", type=pathlib.Path, default=paths.BUILT_ADDON)
     parser.add_argument("--max-iterations", type=int, default=100, help="bounds the solve (per level)")
     parser.add_argument("--tolerance", type=float, default=1e-4)
     parser.add_argument("--iteration", default=None, help="auto, newton or paper (default: the add-on's, auto)")
@@ -140,7 +137,7 @@ def instrument(addon, clock):
 
 def cap_object(cache, n, uv):
     """The disturbed cap with about ``n`` free vertices as a mesh object, faces with a free vertex selected."""
-    vertices, faces, free, _ = speed.load_scene(cache, n)
+    vertices, faces, free, _ = caps.load_scene(cache, n)
     mesh = bpy.data.meshes.new(f"cap{n}")
     mesh.vertices.add(len(vertices))
     mesh.vertices.foreach_set("co", vertices.astype(np.float32).ravel())

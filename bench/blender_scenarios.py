@@ -12,8 +12,6 @@ where the scenario has a known answer, the largest distance of the faired vertic
 (the unit sphere). Every scenario starts from a fresh scene.
 """
 
-import pathlib
-import sys
 import time
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
@@ -21,8 +19,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 # isort: split
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "tests" / "blender"))
-from helpers import disable_addon, enable_addon, face_centres, parse_args, positions  # noqa: E402
+from geofair_dev.blender import add_subdivided_suzanne, disable_addon, enable_addon, face_centres, parse_args, positions
 
 
 def fresh():
@@ -110,11 +107,6 @@ def flattened_uv_sphere():
     return set_positions(obj, co)
 
 
-def suzanne():
-    bpy.ops.mesh.primitive_monkey_add()
-    return subsurf(bpy.context.active_object, 2)
-
-
 def torus():
     bpy.ops.mesh.primitive_torus_add()
     return bpy.context.active_object
@@ -143,10 +135,10 @@ SCENARIOS = [
     ("UV sphere 32x16: pole cap flattened", flattened_uv_sphere, lambda c: c[:, 2] > 0.4, "sphere"),
     ("UV sphere 32x16: band at the equator", uv_sphere, lambda c: np.abs(c[:, 2]) < 0.3, "sphere"),
     ("UV sphere 32x16: patch on the side", uv_sphere, near((1, 0, 0), 0.6), "sphere"),
-    ("Suzanne (subsurf 2): cheek", suzanne, near((0.55, -0.55, -0.1), 0.25), None),
-    ("Suzanne: top of the head", suzanne, near((0, 0.1, 0.85), 0.35), None),
-    ("Suzanne: chin", suzanne, near((0, -0.75, -0.55), 0.25), None),
-    ("Suzanne: nose", suzanne, near((0, -0.9, -0.1), 0.2), None),
+    ("Suzanne (subsurf 2): cheek", add_subdivided_suzanne, near((0.55, -0.55, -0.1), 0.25), None),
+    ("Suzanne: top of the head", add_subdivided_suzanne, near((0, 0.1, 0.85), 0.35), None),
+    ("Suzanne: chin", add_subdivided_suzanne, near((0, -0.75, -0.55), 0.25), None),
+    ("Suzanne: nose", add_subdivided_suzanne, near((0, -0.9, -0.1), 0.2), None),
     ("torus: outer side", torus, near((1.25, 0, 0), 0.4), None),
     ("torus: inner side", torus, near((0.75, 0, 0), 0.3), None),
     ("icosphere 5 with 1% noise: patch", noisy_icosphere, near((0, 0, 1), 0.5), None),

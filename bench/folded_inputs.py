@@ -11,18 +11,13 @@ Usage: PYTHONPATH=build/python python3 bench/folded_inputs.py [--free N] [--inne
 """
 
 import argparse
-import os
-import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-import geofair  # noqa: E402
-import scenes  # noqa: E402
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import realmesh  # noqa: E402
+import geofair
+from geofair_dev import scenes
+from geofair_dev.corpus import new_folds
 
 
 def disturbed(scene, rng):
@@ -71,7 +66,7 @@ def main():
         scene = make(n_free=args.free, irregular=irregular, seed=1, boundary_rings=3)
         free = scene.free
         for label, start in disturbed(scene, np.random.default_rng(0)):
-            folds_in = realmesh.new_folds(scene.vertices, start, scene.faces, free)
+            folds_in = new_folds(scene.vertices, start, scene.faces, free)
             for inner in inners:
                 clock = time.perf_counter()
                 r = geofair.fair(start, scene.faces, free, inner_fairness=inner)

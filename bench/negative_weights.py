@@ -8,7 +8,7 @@ original are pushed off the surface by a bump of 0.1 plus 30% noise (as in
 tests/test_negative_weights.py), so the weights come from a curved, obtuse original; G1
 boundary normals exact. The faired surface is then the plane or the cylinder, and the
 vertex positions on it are decided by inner fairness alone: the discrete harmonic map with
-the intrinsic Delaunay weights of the original region (solved with scipy, tests/harmonic.py,
+the intrinsic Delaunay weights of the original region (solved with scipy, geofair_dev.harmonic,
 from geofair.intrinsic_delaunay_laplacian). Columns: free vertices; share of obtuse
 triangles; intrinsic flips; "clamped map": max distance between the harmonic maps with
 the clamped and with the intrinsic weights; per mode, the max distance of the faired free
@@ -30,16 +30,12 @@ noisy.
 """
 
 import argparse
-import os
-import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-import geofair  # noqa: E402
-import harmonic  # noqa: E402
-import scenes  # noqa: E402
+import geofair
+from geofair_dev import harmonic, scenes
 
 
 def scene(surface, nu, seed=3):

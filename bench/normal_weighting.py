@@ -10,15 +10,13 @@ fairness.
     PYTHONPATH=build/python python3 bench/normal_weighting.py [n_free ...]
 """
 
-import os
 import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-import geofair  # noqa: E402
-import scenes  # noqa: E402
+import geofair
+from geofair_dev import scenes
 
 SCENES = {"sphere cap": scenes.sphere_cap, "cylinder": scenes.cylinder_patch, "catenoid": scenes.catenoid_patch}
 WEIGHTINGS = ("area", "angle", "max", "quadric")

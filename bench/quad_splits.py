@@ -16,14 +16,11 @@ polygons: both umbrella rows are the same solve).
 """
 
 import argparse
-import os
-import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-from test_polygons import fair_flattened_cap, splits  # noqa: E402
+from geofair_dev.polygons import fair_flattened_cap, splits
 
 
 def main():

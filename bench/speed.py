@@ -4,7 +4,7 @@ For each size (free vertices, default about 2k, 13k, 100k and 1M) prints: our wa
 the iteration used ("newton": steps; "paper": iterations per level, coarsest first), final
 residual, max radial error |‖q‖ − 1| over the free vertices (unit sphere), peak resident
 memory, and the same input through CGAL's ``Polygon_mesh_processing::fair`` (continuity 1,
-bench/cgal_fair.py) with its time, peak memory and max radial error, and the time ratio
+geofair_dev.cgal_fair) with its time, peak memory and max radial error, and the time ratio
 ours/CGAL. Then the measured time exponent (least-squares slope of log time over log free
 vertices) of both.
 
@@ -13,18 +13,18 @@ vertices) of both.
         [--iteration auto|newton|paper] [--phases] [--caps irregular|regular|random|icosphere]
         [--cache DIR] [--timeout SECONDS]
 
-Scenes: ``tests/scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
+Scenes: ``geofair_dev.scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
 disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same with
 ``irregular=False`` (concentric rings of 6k vertices, interior valence 6, so the free
 vertex count is the nearest 1 + 3K(K - 1)); with ``--caps random`` or ``--caps icosphere``
-``tests/scenes.flattened_sphere_cap(n_free, construction, seed=1)``: a whole sphere of
+``geofair_dev.scenes.flattened_sphere_cap(n_free, construction, seed=1)``: a whole sphere of
 random samples or a geodesic icosphere, the cap above z = 0.3 pressed flat onto that plane
 (a modeller's flattened selection), the rest of the sphere fixed; geofair gets the exact
 normals on the random caps and estimates them on the icosphere caps. CGAL gets the whole mesh (its second,
 outer fixed ring gives it tangent continuity); geofair the same vertices and free mask with
 the exact sphere normals as G1 boundary normals. Generating the 1M-vertex irregular cap
-takes about 5 minutes and 1 GiB in tests/scenes.py (100k: 11 s), so scenes are cached as
-.npz files in ``--cache`` (default /tmp/geofair_bench_scenes) and reused.
+takes about 5 minutes and 1 GiB (100k: 11 s), so scenes are cached as .npz files in
+``--cache`` (default /tmp/geofair_bench_scenes) and reused (geofair_dev.caps).
 
 Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM, which
 includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
@@ -46,9 +46,7 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests"))
-sys.path.insert(0, HERE)
+from geofair_dev.caps import load_scene
 
 
 def vm_hwm_mib():
@@ -66,34 +64,6 @@ CAPS = {
     "random": "flattened caps of random sphere samples (flattened_sphere_cap, exact G1 normals)",
     "icosphere": "flattened icosphere caps (flattened_sphere_cap, the library's G1 normals)",
 }
-FLATTENED = ("random", "icosphere")  # scenes.flattened_sphere_cap's constructions
-
-
-def scene_path(cache, n, kind="irregular"):
-    if kind in FLATTENED:
-        return os.path.join(cache, f"flattened_sphere_cap_{kind}_seed1_{n}.npz")
-    return os.path.join(cache, f"sphere_cap_{kind}_seed1_rings2_{n}.npz")
-
-
-def load_scene(cache, n, kind="irregular"):
-    """(start vertices, faces, free, G1 normals or None) of the cap with about n free vertices."""
-    path = scene_path(cache, n, kind)
-    if not os.path.exists(path):
-        import scenes
-
-        t = time.perf_counter()
-        if kind in FLATTENED:
-            s, v = scenes.flattened_sphere_cap(n, kind, seed=1)
-        else:
-            s = scenes.sphere_cap(n_free=n, irregular=kind == "irregular", seed=1, boundary_rings=2)
-            v = s.disturbed(seed=2, amplitude=0.1)
-        os.makedirs(cache, exist_ok=True)
-        tmp = path + ".tmp.npz"
-        np.savez(tmp, vertices=v, faces=s.faces.astype(np.int32), free=s.free, normals=s.normals)
-        os.replace(tmp, path)
-        print(f"# generated {path} in {time.perf_counter() - t:.0f} s", file=sys.stderr, flush=True)
-    d = np.load(path)
-    return d["vertices"], d["faces"], d["free"], None if kind == "icosphere" else d["normals"]
 
 
 def radial_error(vertices, free):
@@ -185,7 +155,7 @@ def main():
         child(args)
         return
 
-    import cgal_fair
+    from geofair_dev import cgal_fair
 
     use_cgal = not args.no_cgal and cgal_fair.available()
     print(

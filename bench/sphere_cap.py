@@ -10,15 +10,12 @@ and the wall time of the linear bilaplacian solution and of intrinsic fairing.
 """
 
 import argparse
-import os
-import sys
 import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-import geofair  # noqa: E402
-import scenes  # noqa: E402
+import geofair
+from geofair_dev import scenes
 
 
 def main():

@@ -4,7 +4,9 @@
         --python examples/fair_object.py -- --addon build/addon [--out out/fair_object.blend]
 
 (or ``python3 examples/fair_object.py -- --addon build/addon`` with the ``bpy``
-module). Without ``--addon`` the add-on must be installed: a legacy add-on is
+module). ``--addon`` takes the add-on from a folder of the repository's build,
+found by its development package (geofair_dev in dev/, which scripts/setup.sh
+installs). Without ``--addon`` the add-on must be installed: a legacy add-on is
 imported as ``geometric_fairing``, an extension as
 ``bl_ext.<repository>.geometric_fairing``.
 
@@ -41,9 +43,10 @@ def parse_args():
 
 def import_addon(folder):
     """The geometric_fairing package: from ``folder``, or the installed legacy add-on or extension."""
-    if folder is not None:
-        sys.path.insert(0, str(folder.resolve()))
-        return importlib.import_module("geometric_fairing")
+    if folder is not None:  # the repository's build: its development package knows where (dev/)
+        from geofair_dev.paths import import_addon
+
+        return import_addon(folder)
     repositories = getattr(bpy.context.preferences, "extensions", None)  # Blender 4.2+
     names = ["geometric_fairing"] + [f"bl_ext.{repo.module}.geometric_fairing" for repo in repositories.repos or []]
     for name in names if repositories is not None else names[:1]:

@@ -23,6 +23,9 @@ import bmesh
 import numpy as np
 from mathutils import Vector
 
+from geofair_dev import paths
+from geofair_dev.blender import add_subdivided_suzanne
+
 REGION_CENTRE, REGION_RADIUS = np.array([0.45, -0.72, 0.62]), 0.3  # Suzanne's left brow
 RESOLUTION = (640, 560)
 
@@ -45,9 +48,7 @@ def parse_args():
 
 def enable_addon(folder):
     """Import and register the add-on from ``folder`` (works in Blender 3.4 and 4.5); return it."""
-    sys.path.insert(0, str(folder.resolve()))
-    import geometric_fairing
-
+    geometric_fairing = paths.import_addon(folder)
     geometric_fairing.register()
     print(f"add-on: {pathlib.Path(geometric_fairing.__file__).parent}")
     return geometric_fairing
@@ -55,12 +56,8 @@ def enable_addon(folder):
 
 def add_suzanne():
     """Blender's Suzanne with a Subdivision Surface modifier (level 2) applied, smooth shaded."""
-    bpy.ops.mesh.primitive_monkey_add()
-    obj = bpy.context.active_object
+    obj = add_subdivided_suzanne()
     obj.name = "Suzanne"
-    modifier = obj.modifiers.new("Subdivision", "SUBSURF")
-    modifier.levels = 2
-    bpy.ops.object.modifier_apply(modifier=modifier.name)
     bpy.ops.object.shade_smooth()
     return obj
 

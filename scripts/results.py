@@ -11,7 +11,7 @@
    and after, uniform vs conformal inner fairness;
 5. timings (Table 1) next to the paper's and CGAL's linear ``fair``.
 
-The scenes come from tests/paper_scenes.py; the real meshes from Debian's libcgal-demo
+The scenes come from geofair_dev.paper_scenes (dev/); the real meshes from Debian's libcgal-demo
 data (/usr/share/doc/libcgal-dev/data.tar.gz, read in place).  "Ours" uses the library's
 defaults (``geofair.fair`` with ``boundary_normals`` where the scene has exact ones)
 unless a figure is about a setting.  A failing or non-converging run is reported in
@@ -25,40 +25,28 @@ import argparse
 import os
 import platform
 import subprocess
-import sys
-import tarfile
 import time
 
 import numpy as np
+from matplotlib import pyplot as plt
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-for sub in ("tests", "scripts", "bench", os.path.join("addon", "geometric_fairing")):
-    sys.path.insert(0, os.path.join(ROOT, sub))
-sys.path.insert(0, os.path.join(os.environ.get("GEOFAIR_BUILD", os.path.join(ROOT, "build")), "python"))
+import raster  # scripts/raster.py, next to this script
+from geofair_dev import measures, paper_scenes, paths
+from geofair_dev.cgal_fair import available as cgal_available
+from geofair_dev.cgal_fair import cgal_fair
+from geofair_dev.regions import BUNNY, EAR, FACE, HORN, MANNEQUIN, ball_region, harmonic_disk_uv, load_cgal_mesh
 
-import metrics  # noqa: E402  (the add-on's bpy-free UV distortion)
-from cgal_fair import available as cgal_available  # noqa: E402
-from cgal_fair import cgal_fair  # noqa: E402
-from matplotlib import pyplot as plt  # noqa: E402
+ROOT = str(paths.REPO)
+paths.use_build_module()  # $GEOFAIR_BUILD/python (default build/python) before an installed geofair
+metrics = paths.source_module(paths.ADDON_SOURCE / "metrics.py")  # the add-on's bpy-free UV distortion
 
 import geofair  # noqa: E402
-import measures  # noqa: E402
-import paper_scenes  # noqa: E402
-import raster  # noqa: E402
 
-CGAL_DATA = "/usr/share/doc/libcgal-dev/data.tar.gz"
 PX = 420  # pixels per panel
 
-# Regions of real meshes: faces whose centroid lies within `radius` of `centre` (mesh units),
-# the connected part around the face nearest to the centre, holes filled.
-MANNEQUIN = "data/meshes/mannequin-devil.off"
-BUNNY = "data/meshes/bunny00.off"
-HORN = ((5.5, -7.0, 15.5), 5.0)  # the left horn (+x) of mannequin-devil (40 x 33 x 25 units)
-FACE = ((0.0, -13.0, 2.0), 6.5)  # the mannequin's face: eyes, nose, cheeks (about 1,400 vertices)
 # Bounds the fine tetrathing's run should Auto fall back to the paper's iteration, which stalls
 # there at a residual of 1e2..1e5 for minutes.
 TETRATHING_MAX_ITERATIONS = 3000
-EAR = ((-0.334, 0.372, -0.235), 0.3)  # bunny00's ear at the back (about 4,800 vertices)
 
 
 class Report:
@@ -116,107 +104,6 @@ class Report:
 # Helpers
 
 
-def load_cgal_mesh(member):
-    """(vertices (n, 3), faces (m, 3)) of an OFF file inside CGAL's data archive."""
-    with tarfile.open(CGAL_DATA) as tar:
-        text = tar.extractfile(member).read().decode()
-    tokens = text.split()
-    if tokens[0] != "OFF":
-        raise ValueError(f"{member}: not an OFF file")
-    nv, nf = int(tokens[1]), int(tokens[2])
-    v = np.array(tokens[4 : 4 + 3 * nv], float).reshape(nv, 3)
-    f = np.array(tokens[4 + 3 * nv : 4 + 3 * nv + 4 * nf], np.int64).reshape(nf, 4)
-    if (f[:, 0] != 3).any():
-        raise ValueError(f"{member}: not a triangle mesh")
-    return v, f[:, 1:].copy()
-
-
-def face_adjacency(faces):
-    """Sparse (m, m) adjacency of triangles sharing an edge."""
-    from scipy.sparse import coo_matrix
-
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    e.sort(axis=1)
-    owner = np.tile(np.arange(len(faces)), 3)
-    key = e[:, 0] * (faces.max() + 1) + e[:, 1]
-    order = np.argsort(key, kind="stable")
-    same = key[order][1:] == key[order][:-1]
-    a, b = owner[order][1:][same], owner[order][:-1][same]
-    m = len(faces)
-    return coo_matrix((np.ones(2 * len(a)), (np.r_[a, b], np.r_[b, a])), shape=(m, m)).tocsr()
-
-
-def ball_region(vertices, faces, centre, radius):
-    """Selected faces (m,) bool: centroids within the ball, the connected part around the
-    face nearest to the centre, with the holes (unselected parts not reaching the rest of
-    the mesh) filled.  Returns (selected faces, free vertices): a vertex is free when all
-    its faces are selected, as the add-on does it."""
-    from scipy.sparse.csgraph import connected_components
-
-    centroid = vertices[faces].mean(axis=1)
-    dist = np.linalg.norm(centroid - np.asarray(centre), axis=1)
-    sel = dist < radius
-    adj = face_adjacency(faces)
-    _, label = connected_components(adj[sel][:, sel], directed=False)
-    seed = np.argmin(np.where(sel, dist, np.inf)[sel])
-    part = np.flatnonzero(sel)[label == label[seed]]
-    sel = np.zeros(len(faces), bool)
-    sel[part] = True
-    n_out, label = connected_components(adj[~sel][:, ~sel], directed=False)
-    if n_out > 1:  # keep the largest outside part, fill the rest
-        biggest = np.argmax(np.bincount(label))
-        sel[np.flatnonzero(~sel)[label != biggest]] = True
-    touched = np.zeros(len(vertices), bool)
-    touched[faces[~sel].ravel()] = True
-    inside = np.zeros(len(vertices), bool)
-    inside[faces[sel].ravel()] = True
-    return sel, inside & ~touched
-
-
-def boundary_loop(faces):
-    """The longest boundary loop (vertex ids in order) of a triangle set."""
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    key = {tuple(x) for x in e.tolist()}
-    nxt = {a: b for a, b in e.tolist() if (b, a) not in key}
-    loops, seen = [], set()
-    for start in nxt:
-        if start in seen:
-            continue
-        loop, v = [], start
-        while v not in seen:
-            seen.add(v)
-            loop.append(v)
-            v = nxt[v]
-        loops.append(loop)
-    return np.array(max(loops, key=len))
-
-
-def harmonic_disk_uv(vertices, faces):
-    """UV (n, 2) of the vertices of `faces`: a discrete harmonic map (cotangent weights)
-    onto the unit disk, the boundary loop placed by arc length (Floater/Eck et al.); rows
-    of vertices outside `faces` are 0."""
-    from scipy.sparse.linalg import spsolve
-
-    used = np.unique(faces)
-    loop = boundary_loop(faces)
-    local = -np.ones(len(vertices), np.int64)
-    local[used] = np.arange(len(used))
-    L = geofair.cotangent_laplacian(vertices[used], local[faces]).tocsr()
-    seg = np.linalg.norm(vertices[np.roll(loop, -1)] - vertices[loop], axis=1)
-    t = 2 * np.pi * np.r_[0.0, np.cumsum(seg)[:-1]] / seg.sum()
-    fixed = np.zeros(len(used), bool)
-    fixed[local[loop]] = True
-    uv = np.zeros((len(used), 2))
-    uv[local[loop]] = np.column_stack([np.cos(t), np.sin(t)])
-    inner = np.flatnonzero(~fixed)
-    A = L[inner][:, inner].tocsc()
-    rhs = -L[inner][:, np.flatnonzero(fixed)] @ uv[fixed]
-    uv[inner] = np.column_stack([spsolve(A, rhs[:, k]) for k in range(2)])
-    out = np.zeros((len(vertices), 2))
-    out[used] = uv
-    return out
-
-
 def rel(x, diag):
     return f"{x / diag:.1e}"
 
@@ -240,7 +127,7 @@ def cylinder_blend_part(rep):
         f"circles. Fine mesh: {fine.region_vertices} region vertices (32 samples per circle), "
         "with a rectangular patch of a finer regular grid between the upper two cylinders "
         f"(Fig. 1a); coarse mesh: {coarse.region_vertices} (12 per circle). The grey stubs are fixed. "
-        "`tests/paper_scenes.py: cylinder_blend()`, `cylinder_blend(n_free=82, circle_samples=12)`.",
+        "`dev/geofair_dev/paper_scenes.py: cylinder_blend()`, `cylinder_blend(n_free=82, circle_samples=12)`.",
         "",
     )
     cam = raster.Camera([0.35, -0.55, -1.0], up=[0.0, 1.0, 0.0])
@@ -361,7 +248,7 @@ def tetrathing_part(rep, timings):
     rep.add(
         "Six circles (radius 0.55) at the edge midpoints of the tetrahedron (±1, ±1, ±1) with product +1, "
         "perpendicular to the edges, with radial normals: a closed genus-3 surface whose four junctions are "
-        "faired in one call (`tests/paper_scenes.py: tetrathing(500)`, `tetrathing(13308)`). Start mesh: "
+        "faired in one call (`dev/geofair_dev/paper_scenes.py: tetrathing(500)`, `tetrathing(13308)`). Start mesh: "
         "one sphere per junction, irregular (jittered Fibonacci lattice). Symmetry error: max over the 24 "
         "symmetries of the tetrahedron (T_d) of the Hausdorff distance between G(mesh) and the mesh, "
         "divided by the bounding-box diagonal. Intrinsic: the library's defaults; the fine mesh with "
@@ -510,7 +397,7 @@ def timing_part(rep, timings, blend_time):
     sc_blend, res_blend, secs_blend = blend_time
     rows = [
         ("cylinder blend", "920 (140)", 1.9, sc_blend.region_vertices, sc_blend.free, res_blend, secs_blend,
-         sc_blend.vertices, sc_blend.faces, "tests/paper_scenes.py"),
+         sc_blend.vertices, sc_blend.faces, "dev/geofair_dev/paper_scenes.py"),
     ]  # fmt: skip
     if "face" in timings:
         n, fr, r, s, vv, ff = timings["face"]
@@ -520,7 +407,7 @@ def timing_part(rep, timings, blend_time):
     if "tetrathing" in timings:
         sc, r, s = timings["tetrathing"]
         rows.append(("tetrathing", "13308 (308)", 57, len(sc.vertices), sc.free, r, s, sc.vertices, sc.faces,
-                     "tests/paper_scenes.py"))  # fmt: skip
+                     "dev/geofair_dev/paper_scenes.py"))  # fmt: skip
     rep.add(
         "| data set | paper: vertices (base) | paper: time | ours: input | region vertices | free | "
         "vertices per level | iterations | ours: time | CGAL fair (linear) |",
@@ -549,7 +436,7 @@ def timing_part(rep, timings, blend_time):
         "`geofair.fair` call (building the hierarchy included), library defaults (uniform inner fairness except the "
         "face, which is the conformal run of part 4), one run each, on a 2-core machine that may be shared: "
         "timings are noisy. CGAL: `Polygon_mesh_processing::fair` (Δ²f = 0, cotangent weights, SparseLU) on the "
-        "same mesh and free vertices, measured in the same run (`bench/cgal_fair.py`; fair() alone). On the "
+        "same mesh and free vertices, measured in the same run (`dev/geofair_dev/cgal_fair.py`; fair() alone). On the "
         "tetrathing every circle has free vertices on both sides, so CGAL sees no second fixed ring there and "
         "solves one coupled system.",
         "",
@@ -607,8 +494,8 @@ def main():
         f"numpy {np.__version__}, {os.cpu_count()} CPUs; the whole run took {total:.0f} s. Pictures: a numpy "
         "software renderer (`scripts/raster.py`): flat shading with the mesh edges, and reflection lines "
         "(the view direction reflected at interpolated vertex normals, striped by its azimuth: vertical light "
-        "bars), orthographic. Scenes: `tests/paper_scenes.py`; measures: `tests/measures.py` (both tested in "
-        '`tests/test_paper_scenes.py`, `tests/test_measures.py`). "Ours" is `geofair.fair` with the '
+        "bars), orthographic. Scenes: `dev/geofair_dev/paper_scenes.py`; measures: `dev/geofair_dev/measures.py` "
+        '(both tested in `tests/test_paper_scenes.py`, `tests/test_measures.py`). "Ours" is `geofair.fair` with the '
         "library's defaults unless a row names a setting. The defaults of this build:",
         "",
         "```",

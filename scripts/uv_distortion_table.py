@@ -13,12 +13,14 @@ regions).
 """
 
 import argparse
-import importlib
 import pathlib
 import sys
 
 import bpy
 import numpy as np
+
+from geofair_dev import paths
+from geofair_dev.blender import add_subdivided_suzanne
 
 # Regions: faces whose centre lies within the radius (Suzanne is 2.7 wide).
 REGIONS = (
@@ -34,20 +36,10 @@ def parse_args():
     return parser.parse_args(sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else [])
 
 
-def suzanne():
-    bpy.ops.mesh.primitive_monkey_add()
-    obj = bpy.context.active_object
-    modifier = obj.modifiers.new("Subdivision", "SUBSURF")
-    modifier.levels = 2
-    bpy.ops.object.modifier_apply(modifier=modifier.name)
-    return obj
-
-
 def main():
     args = parse_args()
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    sys.path.insert(0, str(args.addon.resolve()))
-    geometric_fairing = importlib.import_module("geometric_fairing")
+    geometric_fairing = paths.import_addon(args.addon)
     print(f"Blender {bpy.app.version_string}, Suzanne subdivided twice, intrinsic outer fairness, tolerance 1e-4\n")
     print(
         "| region | free vertices | inner fairness | iterations | UV σ1/σ2 mean: before → after | max: before → after |"
@@ -55,7 +47,7 @@ def main():
     print("|---|---:|---|---:|---|---|")
     for name, centre, radius in REGIONS:
         for inner in ("UNIFORM", "CONFORMAL"):
-            obj = suzanne()
+            obj = add_subdivided_suzanne()
             centres = np.empty(3 * len(obj.data.polygons))
             obj.data.polygons.foreach_get("center", centres)
             faces = np.linalg.norm(centres.reshape(-1, 3) - centre, axis=1) < radius

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 import geofair
-import measures
-import scenes
+from geofair_dev import measures, scenes
 
 
 def fair(scene, **kw):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 @pytest.fixture(scope="module")

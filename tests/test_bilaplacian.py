@@ -14,7 +14,7 @@ import scipy.sparse
 import scipy.sparse.linalg
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def region_weights(vertices, faces, free, inner):

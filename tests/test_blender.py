@@ -22,15 +22,15 @@ but fails when the environment variable CI is set.
 
 import importlib.util
 import os
-import pathlib
 import shutil
 import subprocess
 import sys
 
 import pytest
 
-REPO = pathlib.Path(__file__).resolve().parents[1]
-BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
+from geofair_dev import paths
+from geofair_dev.paths import BUILD, REPO
+
 CHECKS = REPO / "tests" / "blender"
 
 
@@ -77,8 +77,9 @@ def _run(command, env=None, timeout=300):
     # A Blender built against the system Python finds its Python home through the first
     # python3.x on PATH; pyenv puts its own first, and Blender would then start with
     # pyenv's standard library and without the system's numpy. Look next to Blender first.
+    # PYTHONPATH holds dev/, so the checks import geofair_dev (Debian's Blender reads it too).
     path = os.pathsep.join([os.path.dirname(shutil.which(command[0]) or command[0]), os.environ.get("PATH", "")])
-    env = dict(os.environ, PATH=path, **(env or {}))
+    env = paths.subprocess_env(PATH=path, **(env or {}))
     completed = subprocess.run(command, cwd=REPO, env=env, capture_output=True, text=True, timeout=timeout)
     output = completed.stdout + completed.stderr
     assert completed.returncode == 0, f"{' '.join(command)} exited {completed.returncode}:\n{output}"

@@ -1,4 +1,4 @@
-"""The CGAL reference of the benchmarks (bench/cgal_fair.py) measures what it claims.
+"""The CGAL reference of the benchmarks (geofair_dev.cgal_fair) measures what it claims.
 
 CGAL's ``fair`` with continuity 1 solves the linear bilaplacian system Δ²x = 0, so it
 reproduces a plane exactly and leaves the fixed vertices alone. Skipped when the
@@ -6,15 +6,11 @@ executable is not built, except in CI.
 """
 
 import os
-import sys
 
 import numpy as np
 import pytest
 
-import scenes
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "bench"))
-import cgal_fair  # noqa: E402
+from geofair_dev import cgal_fair, scenes
 
 
 @pytest.fixture(autouse=True)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def signature_defaults():

@@ -27,9 +27,9 @@ import numpy as np
 import pytest
 
 import geofair
+from geofair_dev import paths
+from geofair_dev.paths import BUILD, REPO
 
-REPO = pathlib.Path(__file__).resolve().parents[1]
-BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
 CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache")
 BPY_VENVS = {  # variant: (the venv's python, its environment override, its Python's wheel tag)
@@ -37,8 +37,7 @@ BPY_VENVS = {  # variant: (the venv's python, its environment override, its Pyth
     "bpy-5.2": (os.environ.get("GEOFAIR_BPY52_PYTHON", CACHE / "geofair" / "bpy52-venv" / "bin" / "python"), "cp313"),
 }
 VARIANTS = ["bpy-4.5", *BPY_VENVS]
-sys.path.insert(0, str(REPO / "scripts"))
-from build_extension import BLENDER_COMMAND  # noqa: E402
+BLENDER_COMMAND = paths.source_module(REPO / "scripts" / "build_extension.py").BLENDER_COMMAND
 
 
 def _unavailable(reason):

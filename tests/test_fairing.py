@@ -2,18 +2,14 @@
 spheres, cylinders and minimal surfaces (Schneider & Kobbelt 2001, section 3), on regular
 and irregular meshes, unlike the linear Δ²f = 0 solution."""
 
-import os
-import sys
 import time
 
 import numpy as np
 import pytest
 
 import geofair
-import scenes
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
-import realmesh  # noqa: E402  (its numpy count of folded edges)
+from geofair_dev import scenes
+from geofair_dev.corpus import new_folds  # its numpy count of folded edges
 
 PATCHES = {
     "sphere_cap": scenes.sphere_cap,
@@ -135,14 +131,14 @@ def test_a_folded_planar_input_is_faired_to_a_fold_free_plane(inner):
     h = np.median(np.linalg.norm(v[faces[:, 0]] - v[faces[:, 1]], axis=1))
     folded = v.copy()
     folded[free, :2] += 0.8 * h * np.random.default_rng(0).normal(size=(int(free.sum()), 2))
-    assert realmesh.new_folds(None, folded, faces, free) > 1000
+    assert new_folds(None, folded, faces, free) > 1000
     r = geofair.fair(folded, faces, free, inner_fairness=inner)
     assert r.converged, r.message
     assert np.abs(r.vertices[:, 2]).max() < 1e-12
-    assert r.folds == r.new_folds == realmesh.new_folds(None, r.vertices, faces, free) == 0
+    assert r.folds == r.new_folds == new_folds(None, r.vertices, faces, free) == 0
     # The input itself as the result (time_limit=0): every fold counted, none new.
     r = geofair.fair(folded, faces, free, inner_fairness=inner, time_limit=0.0)
-    assert r.folds == realmesh.new_folds(None, folded, faces, free) and r.new_folds == 0
+    assert r.folds == new_folds(None, folded, faces, free) and r.new_folds == 0
     assert f"{r.folds} edges fold over (triangles flipped), 0 of them not in the input" in r.message
 
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def fair_cap(n_free, construction, seed, exact_normals):

@@ -7,7 +7,7 @@ import pytest
 from scipy.spatial import Delaunay
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def off_diagonal(L):

@@ -6,7 +6,7 @@ import pytest
 import scipy.sparse.linalg
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 MESHES = [
     ("sphere", lambda irr: scenes.sphere(radius=1.5, n_vertices=400, irregular=irr, seed=1)),

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def interior(scene):

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-import scenes
-from measures import bounding_box_diagonal, hausdorff, point_mesh_distance, symmetry_error
-from paper_scenes import tetrahedral_group
+from geofair_dev import scenes
+from geofair_dev.measures import bounding_box_diagonal, hausdorff, point_mesh_distance, symmetry_error
+from geofair_dev.paper_scenes import tetrahedral_group
 
 TRIANGLE = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
 

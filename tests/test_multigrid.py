@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 # These tests are about the paper's iteration with progressive-mesh multigrid (section 7.4);
 # the default iteration="auto" solves these scenes by Newton's method (tests/test_newton.py).

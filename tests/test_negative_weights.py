@@ -10,17 +10,11 @@ the discrete harmonic map with those weights puts them (solved with scipy in har
 on the surface, and equal "conformal" bit for bit where no edge needs a flip. A vertex
 whose positive weights do not surround it takes mean value weights (inner_fairness.h)."""
 
-import os
-import sys
-
 import numpy as np
 import pytest
 
 import geofair
-import harmonic
-import scenes
-
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+from geofair_dev import harmonic, paths, regions, scenes
 
 
 def squashed_cylinder(nu, squash=4.0, angle=120.0):
@@ -215,14 +209,10 @@ def test_conformal_fairing_keeps_the_face_texture_better_than_uniform():
     # the triangles' shape in that map better than uniform, by the mean and the max of
     # σ1/σ2. Two free vertices are sharp cone points whose positive cotangent weights do
     # not surround them; with clamped weights alone their triangles collapse (max 1,464).
-    sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    sys.path.insert(0, os.path.join(ROOT, "addon", "geometric_fairing"))
-    import metrics
-    import results
-
-    v, f = results.load_cgal_mesh(results.MANNEQUIN)
-    sel, free = results.ball_region(v, f, *results.FACE)
-    uv = results.harmonic_disk_uv(v, f[sel])
+    metrics = paths.source_module(paths.ADDON_SOURCE / "metrics.py")
+    v, f = regions.load_cgal_mesh(regions.MANNEQUIN)
+    sel, free = regions.ball_region(v, f, *regions.FACE)
+    uv = regions.harmonic_disk_uv(v, f[sel])
     tri = f[sel & free[f].any(axis=1)]
     distortion = {}
     for inner in ("uniform", "conformal"):

@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 import geofair
-import measures
-import scenes
+from geofair_dev import measures, scenes
 from test_multigrid import PATCHES, max_error
 
 

@@ -11,8 +11,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-import paper_scenes
-from scenes import border_mask, edges, face_normals, triangle_angles
+from geofair_dev import paper_scenes
+from geofair_dev.scenes import border_mask, edges, face_normals, triangle_angles
 
 
 @functools.cache

@@ -6,17 +6,11 @@ solver change that makes one converge fails here until it is moved to CONVERGING
 change that loses one fails too). The whole corpus and its success table:
 ``PYTHONPATH=build/python python3 bench/realmesh.py``."""
 
-import os
-import sys
-
 import numpy as np
 import pytest
 
 import geofair
-import scenes
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
-import realmesh  # noqa: E402
+from geofair_dev import corpus, scenes
 
 # (case, inner fairness) pairs that converge today with no new fold.
 CONVERGING = {
@@ -44,7 +38,7 @@ CONVERGING = {
 XFAIL_TIME_LIMIT = 1.0
 CONVERGING_TIME_LIMIT = 60.0
 
-CASES = realmesh.cases(quick=True)
+CASES = corpus.cases(quick=True)
 
 
 def params():
@@ -58,9 +52,9 @@ def params():
 
 @pytest.mark.parametrize("desc, inner", list(params()))
 def test_real_mesh_region_converges_without_folds(desc, inner):
-    if desc["name"].startswith("blender/") and not realmesh.bpy_available():
+    if desc["name"].startswith("blender/") and not corpus.bpy_available():
         pytest.skip("bpy is not importable")
-    case = realmesh.load_case(desc)
+    case = corpus.load_case(desc)
     v, f, free = case["vertices"], case["faces"], case["free"]
     limit = CONVERGING_TIME_LIMIT if (desc["name"], inner) in CONVERGING else XFAIL_TIME_LIMIT
     r = geofair.fair(
@@ -75,7 +69,7 @@ def test_real_mesh_region_converges_without_folds(desc, inner):
     assert np.array_equal(r.vertices[~free], v[~free])
     assert np.isfinite(r.vertices).all()
     # The library's count of flipped triangles agrees with the benchmark's own, converged or not.
-    folds = realmesh.new_folds(v, r.vertices, f, free)
+    folds = corpus.new_folds(v, r.vertices, f, free)
     assert r.new_folds == folds
     assert r.converged, r.message
     assert folds == 0
@@ -87,12 +81,12 @@ def test_real_mesh_region_converges_without_folds(desc, inner):
 def test_a_converged_result_that_flips_triangles_says_so():
     # The tetrathing of 500 with conformal inner fairness converges with one edge folded over
     # (bench/realmesh.py): fair() counts it like the benchmark and says so in the message.
-    desc = next(d for d in realmesh.cases() if d["name"] == "paper/tetrathing_500")
-    case = realmesh.load_case(desc)
+    desc = next(d for d in corpus.cases() if d["name"] == "paper/tetrathing_500")
+    case = corpus.load_case(desc)
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], inner_fairness="conformal")
     assert r.converged, r.message
-    assert r.new_folds == realmesh.new_folds(v, r.vertices, f, free) > 0
+    assert r.new_folds == corpus.new_folds(v, r.vertices, f, free) > 0
     assert r.folds >= r.new_folds
     assert f"{r.folds} edge" in r.message and "flipped" in r.message
 
@@ -100,13 +94,13 @@ def test_a_converged_result_that_flips_triangles_says_so():
 def test_diverging_auto_solve_returns_the_input_unconverged():
     # A disc on CGAL's dino where Newton's method stalls and the paper's iteration then
     # diverges: "auto" reports it, an explicitly chosen iteration raises.
-    desc = next(d for d in realmesh.cases() if d["name"] == "cgal/dino/100/s1")
-    case = realmesh.load_case(desc)
+    desc = next(d for d in corpus.cases() if d["name"] == "cgal/dino/100/s1")
+    case = corpus.load_case(desc)
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"])
     assert not r.converged and "diverged" in r.message and "unchanged" in r.message
     assert np.array_equal(r.vertices, v) and np.isfinite(r.residual) and r.residual > 1e-4
-    assert (r.folds, r.new_folds) == (realmesh.new_folds(None, v, f, free), 0)
+    assert (r.folds, r.new_folds) == (corpus.new_folds(None, v, f, free), 0)
     with pytest.raises(RuntimeError, match="diverged"):
         geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], iteration="paper")
 
@@ -118,12 +112,12 @@ def test_regular_cap_converges_on_the_newton_hierarchy(inner):
     # intrinsic Delaunay weights of the smoothed copy; with their own uniform weights the
     # finest level of this cap did not converge after the prolongation.
     name = "regular/sphere_cap_13000"
-    case = realmesh.load_case(next(d for d in realmesh.cases() if d["name"] == name))
+    case = corpus.load_case(next(d for d in corpus.cases() if d["name"] == name))
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], inner_fairness=inner, time_limit=60.0)
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.vertices_per_level) > 1, r.vertices_per_level
-    assert realmesh.new_folds(v, r.vertices, f, free) == 0
+    assert corpus.new_folds(v, r.vertices, f, free) == 0
     assert case["meta"]["sphere"]  # the unit sphere
     assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-5
 
@@ -148,14 +142,14 @@ def test_failing_hierarchy_is_abandoned_early(inner):
     # The base level of Blender's icosphere-6 cap does not converge; the hierarchy is then
     # abandoned after a few steps of it (NewtonTuning::coarse_patience) instead of starting the
     # finest level from its result, and the finest level alone converges.
-    if not realmesh.bpy_available():
+    if not corpus.bpy_available():
         pytest.skip("bpy is not importable")
-    case = realmesh.load_case(next(d for d in realmesh.cases() if d["name"] == "blender/icosphere6_cap"))
+    case = corpus.load_case(next(d for d in corpus.cases() if d["name"] == "blender/icosphere6_cap"))
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"], inner_fairness=inner, time_limit=60.0)
     assert r.converged and r.iteration == "newton", r.message
     assert r.newton_iterations - r.iterations <= 20, (r.newton_iterations, r.iterations)
-    assert realmesh.new_folds(v, r.vertices, f, free) == 0
+    assert corpus.new_folds(v, r.vertices, f, free) == 0
     assert np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() < 1e-5
 
 
@@ -176,21 +170,21 @@ def test_region_topology_tells_discs_from_tubes_and_handles():
         return np.array(faces)
 
     free = np.ones(rows * cols, bool)
-    assert realmesh.region_topology(grid(False, False), free) == ("disc", 1, 1)
-    assert realmesh.region_topology(grid(True, False), free) == ("annulus", 0, 2)
-    assert realmesh.region_topology(grid(True, True), free) == ("other", 0, 0)
+    assert corpus.region_topology(grid(False, False), free) == ("disc", 1, 1)
+    assert corpus.region_topology(grid(True, False), free) == ("annulus", 0, 2)
+    assert corpus.region_topology(grid(True, True), free) == ("other", 0, 0)
     # Only the triangles with a free vertex count: the first column alone is a disc again.
     first = np.zeros(rows * cols, bool)
     first[idx[:, 0]] = True
-    assert realmesh.region_topology(grid(False, False), first)[0] == "disc"
+    assert corpus.region_topology(grid(False, False), first)[0] == "disc"
 
 
 def test_auto_converges_by_newton_from_the_paper_iterate():
     # A disc on CGAL's bear where Newton's method from the linear initial mesh does not
     # converge, and neither does the paper's iteration within the time limit; Newton's method
     # from the paper's iterate does ("auto"): converged, no fold, the fixed vertices kept.
-    desc = next(d for d in realmesh.cases() if d["name"] == "cgal/bear/1000/s0")
-    case = realmesh.load_case(desc)
+    desc = next(d for d in corpus.cases() if d["name"] == "cgal/bear/1000/s0")
+    case = corpus.load_case(desc)
     v, f, free, bn = case["vertices"], case["faces"], case["free"], case["boundary_normals"]
     newton = geofair.fair(v, f, free, boundary_normals=bn, iteration="newton")
     assert not newton.converged
@@ -198,4 +192,4 @@ def test_auto_converges_by_newton_from_the_paper_iterate():
     assert r.converged and "from the paper's iterate" in r.message, r.message
     assert r.iteration == "paper" and r.newton_iterations > newton.newton_iterations
     assert np.array_equal(r.vertices[~free], v[~free])
-    assert realmesh.new_folds(v, r.vertices, f, free) == 0
+    assert corpus.new_folds(v, r.vertices, f, free) == 0

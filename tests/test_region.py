@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 _REGION_PY = pathlib.Path(__file__).resolve().parents[1] / "addon" / "geometric_fairing" / "region.py"
 _spec = importlib.util.spec_from_file_location("geofair_region", _REGION_PY)

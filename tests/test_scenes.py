@@ -10,8 +10,8 @@ import pytest
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-import scenes
-from scenes import border_mask, edges, face_normals, triangle_angles, valences
+from geofair_dev import scenes
+from geofair_dev.scenes import border_mask, edges, face_normals, triangle_angles, valences
 
 PATCHES = {
     "sphere_cap": scenes.sphere_cap,

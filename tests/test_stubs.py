@@ -4,14 +4,12 @@ tests/test_wheel.py checks them against the installed wheel with mypy's stubtest
 
 import importlib.util
 import os
-import pathlib
 import subprocess
 import sys
 
 import pytest
 
-REPO = pathlib.Path(__file__).resolve().parents[1]
-BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
+from geofair_dev.paths import BUILD, REPO
 
 
 def test_stubs_are_those_of_the_built_module(tmp_path):

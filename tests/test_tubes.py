@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import geofair
-import scenes
+from geofair_dev import scenes
 
 
 def bumped_tube(circumferences, irregular):

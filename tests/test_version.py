@@ -2,15 +2,13 @@
 
 import ast
 import os
-import pathlib
 import tomllib
 
 import pytest
 
 import geofair
+from geofair_dev.paths import BUILD, REPO
 
-REPO = pathlib.Path(__file__).resolve().parents[1]
-BUILD = pathlib.Path(os.environ.get("GEOFAIR_BUILD", REPO / "build")).resolve()
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
 
 

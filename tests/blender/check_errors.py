@@ -1,6 +1,6 @@
 """Check bad input and solver failures of the Geometric Fairing operator; raises (non-zero exit) on failure.
 
-Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/blender.py).
 
 - Bad input, each with its exact report, ``{'CANCELLED'}`` and the mesh (positions,
   UVs, selection) byte-identical: nothing selected; only vertices; only edges; the
@@ -22,7 +22,6 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
 import contextlib
 import ctypes
 import os
-import pathlib
 import re
 import sys
 import tempfile
@@ -34,8 +33,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 import bmesh
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import (
+from geofair_dev.blender import (
     FailingModule,
     add_subdivided_suzanne,
     disable_addon,

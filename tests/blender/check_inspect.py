@@ -1,6 +1,6 @@
 """Check the panel's zebra and mean-curvature toggles: on shows them, off leaves nothing behind.
 
-Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py). Compares,
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/blender.py). Compares,
 before and after each on/off sequence: the data-blocks (materials, node groups,
 images, textures), the object's material slots and active material, the mesh's
 attributes with the active and render colour attributes, every shading setting
@@ -17,8 +17,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 # isort: split
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import (
+from geofair_dev.blender import (
     add_subdivided_suzanne,
     disable_addon,
     enable_addon,

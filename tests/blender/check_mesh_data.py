@@ -1,6 +1,6 @@
 """Check what fairing changes in a mesh: positions where they must, nothing else; hidden faces; shape keys.
 
-Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/blender.py).
 
 - Layers: on Suzanne with shape keys, a modifier stack, custom split normals, two UV
   maps, colour attributes (point float, corner byte), a face attribute, a vertex group,
@@ -15,7 +15,6 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
   they take part (as boundary, or inside a region group).
 """
 
-import pathlib
 import sys
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
@@ -24,8 +23,14 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 import bmesh
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import add_subdivided_suzanne, disable_addon, enable_addon, face_centres, parse_args, select_faces
+from geofair_dev.blender import (
+    add_subdivided_suzanne,
+    disable_addon,
+    enable_addon,
+    face_centres,
+    parse_args,
+    select_faces,
+)
 
 BROW = np.array([0.4, -0.7, 0.72])
 # Before 4.1 custom normals need auto smooth, and their stored data is no attribute: Python cannot read it.

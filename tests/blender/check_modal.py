@@ -12,7 +12,6 @@ exit status 0 when every check passed and 1 otherwise (a timer cannot use
 """
 
 import os
-import pathlib
 import sys
 import time
 import traceback
@@ -22,8 +21,7 @@ import bpy
 # isort: split
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import FailingModule, add_subdivided_suzanne, enable_addon, parse_args, positions, select_faces
+from geofair_dev.blender import FailingModule, add_subdivided_suzanne, enable_addon, parse_args, positions, select_faces
 
 BROW = np.array([0.4, -0.7, 0.72])
 TIMEOUT = 60.0

@@ -1,6 +1,6 @@
 """Check the Geometric Fairing operator with several objects in Edit Mode; raises (non-zero exit) on failure.
 
-Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/blender.py).
 
 - Two Suzannes in Edit Mode, each with a selected region: both are faired, each only
   inside its region, and one undo restores both exactly.
@@ -12,7 +12,6 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
 - Two objects sharing one mesh (linked duplicates) fair it once.
 """
 
-import pathlib
 import sys
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
@@ -20,10 +19,16 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 # isort: split
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import FailingModule, add_subdivided_suzanne, disable_addon, enable_addon, parse_args, select_faces
-from helpers import edit_state as state
-from helpers import run_fairing as fair
+from geofair_dev.blender import (
+    FailingModule,
+    add_subdivided_suzanne,
+    disable_addon,
+    enable_addon,
+    parse_args,
+    select_faces,
+)
+from geofair_dev.blender import edit_state as state
+from geofair_dev.blender import run_fairing as fair
 
 BROW = np.array([0.4, -0.7, 0.72])
 WHOLE_MESH = (

@@ -14,7 +14,6 @@ registers and that the operator cancels with a clear message; with
 ``cpython-3XY`` name) that the message names both Python versions.
 """
 
-import pathlib
 import sys
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
@@ -23,8 +22,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 import bmesh
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import (
+from geofair_dev.blender import (
     add_subdivided_suzanne,
     disable_addon,
     enable_addon,
@@ -32,7 +30,7 @@ from helpers import (
     parse_args,
     select_faces,
 )
-from helpers import positions as current_positions
+from geofair_dev.blender import positions as current_positions
 
 
 def fair(**properties):

@@ -32,8 +32,7 @@ import bpy
 import addon_utils
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import add_subdivided_suzanne, parse_args, positions, select_faces
+from geofair_dev.blender import add_subdivided_suzanne, parse_args, positions, select_faces
 
 BROW = np.array([0.4, -0.7, 0.72])
 

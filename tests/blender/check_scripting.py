@@ -1,6 +1,6 @@
 """Check ``geometric_fairing.fair_object`` for scripts, cancelling, and UV distortion read from Blender meshes.
 
-Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
+Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/blender.py).
 
 - fair_object with a vertex group, a face mask and the selection; Object Mode
   and Edit Mode; a shape key; errors.
@@ -15,7 +15,6 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see helpers.py).
   defaults (uniform inner fairness over the quads' edges).
 """
 
-import pathlib
 import sys
 import time
 
@@ -25,8 +24,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 import bmesh
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from helpers import (
+from geofair_dev.blender import (
     add_subdivided_suzanne,
     disable_addon,
     enable_addon,

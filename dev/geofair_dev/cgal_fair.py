@@ -3,13 +3,13 @@
 Runs ``build/bench/cgal_fair`` (bench/cgal_fair.cpp, built by CMake when libcgal-dev is
 installed) in a subprocess, so its peak memory is its own:
 
-    from cgal_fair import cgal_fair
+    from geofair_dev.cgal_fair import cgal_fair
     result = cgal_fair(vertices, faces, free)   # result.vertices, .seconds, .peak_mib
 
 CGAL solves Δ²x = 0 (``fairing_continuity(1)``) over the free vertices with cotangent
 weights and Eigen's SparseLU; tangent continuity comes from the fixed vertices outside the
 region, so give it a mesh with at least two fixed rings (``boundary_rings=2`` in
-tests/scenes.py).
+geofair_dev.scenes).
 """
 
 from __future__ import annotations
@@ -22,8 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXECUTABLE = os.path.join(os.environ.get("GEOFAIR_BUILD", os.path.join(ROOT, "build")), "bench", "cgal_fair")
+from geofair_dev.paths import BUILD
+
+EXECUTABLE = str(BUILD / "bench" / "cgal_fair")
 
 
 @dataclass

@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import ConvexHull
 
-from scenes import edges, face_normals, triangle_angles
+from geofair_dev.scenes import edges, face_normals, triangle_angles
 
 __all__ = ["MIN_ANGLE_DEG", "Circle", "PaperScene", "cylinder_blend", "tetrathing", "tetrahedral_group"]
 

@@ -15,6 +15,8 @@ layer of fixed vertices outside it (for fairing schemes that want outside neighb
 
 Closed/open test meshes for curvature estimates: ``sphere`` and ``cylinder_tube``.
 
+``uv_sphere``: Blender's UV sphere (``primitive_uv_sphere_add``), its quads split into triangles.
+
 Meshing, ``irregular=False``: structured meshes (concentric rings of 6k vertices on
 disks, a grid with row-alternating diagonals on rectangles; both have interior valence
 6).  ``irregular=True``: a hexagonal lattice jittered by up to 0.45 spacings plus exact
@@ -927,3 +929,32 @@ def flattened_sphere_cap(
     start[free, 2] = height
     start[free] += jitter * h * rng.uniform(-1, 1, size=(int(free.sum()), 3))
     return scene, start
+
+
+def uv_sphere(segments=64, rings=32):
+    """Blender's UV sphere of radius 1 (primitive_uv_sphere_add): ``segments`` meridians,
+    ``rings`` bands; quads split into triangles, the poles triangle fans; faces outward.
+
+    Vertex 0 is the north pole, then the rings of ``segments`` vertices from the north,
+    then the south pole. (Blender numbers the vertices otherwise; the geometry is the same:
+    its mesh, triangulated, gives the fairing figures of this module to 4 digits.)
+    """
+    theta = np.pi * np.arange(1, rings) / rings
+    phi = 2 * np.pi * np.arange(segments) / segments
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    ring = np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=-1).reshape(-1, 3)
+    vertices = np.vstack([[0.0, 0.0, 1.0], ring, [0.0, 0.0, -1.0]])
+    south = len(vertices) - 1
+
+    def index(r, s):
+        return 1 + r * segments + s % segments
+
+    faces = [[0, index(0, s), index(0, s + 1)] for s in range(segments)]
+    for r in range(rings - 2):
+        for s in range(segments):
+            a, b, c, d = index(r, s), index(r + 1, s), index(r + 1, s + 1), index(r, s + 1)
+            faces += [[a, b, c], [a, c, d]]
+    faces += [[index(rings - 2, s), south, index(rings - 2, s + 1)] for s in range(segments)]
+    faces = np.array(faces)
+    assert (np.einsum("ij,ij->i", face_normals(vertices, faces), vertices[faces].mean(axis=1)) > 0).all()
+    return vertices, faces

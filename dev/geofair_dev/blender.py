@@ -1,11 +1,14 @@
-"""Shared by the check scripts that run inside Blender 3.4+ and the ``bpy`` module from PyPI.
+"""Blender-side helpers of the tests (tests/blender/check_*.py), benchmarks (bench/blender_*.py)
+and scripts: enabling the add-on from a folder, Suzanne, selecting faces, reading positions.
 
-Each check script is run as
+They run inside Blender 3.4+ and the ``bpy`` module from PyPI. Each check script is run as
 
     blender --background --factory-startup --python-exit-code 1 --python tests/blender/<script>.py -- build/addon
     python3 tests/blender/<script>.py -- build/addon
 
-and raises (non-zero exit) on failure.
+and raises (non-zero exit) on failure; ``geofair_dev`` must import there (scripts/setup.sh
+installs it for ``python3`` and for Debian's Python that Blender 3.4 runs; tests/test_blender.py
+passes ``PYTHONPATH``: geofair_dev.paths).
 """
 
 import importlib
@@ -19,15 +22,15 @@ import addon_utils
 import bmesh
 import numpy as np
 
-REPO = pathlib.Path(__file__).resolve().parents[2]
+from geofair_dev import paths
 
 
 def parse_args():
-    """``(addon folder, flags)`` from the arguments after ``--`` (default folder: <repo>/build/addon)."""
+    """``(addon folder, flags)`` from the arguments after ``--`` (default folder: ``paths.BUILT_ADDON``)."""
     args = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     flags = {a for a in args if a.startswith("--")}
     folders = [a for a in args if not a.startswith("--")]
-    return pathlib.Path(folders[0] if folders else REPO / "build" / "addon").resolve(), flags
+    return pathlib.Path(folders[0] if folders else paths.BUILT_ADDON).resolve(), flags
 
 
 def enable_addon(folder, no_native=False):
@@ -36,7 +39,7 @@ def enable_addon(folder, no_native=False):
         raise FileNotFoundError(f"no geometric_fairing add-on in {folder}")
     if no_native:  # a None entry in sys.modules makes the import raise ImportError
         sys.modules["geometric_fairing.geofair"] = None
-    sys.path.insert(0, str(folder))
+    paths.prepend(folder)
     addon = addon_utils.enable("geometric_fairing", default_set=True, handle_error=_raise)
     assert addon is not None, "addon_utils.enable failed"
     assert pathlib.Path(addon.__file__).parent == folder / "geometric_fairing", addon.__file__
@@ -56,7 +59,8 @@ def _raise(error):
 
 
 def add_subdivided_suzanne():
-    """Suzanne with a Subdivision Surface modifier (level 2) applied, active, in Object Mode."""
+    """Suzanne with a Subdivision Surface modifier (level 2) applied, active, in Object Mode;
+    she comes with a UV map. The Suzanne of the checks, benchmarks, scripts and corpus."""
     bpy.ops.mesh.primitive_monkey_add()
     obj = bpy.context.active_object
     modifier = obj.modifiers.new("Subdivision", "SUBSURF")
