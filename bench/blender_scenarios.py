@@ -171,9 +171,9 @@ def main():
     print(f"Blender {bpy.app.version_string}; add-on from {folder}")
     print(f"{'scenario':46s} {'inner':9s} {'result':18s} {'faces':>6s} {'moved':>6s} {'s':>6s} {'off sphere':>10s}")
     for name, make, select, answer in SCENARIOS:
-        for inner in ("UNIFORM", "CONFORMAL"):
+        for inner in ("uniform", "conformal"):
             status, faces, moved, seconds, error = run(addon, make, select, answer, inner)
-            row = f"{name:46s} {inner.lower():9s} {status:18s} {faces:6d} {moved:6d} {seconds:6.2f} {error:>10s}"
+            row = f"{name:46s} {inner:9s} {status:18s} {faces:6d} {moved:6d} {seconds:6.2f} {error:>10s}"
             print(row, flush=True)
     disable_addon()
 

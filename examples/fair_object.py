@@ -106,7 +106,7 @@ def main():
     # 1. A vertex group defines the region.
     brow = obj.vertex_groups.new(name="Brow")
     brow.add(np.flatnonzero(near(positions(obj), (0.4, -0.7, 0.72), 0.27)).tolist(), 1.0, "REPLACE")
-    report = geometric_fairing.fair_object(obj, region="Brow", inner_fairness="CONFORMAL")
+    report = geometric_fairing.fair_object(obj, region="Brow", inner_fairness="conformal")
     print_report("vertex group 'Brow'", report)
 
     # 2. A boolean array over the faces, with pinned vertices inside the region.
@@ -114,7 +114,7 @@ def main():
     pins = obj.vertex_groups.new(name="Pins")  # a few vertices in the middle of the cheek keep their place
     middle = positions(obj)[np.argmin(np.linalg.norm(positions(obj) - (0.55, -0.6, 0.0), axis=1))]
     pins.add(np.flatnonzero(near(positions(obj), middle, 0.04)).tolist(), 1.0, "REPLACE")
-    report = geometric_fairing.fair_object(obj, region=cheek, pin_group="Pins", inner_fairness="CONFORMAL")
+    report = geometric_fairing.fair_object(obj, region=cheek, pin_group="Pins", inner_fairness="conformal")
     print_report(f"face mask, {report.pinned_vertices} pinned", report)
 
     # 3. The selected faces, with a time limit through the progress callback.

@@ -41,8 +41,10 @@ def parse_args():
     )
     parser.add_argument("--out", type=pathlib.Path, default=pathlib.Path("out"), help="output folder")
     # Suzanne carries a UV map, so the texture-preserving inner fairness by default.
-    parser.add_argument("--inner-fairness", default="CONFORMAL", choices=("UNIFORM", "CONFORMAL"))
-    parser.add_argument("--outer-fairness", default="INTRINSIC", choices=("INTRINSIC", "BILAPLACIAN"))
+    # The library's values (geofair.fair's), which the operator takes as they are; upper case works too.
+    inner, outer = ("uniform", "conformal", "conformal_intrinsic"), ("intrinsic", "bilaplacian")
+    parser.add_argument("--inner-fairness", type=str.lower, default="conformal", choices=inner)
+    parser.add_argument("--outer-fairness", type=str.lower, default="intrinsic", choices=outer)
     return parser.parse_args(sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else [])
 
 
@@ -197,7 +199,7 @@ def main():
 
     print(
         f"fairing {brow.sum()} selected faces of {len(suzanne.data.polygons)} "
-        f"({args.inner_fairness.lower()} inner, {args.outer_fairness.lower()} outer fairness)"
+        f"({args.inner_fairness} inner, {args.outer_fairness} outer fairness)"
     )
     start = time.perf_counter()
     result = bpy.ops.mesh.geometric_fairing(

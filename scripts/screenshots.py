@@ -154,9 +154,7 @@ def steps(addon, out):
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert last.status == "CONVERGED", (last.status, last.message)
     print(f"faired: {last.message}")
-    area.header_text_set(
-        f"After fairing: intrinsic (Δ_B H = 0), {last.inner_fairness.lower()} inner fairness, G1 boundary"
-    )
+    area.header_text_set(f"After fairing: intrinsic (Δ_B H = 0), {last.inner_fairness} inner fairness, G1 boundary")
     yield 1.0
     after = out / "_after.png"
     with override():
@@ -194,7 +192,7 @@ def main():
     bpy.context.preferences.view.show_splash = False  # before Blender opens the splash, after this script
     addon = enable_addon(args.addon.resolve())
     settings = bpy.context.scene.geometric_fairing
-    settings.inner_fairness = "CONFORMAL"  # Suzanne has a UV map: the texture-preserving mode
+    settings.inner_fairness = "conformal"  # Suzanne has a UV map: the texture-preserving mode
     suzanne()
     bpy.app.timers.register(Driver(steps(addon, out)), first_interval=1.0)
 

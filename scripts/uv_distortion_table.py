@@ -46,7 +46,7 @@ def main():
     )
     print("|---|---:|---|---:|---|---|")
     for name, centre, radius in REGIONS:
-        for inner in ("UNIFORM", "CONFORMAL"):
+        for inner in ("uniform", "conformal"):
             obj = add_subdivided_suzanne()
             centres = np.empty(3 * len(obj.data.polygons))
             obj.data.polygons.foreach_get("center", centres)
@@ -54,14 +54,14 @@ def main():
             try:
                 report = geometric_fairing.fair_object(obj, region=faces, inner_fairness=inner, tolerance=1e-4)
             except (ValueError, RuntimeError) as error:
-                print(f"| {name} | | {inner.lower()} | failed: {error} | | |")
+                print(f"| {name} | | {inner} | failed: {error} | | |")
                 continue
             finally:
                 bpy.data.objects.remove(obj)
             before, after = report.uv_before, report.uv_after
             iterations = f"{report.iterations}" + ("" if report.converged else " (not converged)")
             print(
-                f"| {name} | {report.free_vertices} | {inner.lower()} | {iterations} | "
+                f"| {name} | {report.free_vertices} | {inner} | {iterations} | "
                 f"{before.mean:.3f} → {after.mean:.3f} | {before.max:.2f} → {after.max:.2f} |"
             )
 

@@ -33,7 +33,13 @@ from . import mesh_io, metrics, native, overlays, properties, region
 
 @dataclass
 class FairingOptions:
-    """Options of a run, named and valued like the operator's properties."""
+    """Options of a run: ``geofair.fair``'s by its names and values (the library checks them), defaults
+    from ``geofair.defaults()``, then the add-on's own.
+
+    ``time_limit`` None is automatic (the library's). The upper-case values earlier versions of the
+    add-on took ("UNIFORM", "CONFORMAL", "INTRINSIC", "BILAPLACIAN", "AUTO", "NEWTON", "PAPER") are
+    still accepted: a string value is taken in lower case.
+    """
 
     inner_fairness: str = properties.DEFAULTS["inner_fairness"]
     outer_fairness: str = properties.DEFAULTS["outer_fairness"]
@@ -41,23 +47,20 @@ class FairingOptions:
     max_iterations: int = properties.DEFAULTS["max_iterations"]
     levels: int = properties.DEFAULTS["levels"]
     iteration: str = properties.DEFAULTS["iteration"]
+    time_limit: float | None = properties.DEFAULTS["time_limit"]
     region_group: str = ""
     pin_group: str = ""
     use_hidden: bool = False
     keep_unconverged: bool = False
 
     def __post_init__(self):
-        self.inner_fairness = self.inner_fairness.upper()
-        self.outer_fairness = self.outer_fairness.upper()
-        self.iteration = self.iteration.upper()
-        for name, items in (
-            ("inner_fairness", properties.INNER_FAIRNESS_ITEMS),
-            ("outer_fairness", properties.OUTER_FAIRNESS_ITEMS),
-            ("iteration", properties.ITERATION_ITEMS),
-        ):
-            allowed = [item[0] for item in items]
-            if getattr(self, name) not in allowed:
-                raise ValueError(f"{name} must be one of {', '.join(allowed)}, not {getattr(self, name)!r}")
+        for name in ("inner_fairness", "outer_fairness", "iteration"):
+            if isinstance(getattr(self, name), str):
+                setattr(self, name, getattr(self, name).lower())
+
+    def library_options(self):
+        """The keyword arguments of ``geofair.fair`` these options give."""
+        return {name: getattr(self, name) for name in properties.LIBRARY_OPTION_NAMES}
 
 
 @dataclass(frozen=True)
@@ -83,7 +86,7 @@ class FairingReport:
             triangles with a free vertex, before and after (None without a UV map;
             ``uv_after`` is None when the mesh was not changed).
         iterations_per_level, vertices_per_level: per multigrid level, coarsest first.
-        iteration: the solver that produced the result, "newton" or "paper" (``iteration="AUTO"``
+        iteration: the solver that produced the result, "newton" or "paper" (``iteration="auto"``
             picks one; "" when nothing was solved).
         folds: edges with a free vertex whose two triangles face apart in the solver's
             result (``geofair.FairingResult.folds``), also where that result was not written;
@@ -91,6 +94,7 @@ class FairingReport:
         timings: wall time in seconds of the steps of the run: ``read`` (mesh to numpy),
             ``region``, ``uv`` (UV distortion before and after, with ``uv_read``, reading
             the UVs), ``solve``, ``write``.
+        message: the library's account of how the solve ended (``geofair.FairingResult.message``).
     """
 
     object_name: str
@@ -113,6 +117,14 @@ class FairingReport:
     tolerance: float = float("nan")
     folds: int = 0
     new_folds: int = 0
+    message: str = ""
+
+    @property
+    def stopped_at_time_limit(self):
+        """The library's words where an unconverged solve stopped at its time limit, the given or the automatic
+        one ("stopped at the time limit of 1.0e-02 s"), else ""."""
+        reason = self.message.split(" (", 1)[0]
+        return reason if not self.converged and reason.startswith("stopped") else ""
 
     @property
     def changed(self):
@@ -135,9 +147,10 @@ class FairingReport:
                 text += f" → {self.uv_after.mean:.4f}"
         if self.cancelled:
             return text + ", cancelled: mesh unchanged"
+        stopped = f" ({self.stopped_at_time_limit})" if self.stopped_at_time_limit else ""
         if self.discarded:
-            return text + ", NOT converged: mesh unchanged"
-        text += ", converged" if self.converged else ", NOT converged, result kept"
+            return text + f", NOT converged{stopped}: mesh unchanged"
+        text += ", converged" if self.converged else f", NOT converged{stopped}, result kept"
         if self.folds:
             but = ", but " if self.converged else ", "
             text += f"{but}{self.folds} edge{'s' if self.folds > 1 else ''} folded over (triangles flipped)"
@@ -160,7 +173,7 @@ KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
 def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT):
     """What to try after an unconverged run that was not kept: Conformal after Uniform (uniform inner
     fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), then ``keep_hint``."""
-    return (CONFORMAL_HINT + " " if inner_fairness == "UNIFORM" else "") + keep_hint
+    return (CONFORMAL_HINT + " " if inner_fairness == "uniform" else "") + keep_hint
 
 
 class NotConvergedError(RuntimeError):
@@ -172,9 +185,10 @@ class NotConvergedError(RuntimeError):
 
     def __init__(self, report, hint=KEEP_UNCONVERGED_HINT):
         self.report = report
+        stopped = f"; {report.stopped_at_time_limit}" if report.stopped_at_time_limit else ""
         super().__init__(
             f"Fairing did not converge (residual {short_number(report.residual)}, tolerance "
-            f"{short_number(report.tolerance)}): the mesh is unchanged. {hint}"
+            f"{short_number(report.tolerance)}{stopped}): the mesh is unchanged. {hint}"
         )
 
 
@@ -293,13 +307,8 @@ class FairingRun(_WorkerThread):
                 boundary_normals=self.boundary_normals,
                 # Uniform inner fairness over the polygons' edges, not the tessellation's diagonals.
                 polygon_ids=mesh.triangle_face[self.present_triangles],
-                inner_fairness=options.inner_fairness.lower(),
-                outer_fairness=options.outer_fairness.lower(),
-                tolerance=options.tolerance,
-                max_iterations=options.max_iterations,
-                levels=options.levels,
-                iteration=options.iteration.lower(),
                 progress=self._progress,
+                **options.library_options(),
             )
         except Exception as error:  # kept for finish(), which runs in Blender's thread
             self.error = error
@@ -384,6 +393,7 @@ class FairingRun(_WorkerThread):
             tolerance=float(self.options.tolerance),
             folds=int(getattr(result, "folds", 0)),
             new_folds=int(getattr(result, "new_folds", 0)),
+            message=str(getattr(result, "message", "")),
         )
 
     def _uv_distortion(self, positions):
@@ -493,7 +503,7 @@ def error_text(error):
 
 def options_from_settings(settings, **given):
     """:class:`FairingOptions` from the panel's ``settings`` (scene.geometric_fairing), overridden by ``given``."""
-    values = {name: getattr(settings, name) for name in properties.OPTION_NAMES}
+    values = properties.option_values(settings)
     values.update(given)
     return FairingOptions(**values)
 
@@ -522,10 +532,12 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             0.1 s; returning False cancels the run and leaves the mesh unchanged.
         context: ``bpy.context`` by default; only its scene is read, for the
             defaults of options not given.
-        **options: ``inner_fairness`` ("UNIFORM" or "CONFORMAL"),
-            ``outer_fairness`` ("INTRINSIC" or "BILAPLACIAN"), ``tolerance``,
-            ``max_iterations``, ``levels``, ``iteration`` ("AUTO", "NEWTON" or "PAPER":
-            the solver, see ``geofair.fair``), ``pin_group`` (vertex group name),
+        **options: ``geofair.fair``'s options by its names and values: ``inner_fairness``
+            ("uniform", "conformal" or "conformal_intrinsic"), ``outer_fairness``
+            ("intrinsic" or "bilaplacian"), ``tolerance``, ``max_iterations``, ``levels``,
+            ``iteration`` ("auto", "newton" or "paper": the solver), ``time_limit``
+            (seconds, or None: automatic); the upper-case values of earlier versions
+            ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
             ``use_hidden`` (False: hidden faces take no part, their vertices never move).
             Not given: the Fairing panel's settings, which follow the add-on
             preferences. ``keep_unconverged`` (default False): write the result
@@ -535,7 +547,9 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         :class:`FairingReport` (also shown in the panel as the last run).
 
     Raises:
-        ValueError: no usable region, unknown option or vertex group.
+        TypeError: an unknown option.
+        ValueError: no usable region, a missing vertex group, an option value
+            ``geofair.fair`` rejects (its message names the values it takes).
         NotConvergedError: (a RuntimeError) the solve stopped unconverged and
             ``keep_unconverged`` is not set; the mesh is unchanged, the figures
             are in its ``report``.

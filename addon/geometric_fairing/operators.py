@@ -26,7 +26,7 @@ import bpy
 from bpy.props import EnumProperty
 
 from . import fairing, overlays
-from .properties import OPTION_NAMES, FairingProperties
+from .properties import OPTION_NAMES, FairingProperties, option_values
 from .region import NothingSelectedError
 
 PROGRESS_STEPS = 1000
@@ -113,8 +113,7 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         for name in OPTION_NAMES:
             if not self.properties.is_property_set(name):
                 setattr(self, name, getattr(settings, name))
-        options = {name: getattr(self, name) for name in OPTION_NAMES}
-        return fairing.FairingOptions(**options, keep_unconverged=self.keep_unconverged)
+        return fairing.FairingOptions(**option_values(self), keep_unconverged=self.keep_unconverged)
 
     def prepare(self, context):
         """Read each mesh in Edit Mode and find its region; the batch, or None (after a report) if none can run."""

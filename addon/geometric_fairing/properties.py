@@ -1,8 +1,14 @@
 """Properties of Geometric Fairing: the operator's, the panel's (scene), the last run's (window manager), preferences.
 
-The panel's tolerance, iterations and levels follow the add-on preferences
-until they are changed in the panel; the operator takes every option it is not
-given from the panel. So the preferences are the defaults of both.
+The panel's tolerance, iterations, levels and time limit follow the add-on
+preferences until they are changed in the panel; the operator takes every option
+it is not given from the panel. So the preferences are the defaults of both.
+
+The options are ``geofair.fair``'s, by its names and values: an enum's
+identifiers are the library's strings ("uniform", "conformal", ...), and its
+defaults come from ``geofair.defaults()``. The one value a Blender property
+cannot hold as it is: the automatic time limit, None in the library, 0 in the
+Time Limit property (:func:`property_value`, :func:`option_values`).
 """
 
 from collections.abc import Callable
@@ -15,27 +21,35 @@ from . import native
 
 INNER_FAIRNESS_ITEMS = (
     (
-        "UNIFORM",
+        "uniform",
         "Uniform",
         "Regular vertex distribution: every vertex at the average of its neighbours along the mesh's "
         "edges (not across the diagonals that split quads and n-gons), in the tangent plane (uniform Laplacian)",
     ),
     (
-        "CONFORMAL",
+        "conformal",
         "Conformal",
         "Texture-preserving: keeps the faired mesh discrete-conformal to the "
         "original (cotangent weights of the original mesh), so UV/texture distortion stays low",
+    ),
+    (
+        "conformal_intrinsic",
+        "Conformal (intrinsic Delaunay)",
+        "Texture-preserving like Conformal, with the cotangent weights of the original mesh's intrinsic Delaunay "
+        "triangulation: never negative, so vertices land where the conformal map puts them also on meshes of obtuse "
+        "triangles (the same as Conformal where no triangle needs it). On rough meshes it can stall where Conformal "
+        "converges",
     ),
 )
 
 OUTER_FAIRNESS_ITEMS = (
     (
-        "INTRINSIC",
+        "intrinsic",
         "Intrinsic",
         "Intrinsic fairing, Δ_B H = 0: reproduces spheres, cylinders and minimal surfaces, independent of the mesh",
     ),
     (
-        "BILAPLACIAN",
+        "bilaplacian",
         "Linear bilaplacian",
         "Linear Δ²f = 0 fairing, for comparison: fast but depends on the mesh and flattens curved regions",
     ),
@@ -43,47 +57,63 @@ OUTER_FAIRNESS_ITEMS = (
 
 ITERATION_ITEMS = (
     (
-        "AUTO",
+        "auto",
         "Auto",
         "Newton's method, falling back to the paper's iteration where it stalls (Newton's method is tried "
         "again from the paper's iterate)",
     ),
     (
-        "NEWTON",
+        "newton",
         "Newton",
         "Newton's method on all free vertices at once, level by level on the progressive mesh: few steps, "
         "but the memory of its sparse LU factors grows faster than the region",
     ),
     (
-        "PAPER",
+        "paper",
         "Paper",
         "The paper's local/global iteration with progressive-mesh multigrid (Levels): little memory, many iterations",
     ),
 )
 
-# The library's defaults (geofair.defaults()) where the preferences are not available (imported by a
-# script without enabling the add-on). Without the compiled module nothing can be faired and the
-# panel shows why; the properties then start at their lower bounds.
+# The library's defaults (geofair.defaults()), by its names and values. Without the compiled
+# module nothing can be faired and the panel shows why; the properties then start at their first
+# item or lower bound.
 _LIBRARY = native.geofair.defaults() if native.geofair is not None else {}
 DEFAULTS = {
-    "inner_fairness": _LIBRARY.get("inner_fairness", INNER_FAIRNESS_ITEMS[0][0]).upper(),
-    "outer_fairness": _LIBRARY.get("outer_fairness", OUTER_FAIRNESS_ITEMS[0][0]).upper(),
+    "inner_fairness": _LIBRARY.get("inner_fairness", INNER_FAIRNESS_ITEMS[0][0]),
+    "outer_fairness": _LIBRARY.get("outer_fairness", OUTER_FAIRNESS_ITEMS[0][0]),
     "tolerance": _LIBRARY.get("tolerance", 1e-15),
     "max_iterations": _LIBRARY.get("max_iterations", 1),
     "levels": _LIBRARY.get("levels", 0),
-    "iteration": _LIBRARY.get("iteration", ITERATION_ITEMS[0][0]).upper(),
+    "iteration": _LIBRARY.get("iteration", ITERATION_ITEMS[0][0]),
+    "time_limit": _LIBRARY.get("time_limit"),  # None: automatic
 }
-OPTION_NAMES = (
+# The options the add-on passes to geofair.fair, under the same names; then the add-on's own.
+LIBRARY_OPTION_NAMES = (
     "inner_fairness",
     "outer_fairness",
     "tolerance",
     "max_iterations",
     "levels",
     "iteration",
-    "region_group",
-    "pin_group",
-    "use_hidden",
+    "time_limit",
 )
+OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "region_group", "pin_group", "use_hidden")
+
+
+def property_value(name, value):
+    """The value of option ``name`` as its Blender property holds it: the library's, but 0 for
+    time_limit=None (automatic), which a FloatProperty cannot hold."""
+    return 0.0 if name == "time_limit" and value is None else value
+
+
+def option_values(owner):
+    """The options of ``owner`` (the panel's settings, the operator) by the library's values, as
+    :class:`fairing.FairingOptions` holds them: the properties' values, but a time limit of 0 is
+    None (automatic)."""
+    options = {name: getattr(owner, name) for name in OPTION_NAMES}
+    options["time_limit"] = options["time_limit"] or None
+    return options
 
 
 def _inner_fairness(**options):
@@ -151,6 +181,30 @@ def _iteration(**options):
     )
 
 
+_AUTOMATIC_TIME_LIMIT = (
+    f"the residual not halved in {_LIBRARY['time_limit_base']:g} s plus "
+    f"{_LIBRARY['time_limit_per_free_vertex'] * 1e3:g} ms per free vertex, the whole solve at most "
+    f"{_LIBRARY['time_limit_hard_factor']:g} times that"
+    if "time_limit_base" in _LIBRARY
+    else "see geofair.fair"
+)
+
+
+def _time_limit(**options):
+    return FloatProperty(
+        name="Time Limit",
+        description="Seconds the solve may take; once spent, the run stops and is reported as not converged. "
+        f"0: automatic: with the Auto solver a limit on time without progress ({_AUTOMATIC_TIME_LIMIT}); "
+        "Newton and Paper run to Max Iterations",
+        default=property_value("time_limit", DEFAULTS["time_limit"]),
+        min=0.0,
+        soft_max=600.0,
+        step=100,
+        precision=1,
+        **options,
+    )
+
+
 def _region_group(**options):
     return StringProperty(
         name="Region Group",
@@ -199,9 +253,10 @@ def addon_preferences(context=None):
 
 
 def preference(name, context=None):
-    """The preferred default of option ``name`` (tolerance, max_iterations, levels)."""
+    """The preferred default of option ``name`` (tolerance, max_iterations, levels, time_limit), as its
+    property holds it."""
     preferences = addon_preferences(context)
-    return getattr(preferences, name) if preferences is not None else DEFAULTS[name]
+    return getattr(preferences, name) if preferences is not None else property_value(name, DEFAULTS[name])
 
 
 def _follows_preference(name):
@@ -225,12 +280,13 @@ class FairingPreferences(bpy.types.AddonPreferences):
     tolerance: _tolerance()
     max_iterations: _max_iterations()
     levels: _levels()
+    time_limit: _time_limit()
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.label(text="Defaults of the Fairing panel and of the operator:")
-        for name in ("tolerance", "max_iterations", "levels"):
+        for name in ("tolerance", "max_iterations", "levels", "time_limit"):
             layout.prop(self, name)
 
 
@@ -249,6 +305,7 @@ class FairingProperties:
     max_iterations: _max_iterations(options={"SKIP_SAVE"})
     levels: _levels(options={"SKIP_SAVE"})
     iteration: _iteration(options={"SKIP_SAVE"})
+    time_limit: _time_limit(options={"SKIP_SAVE"})
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})
     use_hidden: _use_hidden(options={"SKIP_SAVE"})
@@ -264,6 +321,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     max_iterations: _max_iterations(**_follows_preference("max_iterations"))
     levels: _levels(**_follows_preference("levels"))
     iteration: _iteration()
+    time_limit: _time_limit(**_follows_preference("time_limit"))
     region_group: _region_group()
     pin_group: _pin_group()
     use_hidden: _use_hidden()

@@ -42,6 +42,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         column.prop(settings, "max_iterations", text="Iterations")
         column.prop(settings, "levels")
         column.prop(settings, "iteration")
+        column.prop(settings, "time_limit")
         column = layout.column()
         column.prop_search(settings, "region_group", obj, "vertex_groups", text="Region", icon="GROUP_VERTEX")
         if not settings.region_group:
@@ -94,8 +95,8 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
         ]
         figures += [
             ("Tolerance", f"{last.tolerance:.2g}"),
-            ("Inner", last.inner_fairness.title()),
-            ("Outer", last.outer_fairness.title()),
+            ("Inner", _item_name(properties.INNER_FAIRNESS_ITEMS, last.inner_fairness)),
+            ("Outer", _item_name(properties.OUTER_FAIRNESS_ITEMS, last.outer_fairness)),
         ]
         if last.has_uv:
             after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.3f} / {last.uv_after_max:.2f}"
@@ -149,6 +150,11 @@ def _status_text(last):
         "CANCELLED": "cancelled, mesh unchanged",
         "ERROR": "failed, mesh unchanged",
     }[last.status]
+
+
+def _item_name(items, identifier):
+    """The name an enum's ``items`` give ``identifier`` (the library's value), or the value itself."""
+    return next((name for key, name, _ in items if key == identifier), identifier)
 
 
 def _wrap(text, width):

@@ -152,7 +152,7 @@ def check_solver_failure(addon, obj, error, expected):
     real = addon.native.geofair
     failing = addon.native.geofair = FailingModule(real, error)
     try:
-        result, report = run_fairing(inner_fairness="CONFORMAL")
+        result, report = run_fairing(inner_fairness="conformal")
     finally:
         addon.native.geofair = real
     assert failing.calls == 1, "the solver was not called"
@@ -170,7 +170,7 @@ def check_solver_failure(addon, obj, error, expected):
     print("ok: Edit Mode works after the error (select all/none, BMesh, leaving and entering)")
 
     # The failed run added no undo step: one undo after a successful run goes back to the state before it.
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     assert result == {"FINISHED"}, report
     after = edit_state(obj)
     assert after["co"] != before["co"], "the run after the error changed nothing"
@@ -183,11 +183,11 @@ def check_solver_failure(addon, obj, error, expected):
     print("ok: the next run succeeds; undo and redo return exactly to the states before and after it")
 
     # An error right after a successful run: the mesh stays as faired, and undo then goes back past the run.
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     assert result == {"FINISHED"} and edit_state(obj)["co"] == after["co"], report
     failing = addon.native.geofair = FailingModule(real, error)
     try:
-        result, report = run_fairing(inner_fairness="CONFORMAL")
+        result, report = run_fairing(inner_fairness="conformal")
     finally:
         addon.native.geofair = real
     assert result == {"CANCELLED"} and report == expected and edit_state(obj)["co"] == after["co"]
@@ -233,7 +233,7 @@ def check_unconverged(addon, obj):
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     bpy.ops.ed.undo_push(message="selected the brow (unconverged)")
     before = edit_state(obj)
-    result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1)
+    result, report = run_fairing(inner_fairness="conformal", max_iterations=1)
     match = UNCONVERGED.fullmatch(report)
     assert result == {"CANCELLED"} and match, (result, report)
     assert edit_state(obj) == before, "an unconverged run changed the mesh"
@@ -244,18 +244,18 @@ def check_unconverged(addon, obj):
     print(f"ok: an unconverged solve -> CANCELLED, mesh unchanged: {report}")
 
     # No undo step: after a run and an unconverged one, one undo goes back to the state before the run.
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     assert result == {"FINISHED"}, report
     after = edit_state(obj)
     assert after["co"] != before["co"]
-    result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1)
+    result, report = run_fairing(inner_fairness="conformal", max_iterations=1)
     assert result == {"CANCELLED"} and UNCONVERGED.fullmatch(report) and edit_state(obj) == after, report
     bpy.ops.ed.undo()
     assert edit_state(obj) == before, "undo after the unconverged run did not go back past the run before it"
     print("ok: the unconverged run added no undo step")
 
     # After an unconverged uniform run the report points to conformal inner fairness.
-    result, report = run_fairing(inner_fairness="UNIFORM", max_iterations=1)
+    result, report = run_fairing(inner_fairness="uniform", max_iterations=1)
     assert result == {"CANCELLED"} and edit_state(obj) == before, (result, report)
     assert report.endswith(
         "the mesh is unchanged. Conformal inner fairness converges on more meshes. Tick 'Keep Unconverged Result' "
@@ -264,7 +264,7 @@ def check_unconverged(addon, obj):
 
     # Keep Unconverged Result: written, with a warning that gives the residual.
     with printed() as output:
-        result, report = run_fairing(inner_fairness="CONFORMAL", max_iterations=1, keep_unconverged=True)
+        result, report = run_fairing(inner_fairness="conformal", max_iterations=1, keep_unconverged=True)
     assert result == {"FINISHED"} and report == "", (result, report)
     kept = edit_state(obj)
     assert kept["co"] != before["co"] and kept["co"] != after["co"], "the kept result is not the unconverged one"
@@ -312,7 +312,7 @@ def check_converged_with_folds(addon, obj):
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     bpy.ops.ed.undo_push(message="selected the brow (folds)")
     before = edit_state(obj)
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert result == {"FINISHED"} and last.status == "CONVERGED" and last.folds == 0, (result, report)
     assert "folded" not in last.message, last.message
@@ -323,7 +323,7 @@ def check_converged_with_folds(addon, obj):
     addon.native.geofair = FoldingModule(real, 3)
     try:
         with printed() as output:
-            result, report = run_fairing(inner_fairness="CONFORMAL")
+            result, report = run_fairing(inner_fairness="conformal")
     finally:
         addon.native.geofair = real
     assert result == {"FINISHED"} and report == "", (result, report)
@@ -343,7 +343,7 @@ def check_fair_object_unconverged(addon, obj):
     co = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
     obj.data.vertices.foreach_get("co", co)
     try:
-        addon.fair_object(obj, inner_fairness="CONFORMAL", max_iterations=1)
+        addon.fair_object(obj, inner_fairness="conformal", max_iterations=1)
     except addon.NotConvergedError as error:
         assert isinstance(error, RuntimeError) and error.report.discarded and not error.report.changed
         assert str(error).startswith("Fairing did not converge (residual ") and str(error).endswith(
@@ -352,7 +352,7 @@ def check_fair_object_unconverged(addon, obj):
     else:
         raise AssertionError("fair_object did not raise NotConvergedError")
     try:
-        addon.fair_object(obj, inner_fairness="UNIFORM", max_iterations=1)
+        addon.fair_object(obj, inner_fairness="uniform", max_iterations=1)
     except addon.NotConvergedError as error:
         assert str(error).endswith(
             "the mesh is unchanged. Conformal inner fairness converges on more meshes. Pass keep_unconverged=True to "
@@ -364,7 +364,7 @@ def check_fair_object_unconverged(addon, obj):
     obj.data.vertices.foreach_get("co", after)
     assert after.tobytes() == co.tobytes()
     assert bpy.context.window_manager.geometric_fairing.last_run.status == "NOT_CONVERGED"
-    report = addon.fair_object(obj, inner_fairness="CONFORMAL", max_iterations=1, keep_unconverged=True)
+    report = addon.fair_object(obj, inner_fairness="conformal", max_iterations=1, keep_unconverged=True)
     assert not report.converged and report.changed, report
     obj.data.vertices.foreach_get("co", after)
     assert after.tobytes() != co.tobytes()
@@ -387,7 +387,7 @@ def check_native_rejects(obj):
     bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
     bpy.ops.ed.undo_push(message="a NaN vertex")
     before = edit_state(obj)
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     assert result == {"CANCELLED"}, result
     assert report == f"Error: Geometric Fairing: fair: vertex {vertex} has a non-finite coordinate", report
     assert edit_state(obj) == before, "a rejected run changed the mesh"
@@ -397,7 +397,7 @@ def check_native_rejects(obj):
     bm.verts[vertex].co = original
     bmesh.update_edit_mesh(obj.data, loop_triangles=True, destructive=False)
     bpy.ops.ed.undo_push(message="repaired the vertex")
-    result, report = run_fairing(inner_fairness="CONFORMAL")
+    result, report = run_fairing(inner_fairness="conformal")
     assert result == {"FINISHED"}, report
     bpy.ops.ed.undo()
     print("ok: after repairing the vertex the run succeeds")
@@ -422,7 +422,7 @@ def check_fair_object_failure(addon, obj):
     obj.data.vertices.foreach_get("co", after)
     assert after.tobytes() == co.tobytes()
     assert bpy.context.window_manager.geometric_fairing.last_run.status == "ERROR"
-    report = addon.fair_object(obj, inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, inner_fairness="conformal")
     assert report.converged
     print("ok: fair_object re-raises the solver's error, mesh unchanged; the next call works")
     bpy.ops.object.mode_set(mode="EDIT")

@@ -102,7 +102,9 @@ def main():
     before = positions(obj)
     bpy.ops.object.mode_set(mode="EDIT")
     given = {f.name: getattr(options, f.name) for f in dataclasses.fields(options) if f.name not in ("use_hidden",)}
-    given = {k: v for k, v in given.items() if k not in ("region_group", "pin_group")}
+    given = {
+        k: addon.properties.property_value(k, v) for k, v in given.items() if k not in ("region_group", "pin_group")
+    }
     assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", **given) == {"FINISHED"}
     bpy.ops.object.mode_set(mode="OBJECT")
     after = positions(obj)

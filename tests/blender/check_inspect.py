@@ -189,7 +189,7 @@ def check_fairing_updates_colors(obj):
     colors = curvature_colors(obj)
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: np.linalg.norm(c - [0.4, -0.7, 0.72]) < 0.25)
-    assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", inner_fairness="CONFORMAL") == {"FINISHED"}
+    assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", inner_fairness="conformal") == {"FINISHED"}
     bpy.ops.object.mode_set(mode="OBJECT")
     changed = np.any(curvature_colors(obj) != colors, axis=1)
     assert changed.sum() > 50, f"only {changed.sum()} colours changed after fairing"

@@ -208,12 +208,12 @@ def check_layers(addon):
     for mode in ("EDIT", "OBJECT"):
         if mode == "EDIT":
             bpy.ops.object.mode_set(mode="EDIT")
-            result, error = fair(inner_fairness="CONFORMAL")
+            result, error = fair(inner_fairness="conformal")
             assert result == {"FINISHED"}, error
             bpy.ops.object.mode_set(mode="OBJECT")
             free = bpy.context.window_manager.geometric_fairing.last_run.free_vertices
         else:
-            free = addon.fair_object(obj, inner_fairness="CONFORMAL").free_vertices
+            free = addon.fair_object(obj, inner_fairness="conformal").free_vertices
         after = layers(obj)
         differ = compare(before, after, {"shape key A"}, f"{mode.title()} Mode")
         assert differ == ["shape key A"], differ
@@ -243,7 +243,7 @@ def check_layers_without_shape_keys(addon):
     before = layers(obj)
     normals_before = corner_normals(obj)
     bpy.ops.object.mode_set(mode="EDIT")
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     bpy.ops.object.mode_set(mode="OBJECT")
     after = layers(obj)
@@ -297,10 +297,10 @@ def check_shape_keys_edit_equals_object_mode(addon):
         bpy.context.view_layer.objects.active = in_edit
         in_edit.select_set(True)
         bpy.ops.object.mode_set(mode="EDIT")
-        result, error = fair(inner_fairness="CONFORMAL")
+        result, error = fair(inner_fairness="conformal")
         assert result == {"FINISHED"}, error
         bpy.ops.object.mode_set(mode="OBJECT")
-        addon.fair_object(in_object, region=mask, inner_fairness="CONFORMAL")
+        addon.fair_object(in_object, region=mask, inner_fairness="conformal")
         edited, scripted = layers(in_edit), layers(in_object)
         assert edited == scripted, [name for name in edited if edited[name] != scripted[name]]
         differ = compare(before, edited, {f"shape key {name}" for name in moves} | {"co", "attribute position"}, "")
@@ -356,7 +356,7 @@ def check_hidden_faces(addon):
         assert positions().tobytes() == before.tobytes()
 
     before = positions()
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     default = positions()
     last = bpy.context.window_manager.geometric_fairing.last_run
@@ -376,7 +376,7 @@ def check_hidden_faces(addon):
     bm.free()
     assert len(without.data.vertices) == len(before)
     selected = get(without.data.polygons, "select", bool)
-    addon.fair_object(without, region=selected, inner_fairness="CONFORMAL")
+    addon.fair_object(without, region=selected, inner_fairness="conformal")
     reference = get(without.data.vertices, "co", np.float32, 3).reshape(-1, 3)
     difference = np.abs(reference - default).max()
     assert difference < 1e-6, difference
@@ -384,7 +384,7 @@ def check_hidden_faces(addon):
     bpy.data.objects.remove(without)
 
     # Object Mode (fair_object) leaves hidden faces out too.
-    report = addon.fair_object(obj, inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, inner_fairness="conformal")
     scripted = positions()
     assert report.hidden_fixed_vertices > 0 and scripted[hidden_vertices].tobytes() == before[hidden_vertices].tobytes()
     assert np.abs(scripted - default).max() < 1e-6
@@ -395,7 +395,7 @@ def check_hidden_faces(addon):
     # Use Hidden Faces: the hidden faces are unselected faces around the region now, so their
     # vertices still stay, but their normals shape the result.
     bpy.ops.object.mode_set(mode="EDIT")
-    result, error = fair(inner_fairness="CONFORMAL", use_hidden=True)
+    result, error = fair(inner_fairness="conformal", use_hidden=True)
     assert result == {"FINISHED"}, error
     used = positions()
     assert used[hidden_vertices].tobytes() == before[hidden_vertices].tobytes()
@@ -408,11 +408,11 @@ def check_hidden_faces(addon):
     inside = np.unique(get(obj.data.loops, "vertex_index", np.int32).reshape(-1, 4)[region])
     obj.vertex_groups.new(name="Patch").add(inside.tolist(), 1.0, "REPLACE")
     bpy.ops.object.mode_set(mode="EDIT")
-    result, error = fair(inner_fairness="CONFORMAL", region_group="Patch")
+    result, error = fair(inner_fairness="conformal", region_group="Patch")
     assert result == {"FINISHED"}, error
     assert positions()[hidden_vertices].tobytes() == before[hidden_vertices].tobytes()
     restore()
-    result, error = fair(inner_fairness="CONFORMAL", region_group="Patch", use_hidden=True)
+    result, error = fair(inner_fairness="conformal", region_group="Patch", use_hidden=True)
     assert result == {"FINISHED"}, error
     hidden_moved = np.any(positions()[hidden_vertices] != before[hidden_vertices], axis=1)
     assert hidden_moved.sum() >= 4, hidden_moved.sum()

@@ -87,7 +87,7 @@ def checks(addon, obj):
 
     # A run that would take minutes: Esc cancels it, the mesh stays as it was.
     before = positions(obj)
-    result = invoke_fairing(inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**7)
+    result = invoke_fairing(inner_fairness="conformal", tolerance=1e-15, max_iterations=10**7)
     assert result == {"RUNNING_MODAL"}, result
     run = operators.running()
     assert run is not None, "no run is going"
@@ -103,7 +103,7 @@ def checks(addon, obj):
     print(f"ok: Esc cancelled the run after {last.iterations} iterations; mesh unchanged ({last.message})")
 
     # The same through the plain function (what a script driving the UI can call).
-    assert invoke_fairing(inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**7) == {"RUNNING_MODAL"}
+    assert invoke_fairing(inner_fairness="conformal", tolerance=1e-15, max_iterations=10**7) == {"RUNNING_MODAL"}
     yield from wait_until(lambda: operators.running().iteration > 0, "the first iterations")
     assert operators.cancel_running()
     yield from wait_until(lambda: operators.running() is None, "the run to stop after cancel_running()")
@@ -112,7 +112,7 @@ def checks(addon, obj):
     print("ok: cancel_running() cancelled the run; mesh unchanged")
 
     # A run to the end writes the mesh, with one undo step.
-    assert invoke_fairing(inner_fairness="CONFORMAL") == {"RUNNING_MODAL"}
+    assert invoke_fairing(inner_fairness="conformal") == {"RUNNING_MODAL"}
     yield from wait_until(lambda: operators.running() is None, "the run to finish")
     assert last.status == "CONVERGED", (last.status, last.message)
     after = positions(obj)
@@ -130,7 +130,7 @@ def checks(addon, obj):
     real = addon.native.geofair
     addon.native.geofair = FailingModule(real, RuntimeError("fair: the iteration diverged (simulated)"))
     try:
-        assert invoke_fairing(inner_fairness="CONFORMAL") == {"RUNNING_MODAL"}
+        assert invoke_fairing(inner_fairness="conformal") == {"RUNNING_MODAL"}
         yield from wait_until(lambda: operators.running() is None, "the failing run to end")
     finally:
         addon.native.geofair = real
@@ -138,7 +138,7 @@ def checks(addon, obj):
     assert np.array_equal(positions(obj), before), "a failed modal run changed the mesh"
     assert obj.mode == "EDIT"
     print(f"ok: a solver error in the modal run -> {last.status}: {last.message}; mesh unchanged")
-    assert invoke_fairing(inner_fairness="CONFORMAL") == {"RUNNING_MODAL"}
+    assert invoke_fairing(inner_fairness="conformal") == {"RUNNING_MODAL"}
     yield from wait_until(lambda: operators.running() is None, "the run after the error to finish")
     assert last.status == "CONVERGED" and np.array_equal(positions(obj), after), last.message
     with bpy.context.temp_override(window=window, area=area, region=region):

@@ -69,7 +69,7 @@ def check_both_faired(left, right):
     select_faces(right, brow(right))
     bpy.ops.ed.undo_push(message="selected both brows")
     before = {obj.name: state(obj) for obj in (left, right)}
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     after = {obj.name: state(obj) for obj in (left, right)}
     counts = []
@@ -98,7 +98,7 @@ def check_one_without_selection(left, right):
     select_faces(right, lambda c: False)
     bpy.ops.ed.undo_push(message="one selection")
     before = {obj.name: state(obj) for obj in (left, right)}
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     assert moved(before[left.name], state(left)).sum() > 50
     assert state(right) == before[right.name], "the object with nothing selected changed"
@@ -114,7 +114,7 @@ def check_one_failing(addon, left, sphere):
     select_faces(sphere, lambda c: True)
     bpy.ops.ed.undo_push(message="brow and the whole sphere")
     before = {obj.name: state(obj) for obj in (left, sphere)}
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error  # a warning: the others were faired
     assert moved(before[left.name], state(left)).sum() > 50
     assert state(sphere) == before[sphere.name], "the object that cannot be faired changed"
@@ -128,7 +128,7 @@ def check_one_failing(addon, left, sphere):
 
     # Both cannot be faired: an error naming both, nothing changed.
     select_faces(left, lambda c: False)
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     expected = (
         f"Error: Geometric Fairing: {left.name}: No face is selected: select the faces to fair; "
         f"{sphere.name}: {WHOLE_MESH}"
@@ -154,7 +154,7 @@ def check_one_failing(addon, left, sphere):
 
     addon.native.geofair = FailOnSphere(real, RuntimeError("fair: the iteration diverged (simulated)"))
     try:
-        result, error = fair(inner_fairness="CONFORMAL")
+        result, error = fair(inner_fairness="conformal")
     finally:
         addon.native.geofair = real
     assert result == {"FINISHED"}, error
@@ -177,7 +177,7 @@ def check_shared_mesh(left):
     select_faces(left, brow(left))
     bpy.ops.ed.undo_push(message="shared mesh")
     before = state(left)
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     count = int(moved(before, state(left)).sum())
     assert last_run().object_name == left.name and last_run().free_vertices == count, last_run().object_name

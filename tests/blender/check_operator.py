@@ -213,25 +213,96 @@ def check_iteration(obj, addon):
     """
     settings = bpy.context.scene.geometric_fairing
     rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties["iteration"]
-    assert settings.iteration == "AUTO" and rna.default == "AUTO" and "solved" in rna.description, rna.description
-    assert [item.identifier for item in rna.enum_items] == ["AUTO", "NEWTON", "PAPER"]
-    for given, used in (("PAPER", "paper"), ("NEWTON", "newton")):
-        result, error = fair(iteration=given, inner_fairness="CONFORMAL")
+    assert settings.iteration == "auto" and rna.default == "auto" and "solved" in rna.description, rna.description
+    assert [item.identifier for item in rna.enum_items] == ["auto", "newton", "paper"]
+    for given, used in (("paper", "paper"), ("newton", "newton")):
+        result, error = fair(iteration=given, inner_fairness="conformal")
         assert result == {"FINISHED"}, error
         last = check_last_run("CONVERGED", iteration=used)
         print(f"ok: iteration={given}: solved by {last.iteration} in {last.iterations} iterations")
         bpy.ops.ed.undo()
-    settings.iteration = "PAPER"  # from the panel
-    result, error = fair(inner_fairness="CONFORMAL")
+    settings.iteration = "paper"  # from the panel
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     check_last_run("CONVERGED", iteration="paper")
     assert "Solver" in draw_panels(addon) and "Paper" in draw_panels(addon)
     bpy.ops.ed.undo()
-    settings.iteration = "AUTO"
-    result, error = fair(inner_fairness="CONFORMAL")
+    settings.iteration = "auto"
+    result, error = fair(inner_fairness="conformal")
     check_last_run("CONVERGED", iteration="newton")  # auto: Newton's method on a region this small
     bpy.ops.ed.undo()
     print("ok: the Solver option from the operator and the panel reaches the solver")
+
+
+def check_library_options(obj, addon):
+    """The options are geofair.fair's: its names, its values as the enums' identifiers (every inner
+    fairness it has), its defaults; each inner fairness and the time limit reach the solver."""
+    geofair = addon.native.geofair
+    defaults = geofair.defaults()
+    settings = bpy.context.scene.geometric_fairing
+    preferences = bpy.context.preferences.addons["geometric_fairing"].preferences
+    rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties
+    for name, values in (
+        ("inner_fairness", ["uniform", "conformal", "conformal_intrinsic"]),
+        ("outer_fairness", ["intrinsic", "bilaplacian"]),
+        ("iteration", ["auto", "newton", "paper"]),
+    ):
+        assert [item.identifier for item in rna[name].enum_items] == values, (name, list(rna[name].enum_items))
+        assert rna[name].default == getattr(settings, name) == defaults[name], name
+    for name in ("tolerance", "max_iterations", "levels"):
+        assert getattr(settings, name) == getattr(preferences, name), name
+        assert rna[name].default == defaults[name] or abs(rna[name].default / defaults[name] - 1) < 1e-6, name
+    assert defaults["time_limit"] is None and settings.time_limit == preferences.time_limit == rna["time_limit"].default
+    assert rna["time_limit"].default == 0.0 and "automatic" in rna["time_limit"].description
+    # .blend files store an enum by its item's number: the order of the items is what they read back.
+    settings.inner_fairness = "conformal"
+    assert settings["inner_fairness"] == 1, settings["inner_fairness"]
+    settings.inner_fairness = defaults["inner_fairness"]
+
+    select_faces(obj, lambda c: np.linalg.norm(c - [0.4, -0.7, 0.72]) < 0.25)
+    bpy.ops.ed.undo_push(message="before the inner fairnesses")
+    before = current_positions(obj)
+    results = {}
+    for inner in ("uniform", "conformal", "conformal_intrinsic"):
+        result, error = fair(inner_fairness=inner)
+        assert result == {"FINISHED"}, (inner, error)
+        last = check_last_run("CONVERGED", inner_fairness=inner)
+        results[inner] = current_positions(obj)
+        assert not np.array_equal(results[inner], before), inner
+        texts = draw_panels(addon)
+        assert addon.ui._item_name(addon.properties.INNER_FAIRNESS_ITEMS, inner) in texts, texts
+        print(f"ok: inner_fairness={inner!r} from the operator: {last.message}")
+        bpy.ops.ed.undo()
+        assert np.array_equal(current_positions(obj), before)
+    assert not np.array_equal(results["uniform"], results["conformal"])
+    assert "Conformal (intrinsic Delaunay)" in [item.name for item in rna["inner_fairness"].enum_items]
+
+    # A time limit far below what the solve takes: stopped unconverged, reported as such, mesh unchanged.
+    result, error = fair(inner_fairness="conformal", time_limit=1e-6)
+    assert result == {"CANCELLED"} and "stopped at the time limit of 1.0e-06 s" in error, error
+    assert "Fairing did not converge" in error and np.array_equal(current_positions(obj), before), error
+    check_last_run("NOT_CONVERGED")
+    print(f"ok: time_limit=1e-6 from the operator: {error.strip()}")
+    settings.time_limit = 1e-6  # from the panel
+    assert preferences.time_limit == 0.0
+    result, error = fair(inner_fairness="conformal")
+    assert result == {"CANCELLED"} and "stopped at the time limit of 1.0e-06 s" in error, error
+    result, error = fair(inner_fairness="conformal", time_limit=0.0)  # given to the operator: automatic
+    assert result == {"FINISHED"}, error
+    bpy.ops.ed.undo()
+    del settings["_time_limit"]  # follows the preference again
+    preferences.time_limit = 1e-6
+    assert settings.time_limit == preferences.time_limit
+    result, error = fair(inner_fairness="conformal")
+    assert result == {"CANCELLED"} and "stopped at the time limit" in error, error
+    preferences.time_limit = 0.0
+    result, error = fair(inner_fairness="conformal", keep_unconverged=True, time_limit=1e-6)
+    last = check_last_run("NOT_CONVERGED")
+    assert result == {"FINISHED"} and "stopped at the time limit of 1.0e-06 s" in last.message, last.message
+    bpy.ops.ed.undo()
+    assert np.array_equal(current_positions(obj), before)
+    assert "Time Limit" in [item.name for item in rna.values()] and settings.time_limit == 0.0
+    print("ok: the time limit from the operator, the panel and the preferences reaches the solver")
 
 
 def check_pins_and_region_group(obj):
@@ -250,7 +321,7 @@ def check_pins_and_region_group(obj):
     bpy.ops.object.mode_set(mode="EDIT")
 
     bpy.ops.ed.undo_push(message="before pins")
-    result, error = fair(inner_fairness="CONFORMAL", pin_group="Pins")
+    result, error = fair(inner_fairness="conformal", pin_group="Pins")
     assert result == {"FINISHED"}, error
     after = current_positions(obj)
     assert np.array_equal(after[pinned], before[pinned]), "a pinned vertex moved"
@@ -262,7 +333,7 @@ def check_pins_and_region_group(obj):
     assert np.array_equal(current_positions(obj), before)
 
     settings.region_group = "Cheek"  # from the panel; the (brow) selection is ignored
-    result, error = fair(inner_fairness="CONFORMAL")
+    result, error = fair(inner_fairness="conformal")
     assert result == {"FINISHED"}, error
     after = current_positions(obj)
     moved = np.flatnonzero(np.any(after != before, axis=1))
@@ -318,14 +389,15 @@ def main():
     for text in ("Free vertices", str(last.free_vertices), "Iterations", str(last.iterations), "UV σ1/σ2 after"):
         assert text in texts, (text, texts)
     print(f"ok: last run in the panel: {last.message}")
-    check_fairing(obj, inner_fairness="CONFORMAL")
-    check_fairing(obj, outer_fairness="BILAPLACIAN", tolerance=1e-5, max_iterations=500)
+    check_fairing(obj, inner_fairness="conformal")
+    check_fairing(obj, outer_fairness="bilaplacian", tolerance=1e-5, max_iterations=500)
+    check_library_options(obj, addon)
     check_iteration(obj, addon)
     check_preferences(obj, addon)
     # Brow and eye socket: reaches the open border around the eye, whose vertices stay fixed.
     # Conformal inner fairness: uniform may diverge on this region (a known limitation of the solver).
     select_faces(obj, lambda c: np.linalg.norm(c - [0.45, -0.75, 0.5]) < 0.15)
-    check_fairing(obj, inner_fairness="CONFORMAL")
+    check_fairing(obj, inner_fairness="conformal")
     assert bpy.context.window_manager.geometric_fairing.last_run.message.count("on the open mesh border kept fixed")
 
     select_faces(obj, lambda c: False)

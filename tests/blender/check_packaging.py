@@ -68,10 +68,10 @@ def check_installed(module_name, user_folder, first=True):
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     before = positions(obj)
-    assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", inner_fairness="CONFORMAL") == {"FINISHED"}
+    assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", inner_fairness="conformal") == {"FINISHED"}
     assert np.any(positions(obj) != before)
     bpy.ops.object.mode_set(mode="OBJECT")
-    report = module.fair_object(obj, inner_fairness="CONFORMAL")  # the selection is still the brow
+    report = module.fair_object(obj, inner_fairness="conformal")  # the selection is still the brow
     assert report.converged, report
     print(f"ok: {module_name} from {package_dir}: operator and fair_object work ({report.summary()})")
 

@@ -57,7 +57,7 @@ def check_regions(addon, obj):
     group_vertices = np.flatnonzero(near(original, BROW, 0.27))
     obj.vertex_groups.new(name="Brow").add(group_vertices.tolist(), 1.0, "REPLACE")
 
-    report = addon.fair_object(obj, region="Brow", inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, region="Brow", inner_fairness="conformal")
     moved = np.flatnonzero(np.any(positions(obj) != original, axis=1))
     assert report.converged and not report.cancelled and report.free_vertices == len(moved) > 50, report
     assert np.isin(moved, group_vertices).all(), "a vertex outside the group moved"
@@ -67,7 +67,7 @@ def check_regions(addon, obj):
 
     faired = positions(obj)
     mask = near(face_centres(obj), (0.55, -0.6, 0.0), 0.2)
-    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3)
+    report = addon.fair_object(obj, region=mask, inner_fairness="conformal", tolerance=1e-3)
     assert report.converged and report.free_vertices > 50, report
     assert report.residual <= 1e-3
     moved = np.any(positions(obj) != faired, axis=1)
@@ -76,17 +76,19 @@ def check_regions(addon, obj):
 
     obj.data.polygons.foreach_set("select", near(face_centres(obj), BROW, 0.25))
     before = positions(obj)
-    report = addon.fair_object(obj, outer_fairness="BILAPLACIAN")
+    report = addon.fair_object(obj, outer_fairness="bilaplacian")
     assert report.free_vertices > 50 and np.any(positions(obj) != before)
     print(f"ok: selected faces: {report.summary()}")
 
-    # The solver option reaches geofair.fair: the result says which iteration produced it.
+    # The solver option reaches geofair.fair: the result says which iteration produced it. The upper-case
+    # values of earlier versions of the add-on still work.
     for chosen, used in (("PAPER", "paper"), ("newton", "newton"), ("AUTO", "newton")):  # auto: Newton up to 150k
-        report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-3, iteration=chosen)
+        report = addon.fair_object(obj, region=mask, inner_fairness="conformal", tolerance=1e-3, iteration=chosen)
         assert report.converged and report.iteration == used, (chosen, report)
         assert bpy.context.window_manager.geometric_fairing.last_run.iteration == used
         print(f"ok: iteration={chosen}: solved by {report.iteration}, {report.iterations} iterations")
     expect_error(ValueError, "iteration must be one of", lambda: addon.fair_object(obj, iteration="multigrid"))
+    check_library_options(addon, obj, mask)
 
     expect_error(ValueError, "has no vertex group 'Missing'", lambda: addon.fair_object(obj, region="Missing"))
     expect_error(ValueError, "one entry per face", lambda: addon.fair_object(obj, region=np.ones(3, dtype=bool)))
@@ -94,6 +96,37 @@ def check_regions(addon, obj):
     expect_error(ValueError, "inner_fairness must be one of", lambda: addon.fair_object(obj, inner_fairness="x"))
     expect_error(TypeError, "unknown options", lambda: addon.fair_object(obj, tolerence=1e-3))
     assert bpy.context.window_manager.geometric_fairing.last_run.status == "ERROR"
+
+
+def check_library_options(addon, obj, mask):
+    """Every inner fairness of the library, by its names; the old upper-case ones; the time limit reaches it."""
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    for inner in ("uniform", "conformal", "conformal_intrinsic", "CONFORMAL", "Conformal_Intrinsic"):
+        report = addon.fair_object(obj, region=mask, inner_fairness=inner, tolerance=1e-3)
+        assert report.converged and report.changed and last.inner_fairness == inner.lower(), (inner, report)
+        print(f"ok: fair_object(inner_fairness={inner!r}): {report.summary()}")
+    settings = bpy.context.scene.geometric_fairing
+    assert settings.time_limit == 0.0 and addon.FairingOptions().time_limit is None  # automatic
+    before = positions(obj)
+    for given in ({"time_limit": 1e-6}, {}):  # given, or from the panel
+        settings.time_limit = 0.0 if given else 1e-6
+        try:
+            addon.fair_object(obj, region=mask, inner_fairness="conformal", **given)
+        except addon.NotConvergedError as error:
+            assert "stopped at the time limit of 1.0e-06 s" in str(error) and error.report.discarded, error
+            assert error.report.stopped_at_time_limit == "stopped at the time limit of 1.0e-06 s", error.report
+            assert last.status == "NOT_CONVERGED" and "time limit" in last.message, last.message
+            print(f"ok: time limit {'given' if given else 'from the panel'}: {error}")
+        else:
+            raise AssertionError("a time limit of 1e-6 s did not stop the run")
+        assert np.array_equal(positions(obj), before), "a run stopped at its time limit changed the mesh"
+    settings.time_limit = 0.0
+    report = addon.fair_object(obj, region=mask, time_limit=1e-6, keep_unconverged=True)
+    assert not report.converged and "NOT converged (stopped at the time limit of 1.0e-06 s)" in report.summary()
+    report = addon.fair_object(obj, region=mask, inner_fairness="conformal", time_limit=None)
+    assert report.converged and not report.stopped_at_time_limit, report
+    report = addon.fair_object(obj, region=mask, inner_fairness="conformal", time_limit=60.0)
+    assert report.converged, report
 
 
 def check_cancel_by_callback(addon, obj):
@@ -110,7 +143,7 @@ def check_cancel_by_callback(addon, obj):
         mask = near(face_centres(obj), BROW, 0.25) if mode == "OBJECT" else None
         if mode == "EDIT":
             select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
-        report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL", progress=stop_at_once)
+        report = addon.fair_object(obj, region=mask, inner_fairness="conformal", progress=stop_at_once)
         assert report.cancelled and not report.changed and len(calls) == 1, (report, calls)
         assert report.uv_after is None
         assert np.array_equal(positions(obj), before), f"{mode}: a cancelled run changed the mesh"
@@ -123,7 +156,7 @@ def check_cancel_by_callback(addon, obj):
             return budget[0] > 0
 
         report = addon.fair_object(
-            obj, region=mask, inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**6, progress=three_calls
+            obj, region=mask, inner_fairness="conformal", tolerance=1e-15, max_iterations=10**6, progress=three_calls
         )
         assert report.cancelled and report.iterations > 0 and np.array_equal(positions(obj), before), report
         print(f"ok: {mode.title()} Mode: cancelled after {report.iterations} iterations, mesh unchanged")
@@ -135,7 +168,7 @@ def check_cancel_from_main_thread(addon, obj):
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     before = positions(obj)
-    options = addon.FairingOptions(inner_fairness="CONFORMAL", tolerance=1e-15, max_iterations=10**7)
+    options = addon.FairingOptions(inner_fairness="conformal", tolerance=1e-15, max_iterations=10**7)
     run = addon.fairing.FairingRun(obj, options)
     start = time.perf_counter()
     run.start()
@@ -149,7 +182,7 @@ def check_cancel_from_main_thread(addon, obj):
     assert report.cancelled and np.array_equal(positions(obj), before), report
     print(f"ok: worker-thread run cancelled after {report.iterations} iterations ({stopped:.2f} s), mesh unchanged")
 
-    run = addon.fairing.FairingRun(obj, addon.FairingOptions(inner_fairness="CONFORMAL"))
+    run = addon.fairing.FairingRun(obj, addon.FairingOptions(inner_fairness="conformal"))
     run.start()
     assert run.wait(timeout=60)
     report = run.finish()
@@ -169,7 +202,7 @@ def check_shape_key(addon):
     obj.active_shape_key_index = 1
     basis_before = positions(obj)
     mask = near(face_centres(obj), BROW, 0.25)
-    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, region=mask, inner_fairness="conformal")
     assert report.converged
     key_after = np.empty(3 * len(key.data))
     key.data.foreach_get("co", key_after)
@@ -177,7 +210,7 @@ def check_shape_key(addon):
     assert np.array_equal(positions(obj), basis_before), "fairing a shape key moved the basis"
     print("ok: the active shape key is faired, the basis is not")
     obj.active_shape_key_index = 0
-    report = addon.fair_object(obj, region=mask, inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, region=mask, inner_fairness="conformal")
     basis_co = np.empty(3 * len(basis.data), dtype=np.float32)
     basis.data.foreach_get("co", basis_co)
     assert np.array_equal(basis_co.reshape(-1, 3), positions(obj)) and np.any(positions(obj) != basis_before)
@@ -280,7 +313,7 @@ def check_without_registering(folder):
     """fair_object needs no registered add-on (a script may just import the package)."""
     addon = sys.modules["geometric_fairing"]
     obj = add_subdivided_suzanne()
-    report = addon.fair_object(obj, region=near(face_centres(obj), BROW, 0.25), inner_fairness="CONFORMAL")
+    report = addon.fair_object(obj, region=near(face_centres(obj), BROW, 0.25), inner_fairness="conformal")
     assert report.converged
     print(f"ok: fair_object with the add-on disabled: {report.summary()}")
 
@@ -291,11 +324,12 @@ def check_defaults(addon):
     options = addon.FairingOptions()
     operator = bpy.ops.mesh.geometric_fairing.get_rna_type().properties
     for name in ("inner_fairness", "outer_fairness", "tolerance", "max_iterations", "levels", "iteration"):
-        value = library[name].upper() if isinstance(library[name], str) else library[name]
+        value = library[name]  # the library's values, also the enums' identifiers
         assert getattr(options, name) == value, (name, getattr(options, name), value)
         # Blender stores a FloatProperty in single precision.
         stored = np.float32(value) if isinstance(value, float) else value
         assert operator[name].default == stored, (name, operator[name].default, value)
+    assert library["time_limit"] is None and options.time_limit is None and operator["time_limit"].default == 0.0
     print(f"ok: defaults are the library's: {options}")
 
 

@@ -1,0 +1,55 @@
+"""The add-on's options are geofair.fair's: its names, and as enum identifiers every value it takes.
+
+Read from addon/geometric_fairing/properties.py without bpy (its literal tuples); the
+in-Blender side (the operator, the panel, fair_object) is tests/blender/check_operator.py
+and check_scripting.py.
+"""
+
+import ast
+import pathlib
+import re
+
+import numpy as np
+import pytest
+
+import geofair
+
+PROPERTIES_PY = pathlib.Path(__file__).resolve().parents[1] / "addon" / "geometric_fairing" / "properties.py"
+
+
+def literal(name):
+    """The value of the module-level assignment ``name = <literal>`` in properties.py."""
+    for node in ast.parse(PROPERTIES_PY.read_text()).body:
+        if isinstance(node, ast.Assign) and [getattr(t, "id", None) for t in node.targets] == [name]:
+            return ast.literal_eval(node.value)
+    raise LookupError(name)
+
+
+def accepted_values(option):
+    """The values geofair.fair takes for ``option``, from the message with which it rejects another."""
+    vertices = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    with pytest.raises(ValueError, match=f"{option} must be one of") as error:
+        geofair.fair(vertices, np.array([[0, 1, 2]]), np.zeros(3, dtype=bool), **{option: "no such value"})
+    return re.findall(r"'([a-z_]+)'", str(error.value).split(", got")[0])
+
+
+@pytest.mark.parametrize(
+    ("option", "items"),
+    [
+        ("inner_fairness", "INNER_FAIRNESS_ITEMS"),
+        ("outer_fairness", "OUTER_FAIRNESS_ITEMS"),
+        ("iteration", "ITERATION_ITEMS"),
+    ],
+)
+def test_enum_identifiers_are_every_value_the_library_takes(option, items):
+    # In the library's order: a .blend file stores an enum by its item's number, so items are only appended.
+    assert [identifier for identifier, _, _ in literal(items)] == accepted_values(option)
+
+
+def test_option_names_are_the_librarys():
+    names = literal("LIBRARY_OPTION_NAMES")
+    signature = geofair.fair.__doc__.splitlines()[0]
+    keywords = re.findall(r"(\w+): [^,]+ = ", signature)
+    assert set(names) <= set(keywords), set(names) - set(keywords)
+    assert set(names) <= set(geofair.defaults()), set(names) - set(geofair.defaults())
+    assert "time_limit" in names and geofair.defaults()["time_limit"] is None  # the property's 0
