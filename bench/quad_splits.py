@@ -1,9 +1,9 @@
 """Uniform inner fairness on a quad mesh, split into triangles four ways: with and without
 geofair.fair's polygon_ids (the polygon each triangle came from).
 
-Mesh: the UV sphere of tests/test_boundary_normals.py (64 segments, 32 rings, radius 1),
+Mesh: Blender's UV sphere (geofair_dev.scenes.uv_sphere: 64 segments, 32 rings, radius 1),
 its quads split along a–c, along b–d, in a checkerboard, or at random (seed 0), as
-tests/test_polygons.py builds them; the cap above z = 0.25 flattened onto that plane and
+geofair_dev.polygons builds them (also for tests/test_polygons.py); the cap above z = 0.25 flattened onto that plane and
 faired with the defaults (uniform inner fairness, the library's boundary normals). Per
 split and umbrella: converged, the max distance of the free vertices from the unit sphere,
 the max distance of each free vertex from where the a–c split puts it (with the same
