@@ -1,7 +1,7 @@
 // Linear Δ²f = 0 fairing with G1 boundary conditions (section 7.4).
-#include "geofair/bilaplacian.h"
+#include "bilaplacian.h"
 
-#include "geofair/sparse_lu.h"
+#include "sparse_lu.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>

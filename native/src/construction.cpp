@@ -1,8 +1,9 @@
 // The construction loop of sections 7.1-7.3 on one mesh.
-#include "geofair/construction.h"
+#include "construction.h"
 
-#include "geofair/mean_curvature.h"
-#include "geofair/vertex_update.h"
+#include "common.h"
+#include "mean_curvature.h"
+#include "vertex_update.h"
 
 #include <algorithm>
 #include <cmath>

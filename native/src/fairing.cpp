@@ -2,13 +2,14 @@
 // (Schneider & Kobbelt 2001, Fig. 6).
 #include "geofair/fairing.h"
 
-#include "geofair/bilaplacian.h"
-#include "geofair/construction.h"
-#include "geofair/inner_fairness.h"
-#include "geofair/multigrid.h"
-#include "geofair/progressive_mesh.h"
-#include "geofair/region.h"
-#include "geofair/sparse_lu.h"
+#include "bilaplacian.h"
+#include "common.h"
+#include "construction.h"
+#include "inner_fairness.h"
+#include "multigrid.h"
+#include "progressive_mesh.h"
+#include "region.h"
+#include "sparse_lu.h"
 
 #include <algorithm>
 #ifdef _OPENMP

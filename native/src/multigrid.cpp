@@ -1,7 +1,7 @@
 // Prolongation and nonlinear multigrid cycles of section 7.4.
-#include "geofair/multigrid.h"
+#include "multigrid.h"
 
-#include "geofair/inner_fairness.h"
+#include "inner_fairness.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // One-rings from OpenMesh's half-edge structure, and extraction of the fairing region.
-#include "geofair/region.h"
+#include "region.h"
 
-#include "geofair/mean_curvature.h"
+#include "common.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>

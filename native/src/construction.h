@@ -2,11 +2,11 @@
 // Kobbelt 2001, sections 7.1-7.3), used on the single level and on every multigrid level.
 #pragma once
 
-#include "geofair/curvature_solve.h"
-#include "geofair/inner_fairness.h"
-#include "geofair/laplace_beltrami.h"
-#include "geofair/newton_step.h"
-#include "geofair/region.h"
+#include "curvature_solve.h"
+#include "inner_fairness.h"
+#include "laplace_beltrami.h"
+#include "newton_step.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <vector>

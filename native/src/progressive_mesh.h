@@ -2,13 +2,14 @@
 // built by half-edge collapses (Hoppe 1996; Schneider & Kobbelt 2001, section 7.4, Fig. 6).
 #pragma once
 
-#include "geofair/inner_fairness.h"
-#include "geofair/region.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <vector>
 
 namespace geofair {
+
+struct InnerFairnessWeights;  // inner_fairness.h
 
 /// Vertex splits in flat arrays: split s re-inserts vertex[s] (region-local id) with the
 /// one-ring ring[offset[s] .. offset[s+1]) it had before it was collapsed, in order

@@ -3,9 +3,9 @@
 // corrections (full approximation scheme) added to the paper's coarse-to-fine iteration.
 #pragma once
 
-#include "geofair/construction.h"
-#include "geofair/progressive_mesh.h"
-#include "geofair/region.h"
+#include "construction.h"
+#include "progressive_mesh.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <deque>
