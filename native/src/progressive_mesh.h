@@ -65,7 +65,7 @@ struct Decimation {
 /// The hierarchy of the paper's iteration (Paper): the boundary locked, valences 5..8.
 constexpr Decimation kPaperDecimation{};
 
-/// The hierarchy of Newton's method on the levels (fairing.cpp; beyond the paper): the
+/// The hierarchy of Newton's method on the levels (nested_iteration.cpp; beyond the paper): the
 /// boundary coarsened (a locked boundary joins a dense boundary to a sparse interior by
 /// fans of long triangles), free valences 4..10, valences 3 and 4 collapsed first (they
 /// hold the largest defects after a prolongation when they survive into coarse levels);
