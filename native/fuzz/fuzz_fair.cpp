@@ -11,9 +11,9 @@
 // (0..15: any grouping of triangles into polygons, bogus ones included; passed to fair only
 // where the first one is below 8).
 #include "geofair/fairing.h"
-#include "geofair/intrinsic_delaunay.h"
-#include "geofair/mean_curvature.h"
-#include "geofair/region.h"
+#include "intrinsic_delaunay.h"
+#include "mean_curvature.h"
+#include "region.h"
 
 #include <cmath>
 #include <cstddef>

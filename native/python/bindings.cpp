@@ -1,12 +1,9 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
-#include "geofair/construction.h"
+#include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
-#include "geofair/inner_fairness.h"
-#include "geofair/intrinsic_delaunay.h"
-#include "geofair/laplace_beltrami.h"
-#include "geofair/progressive_mesh.h"
-#include "geofair/mean_curvature.h"
+#include "geofair/tuning.h"
+#include "geofair/types.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
@@ -588,35 +585,17 @@ void bind_solver_steps(py::module_& m) {
         std::optional<std::vector<int>> polygons;
         if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
         const Positions N_all = to_positions(normals, "normals");
-        if (N_all.rows() != V.rows())
-          throw InvalidInputError("normals must have the shape of vertices " +
-                                  std::to_string(V.rows()) + "×3");
         const InnerFairness inner = parse_inner_fairness(inner_fairness);
         const TangentPlanes planes = parse<TangentPlanes>(
             tangent_planes, "tangent_planes",
             {{"fixed", TangentPlanes::Fixed}, {"turning", TangentPlanes::Turning}});
-        Positions out = V;
-        double scale = 0.0;
+        std::pair<Positions, double> relaxed;
         {
           py::gil_scoped_release release;
-          const FairingRegion region =
-              extract_region(V, F, mask, &N_all, true, polygons ? &*polygons : nullptr);
-          Positions X(region.n, 3), N(region.n, 3);
-          for (int i = 0; i < region.n; ++i) {
-            X.row(i) = V.row(region.global[i]);
-            N.row(i) = N_all.row(region.global[i]).normalized();
-          }
-          if (!N.allFinite()) throw InvalidInputError("normals must be nonzero and finite");
-          const InnerFairnessWeights lambda = inner_fairness_weights(region, X, inner);
-          TangentialSolver solver(region.rings, lambda, region.n_free,
-                                  PaperIterationTuning{}.tangential_iterations);
-          scale = solver.relax(lambda, N, X, /*lagged=*/false, planes);
-          for (int i = 0; i < region.n_free; ++i) out.row(region.global[i]) = X.row(i);
+          relaxed = relax_inner_fairness(V, F, mask, N_all, inner, planes,
+                                         polygons ? &*polygons : nullptr);
         }
-        if (!(scale > 0.0))
-          throw SolverError("relax_inner_fairness: the tangential system is singular or an edge "
-                            "has zero length");
-        return py::make_tuple(out, scale);
+        return py::make_tuple(relaxed.first, relaxed.second);
       },
       py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("normals"),
       py::arg("inner_fairness") = "uniform", py::arg("tangent_planes") = "turning",
@@ -660,26 +639,8 @@ singular.)doc");
         const Positions V = to_positions(vertices, "vertices");
         const Triangles F = to_triangles(faces);
         const std::vector<bool> mask = to_mask(free, V.rows());
-        std::vector<Triangles> out;
-        {
-          py::gil_scoped_release release;
-          const Positions normals = Positions::Zero(V.rows(), 3);
-          Positions fake = normals;
-          fake.col(2).setOnes();  // normals are not used by the hierarchy
-          const FairingRegion region = extract_region(V, F, mask, &fake, /*check_orientation=*/false);
-          Positions X(region.n, 3);
-          for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
-          const int n = levels > 0 ? levels : default_levels(region.n_free);
-          const Positions smoothed = hierarchy_positions(region, X, nullptr);
-          for (Triangles T :
-               build_progressive_mesh(region, smoothed, n,
-                                      coarsen_boundary ? kNewtonDecimation : kPaperDecimation)
-                   .triangles) {
-            for (Eigen::Index k = 0; k < T.size(); ++k) T.data()[k] = region.global[T.data()[k]];
-            out.push_back(std::move(T));
-          }
-        }
-        return out;
+        py::gil_scoped_release release;
+        return progressive_mesh_levels(V, F, mask, levels, coarsen_boundary);
       },
       py::arg("vertices"), py::arg("faces"), py::arg("free"), py::arg("levels") = 1,
       py::arg("coarsen_boundary") = false,

@@ -1,7 +1,7 @@
 // Linear Δ²f = 0 fairing with G1 boundary conditions (section 7.4).
-#include "geofair/bilaplacian.h"
+#include "bilaplacian.h"
 
-#include "geofair/sparse_lu.h"
+#include "sparse_lu.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
@@ -43,31 +43,39 @@ struct CoordinateBlocks {
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 };
 
-}  // namespace
+// The linear system K f = rhs of Δ²f = 0 at the free vertices (bilaplacian_initial_mesh),
+// unknowns by coordinate: x of all free vertices, then y, then z (a*nf + i); with the
+// triplets of the scalar matrix K_s (the same equations with the boundary vertices'
+// Laplacians left out: K = I₃ ⊗ K_s + E, E positive semidefinite of rank at most the
+// number of boundary vertices next to free ones).
+struct BilaplacianSystem {
+  Eigen::SparseMatrix<double> K;
+  std::vector<Eigen::Triplet<double>> scalar;
+  Eigen::VectorXd rhs;
+};
 
-Positions bilaplacian_initial_mesh(const FairingRegion& region,
-                                   const InnerFairnessWeights& lambda, const Positions& X,
-                                   double relative_residual, int max_cg_iterations) {
-  const int nf = region.n_free;
+// Equation block i is scaled by S_i = Σ_k w_ik (InnerFairnessWeights::row_sum) where
+// `scaled` (the row sums are given, that is where the weights w are symmetric). The system
+// is then symmetric positive definite: with M = λ − I (so S_i M_ij = w_ij − S_i δ_ij,
+// symmetric),
+//   S_i Δ²f(q_i) = Σ_j (S_i M_ij) (P_j / S_j) (S_j M_jk) f_k,
+// P_j = I at a free vertex and n_j n_jᵀ at a boundary vertex; the free-free part of
+// W − S is nonsingular and the P_j / S_j are positive semidefinite.
+BilaplacianSystem assemble_bilaplacian(const FairingRegion& region,
+                                       const InnerFairnessWeights& lambda, const Positions& X,
+                                       bool scaled) {
   using Mat3 = Eigen::Matrix3d;
-  // Unknowns by coordinate: x of all free vertices, then y, then z (a*nf + i).
-  // Equation block i is scaled by S_i = Σ_k w_ik (InnerFairnessWeights::row_sum) where the
-  // row sums are given, that is where the weights w are symmetric. The system is then
-  // symmetric positive definite: with M = λ − I (so S_i M_ij = w_ij − S_i δ_ij, symmetric),
-  //   S_i Δ²f(q_i) = Σ_j (S_i M_ij) (P_j / S_j) (S_j M_jk) f_k,
-  // P_j = I at a free vertex and n_j n_jᵀ at a boundary vertex; the free-free part of
-  // W − S is nonsingular and the P_j / S_j are positive semidefinite.
-  const bool scaled = lambda.row_sum.size() == std::size_t(lambda.size());
-  std::vector<Eigen::Triplet<double>> triplets, scalar;
+  const int nf = region.n_free;
+  BilaplacianSystem system;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Triplet<double>>& scalar = system.scalar;
   triplets.reserve(std::size_t(lambda.offset[nf]) * 7 * 3 + 9 * nf);
   scalar.reserve(std::size_t(lambda.offset[nf]) * 7 + nf);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * nf);
-
+  Eigen::VectorXd& rhs = system.rhs;
+  rhs = Eigen::VectorXd::Zero(3 * nf);
   // Adds  weight · Δf(q_j)  to the equation block of free vertex `row`: the part linear in
-  // the free positions goes to the matrix, the rest (fixed positions) to the right side.
-  // The terms of free j also go to the scalar matrix K_s (the same equations with the
-  // boundary vertices' Laplacians left out: K = I₃ ⊗ K_s + E, E positive semidefinite of
-  // rank at most the number of boundary vertices next to free ones).
+  // the free positions goes to the matrix, the rest (fixed positions) to the right side;
+  // the terms of free j also to K_s.
   auto add_laplacian = [&](int row, double weight, int j) {
     const bool free_j = j < nf;
     const Mat3 P = free_j ? Mat3::Identity()
@@ -96,52 +104,70 @@ Positions bilaplacian_initial_mesh(const FairingRegion& region,
     for (int k = lambda.offset[i]; k < lambda.offset[i + 1]; ++k)
       add_laplacian(i, s * lambda.weight[k], lambda.neighbour[k]);
   }
-  Eigen::SparseMatrix<double> K(3 * nf, 3 * nf);
-  K.setFromTriplets(triplets.begin(), triplets.end());
-  K.makeCompressed();
+  system.K.resize(3 * nf, 3 * nf);
+  system.K.setFromTriplets(triplets.begin(), triplets.end());
+  system.K.makeCompressed();
+  return system;
+}
+
+// The symmetric system by conjugate gradients preconditioned by I₃ ⊗ K_s⁻¹, K_s factorized
+// by CHOLMOD's supernodal Cholesky (#V_I unknowns instead of 3#V_I). The preconditioned
+// matrix is the identity plus a low-rank term, so CG's iterations are bounded by that rank
+// and do not grow with the free vertices inside: about half the time of a direct solve of
+// K (docs/DESIGN_NOTES.md, "The linear initial mesh's solver"). False where K_s cannot be
+// factorized or CG does not converge.
+bool solve_by_cg(const BilaplacianSystem& system, int nf, double relative_residual,
+                 int max_cg_iterations, Eigen::VectorXd& f) {
+  Eigen::SparseMatrix<double> Ks(nf, nf);
+  Ks.setFromTriplets(system.scalar.begin(), system.scalar.end());
+  CholeskyLLT llt;
+  {
+    const BlasThreads threads(factorization_blas_threads(nf));
+    llt.compute(Ks);
+  }
+  if (llt.info() != Eigen::Success) return false;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           CoordinateBlocks>
+      cg;
+  cg.preconditioner().llt = &llt;
+  cg.setMaxIterations(max_cg_iterations);
+  cg.setTolerance(relative_residual);
+  cg.compute(system.K);
+  f = cg.solve(system.rhs);
+  return cg.info() == Eigen::Success && f.allFinite();
+}
+
+// The system by UMFPACK's LU of K.
+Eigen::VectorXd solve_by_lu(const BilaplacianSystem& system) {
+  const Eigen::Index n = system.K.rows();
+  SparseLUFactorization lu;
+  {
+    const BlasThreads threads(factorization_blas_threads(int(n)));
+    lu.compute(system.K);
+  }
+  if (lu.info() != Eigen::Success)
+    throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (singular "
+                      "system: degenerate triangles or a free vertex without a fixed path to "
+                      "the boundary)");
+  Eigen::VectorXd f = lu.solve(system.rhs);
+  if (lu.info() != Eigen::Success || !f.allFinite())
+    throw SolverError("fair: the bilaplacian system Δ²f = 0 has no finite solution");
+  return f;
+}
+
+}  // namespace
+
+Positions bilaplacian_initial_mesh(const FairingRegion& region,
+                                   const InnerFairnessWeights& lambda, const Positions& X,
+                                   double relative_residual, int max_cg_iterations) {
+  const int nf = region.n_free;
+  const bool scaled = lambda.row_sum.size() == std::size_t(lambda.size());
+  const BilaplacianSystem system = assemble_bilaplacian(region, lambda, X, scaled);
   Eigen::VectorXd f;
-  bool solved = false;
-  // Symmetric: conjugate gradients preconditioned by I₃ ⊗ K_s⁻¹, K_s factorized by CHOLMOD's
-  // supernodal Cholesky (#V_I unknowns instead of 3#V_I). The preconditioned matrix is the
-  // identity plus a low-rank term, so CG's iterations are bounded by that rank and do not
-  // grow with the free vertices inside: about half the time of a direct solve of K
-  // (docs/DESIGN_NOTES.md, "The linear initial mesh's solver").
-  if (scaled) {
-    Eigen::SparseMatrix<double> Ks(nf, nf);
-    Ks.setFromTriplets(scalar.begin(), scalar.end());
-    CholeskyLLT llt;
-    {
-      const BlasThreads threads(factorization_blas_threads(nf));
-      llt.compute(Ks);
-    }
-    if (llt.info() == Eigen::Success) {
-      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                               CoordinateBlocks>
-          cg;
-      cg.preconditioner().llt = &llt;
-      cg.setMaxIterations(max_cg_iterations);
-      cg.setTolerance(relative_residual);
-      cg.compute(K);
-      f = cg.solve(rhs);
-      solved = cg.info() == Eigen::Success && f.allFinite();
-    }
-  }
-  // Otherwise (weights without symmetric row sums, e.g. a vertex whose weights fell back to
-  // uniform, or CG not converging) UMFPACK's LU of K.
-  if (!solved) {
-    SparseLUFactorization lu;
-    {
-      const BlasThreads threads(factorization_blas_threads(3 * nf));
-      lu.compute(K);
-    }
-    if (lu.info() != Eigen::Success)
-      throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (singular "
-                        "system: degenerate triangles or a free vertex without a fixed path to "
-                        "the boundary)");
-    f = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !f.allFinite())
-      throw SolverError("fair: the bilaplacian system Δ²f = 0 has no finite solution");
-  }
+  // Symmetric where scaled: CG; otherwise (weights without symmetric row sums, e.g. a vertex
+  // whose weights fell back to uniform, or CG not converging) the LU of K.
+  if (!(scaled && solve_by_cg(system, nf, relative_residual, max_cg_iterations, f)))
+    f = solve_by_lu(system);
   Positions Y = X;
   for (int i = 0; i < nf; ++i) Y.row(i) = Vec3(f(i), f(nf + i), f(2 * nf + i)).transpose();
   return Y;

@@ -1,8 +1,9 @@
 // The construction loop of sections 7.1-7.3 on one mesh.
-#include "geofair/construction.h"
+#include "construction.h"
 
-#include "geofair/mean_curvature.h"
-#include "geofair/vertex_update.h"
+#include "common.h"
+#include "mean_curvature.h"
+#include "vertex_update.h"
 
 #include <algorithm>
 #include <cmath>
@@ -200,11 +201,50 @@ void Construction::jacobian_product(const Positions& X, const Eigen::VectorXd& d
   out = (probe_dirichlet_.defects(probe_H_) - d0) / eps;
 }
 
-IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_run) {
-  const double tolerance = newton_run.tolerance;
+// Pseudo-transient continuation: the step solves (J + σ M) t = −d, an implicit Euler step of
+// the flow ∂t/∂τ = −M⁻¹ d with σ = 1/Δτ; σ = 0 is Newton's step. A step that raises the
+// merit by more than merit_growth is taken back and σ raised; accepted steps scale σ by the
+// merit's ratio (switched evolution relaxation), so close to the solution the steps are
+// Newton's and converge quadratically.
+Construction::StepOutcome Construction::continuation_step(Positions& X, Continuation& c,
+                                                          double& residual) {
   const NewtonTuning& newton = options_.tuning.newton;
   const int nf = region_.n_free;
   const OneRings& rings = region_.rings;
+  auto product = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+    jacobian_product(X, c.d0, v, out);
+  };
+  c.d0 = dirichlet_.defects(H_);
+  if (c.sigma > 0.0) shift_mass(X, c.mass);
+  if (!newton_.solve(X, N_, H_, dirichlet_.weights(), c.d0, source_, product, {c.sigma, &c.mass},
+                     c.t))
+    throw SolverError("fair: the Newton system is singular (degenerate triangles)");
+  // Step length: no vertex moves by more than max_step mean distances to its neighbours.
+  double ratio = 0.0;
+  for (int i = 0; i < nf; ++i)
+    ratio = std::max(ratio, std::abs(c.t(i)) / rings.mean_neighbour_distance(X, i));
+  const double s = std::min(1.0, newton.max_step / ratio);
+  const Positions before = X;
+  for (int i = 0; i < nf; ++i) X.row(i) += s * c.t(i) * N_.row(i);
+  ++iterations_;
+  const double trial = evaluate(X);
+  const double trial_merit = merit();
+  if (!(trial_merit < newton.merit_growth * c.merit) || !std::isfinite(trial)) {
+    X = before;
+    residual = evaluate(X);
+    c.sigma = std::max(newton.shift_increase * c.sigma, newton.shift_start);
+    return c.sigma > newton.shift_max ? StepOutcome::Stalled : StepOutcome::Rejected;
+  }
+  c.sigma *= trial_merit / c.merit;
+  if (c.sigma < newton.shift_negligible * newton.shift_negligible) c.sigma = 0.0;
+  c.merit = trial_merit;
+  residual = trial;
+  return StepOutcome::Taken;
+}
+
+IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_run) {
+  const double tolerance = newton_run.tolerance;
+  const NewtonTuning& newton = options_.tuning.newton;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
   const bool relaxed = !tangential_ || relax_before_steps(X);
@@ -220,15 +260,11 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   double best = residual;
   int best_at = 0, polishes = 0;
   bool polished = false;
-  Eigen::VectorXd t, d0;
-  auto product = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
-    jacobian_product(X, d0, v, out);
-  };
   probe_N_ = N_;
   probe_H_.resize(region_.n);
-  double sigma = 0.0;  // the continuation's shift σ (dimensionless), see below
-  double current_merit = merit();
-  Eigen::VectorXd mass(nf);
+  Continuation c;
+  c.merit = merit();
+  c.mass.resize(region_.n_free);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, newton_run.iteration_offset + k);
     while (residual <= tolerance && tangential_ && newton_run.polish_at_convergence && !polished) {
@@ -241,7 +277,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
       polished = newton.polish_contraction * move * move <= newton.polished_move ||
                  ++polishes >= newton.polishes;
       residual = evaluate(X);
-      current_merit = merit();
+      c.merit = merit();
       best = residual, best_at = k;
       report.polish_seconds += laps.lap();
     }
@@ -251,48 +287,19 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
     if (residual < 0.5 * best) best = residual, best_at = k;
     report.stalled = k - best_at >= newton_run.patience ||
                      ((newton_run.from_initial_mesh || newton_run.prolongated) &&
-                      k == newton.far_steps && current_merit > newton.far_merit);
+                      k == newton.far_steps && c.merit > newton.far_merit);
     if (report.converged || report.stalled || k >= newton_run.max_iterations) break;
     if (options_.progress && !source_ &&
         !options_.progress(newton_run.iteration_offset + k, residual)) {
       report.cancelled = true;
       break;
     }
-    // Pseudo-transient continuation: the step solves (J + σ M) t = −d, an implicit Euler
-    // step of the flow ∂t/∂τ = −M⁻¹ d with σ = 1/Δτ; σ = 0 is Newton's step. A step that
-    // raises the merit by more than merit_growth is taken back and σ raised; accepted steps
-    // scale σ by the merit's ratio (switched evolution relaxation), so close to the solution
-    // the steps are Newton's and converge quadratically.
-    d0 = dirichlet_.defects(H_);
-    if (sigma > 0.0) shift_mass(X, mass);
-    if (!newton_.solve(X, N_, H_, dirichlet_.weights(), d0, source_, product, {sigma, &mass}, t))
-      throw SolverError("fair: the Newton system is singular (degenerate triangles)");
-    // Step length: no vertex moves by more than max_step mean distances to its neighbours.
-    double ratio = 0.0;
-    for (int i = 0; i < nf; ++i)
-      ratio = std::max(ratio, std::abs(t(i)) / rings.mean_neighbour_distance(X, i));
-    const double s = std::min(1.0, newton.max_step / ratio);
-    const Positions before = X;
-    for (int i = 0; i < nf; ++i) X.row(i) += s * t(i) * N_.row(i);
-    ++iterations_;
-    const double trial = evaluate(X);
-    const double trial_merit = merit();
-    if (!(trial_merit < newton.merit_growth * current_merit) || !std::isfinite(trial)) {
-      X = before;
-      residual = evaluate(X);
-      sigma = std::max(newton.shift_increase * sigma, newton.shift_start);
-      if (sigma > newton.shift_max) {
-        report.stalled = true;
-        report.iterations = k + 1;
-        report.residual = residual;
-        break;
-      }
-      continue;
+    if (continuation_step(X, c, residual) == StepOutcome::Stalled) {
+      report.stalled = true;
+      report.iterations = k + 1;
+      report.residual = residual;
+      break;
     }
-    sigma *= trial_merit / current_merit;
-    if (sigma < newton.shift_negligible * newton.shift_negligible) sigma = 0.0;
-    current_merit = trial_merit;
-    residual = trial;
   }
   report.step_seconds += laps.lap();
   return report;

@@ -1,5 +1,5 @@
 // Local (Gauss–Seidel) and global (preconditioned CG) steps of section 7.1.
-#include "geofair/curvature_solve.h"
+#include "curvature_solve.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,10 +1,11 @@
 // Uniform and discrete-conformal inner fairness weights (section 7.3), the latter from the
 // intrinsic Delaunay triangulation (Bobenko & Springborn 2007), and the global tangential step.
-#include "geofair/inner_fairness.h"
+#include "inner_fairness.h"
 
-#include "geofair/curvature_solve.h"
-#include "geofair/intrinsic_delaunay.h"
-#include "geofair/laplace_beltrami.h"
+#include "common.h"
+#include "curvature_solve.h"
+#include "intrinsic_delaunay.h"
+#include "laplace_beltrami.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,9 +1,9 @@
 // Intrinsic Delaunay triangulation by edge flips (Fisher et al. 2006; Bobenko & Springborn
 // 2007): the mesh is a piecewise-flat surface given by its edge lengths; an edge is flipped
 // within the planar layout of its two triangles, so no vertex moves.
-#include "geofair/intrinsic_delaunay.h"
+#include "intrinsic_delaunay.h"
 
-#include "geofair/region.h"
+#include "region.h"
 
 #include <algorithm>
 #include <array>

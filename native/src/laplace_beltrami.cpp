@@ -1,5 +1,7 @@
 // Cotangent weights and the Dirichlet matrix S (Schneider & Kobbelt 2001, eqs. (6), (7)).
-#include "geofair/laplace_beltrami.h"
+#include "laplace_beltrami.h"
+
+#include "common.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,7 @@
 // Moreton–Séquin mean curvature (Schneider & Kobbelt 2001, section 6).
-#include "geofair/mean_curvature.h"
+#include "mean_curvature.h"
+
+#include "common.h"
 
 #include <Eigen/Dense>
 

@@ -1,7 +1,7 @@
 // Prolongation and nonlinear multigrid cycles of section 7.4.
-#include "geofair/multigrid.h"
+#include "multigrid.h"
 
-#include "geofair/inner_fairness.h"
+#include "inner_fairness.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -39,24 +39,18 @@ std::vector<double> split_weights(const VertexSplits& splits, InnerFairness inne
   return weights;
 }
 
-CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
-                         const FairingRegion& coarser,
-                         const InnerFairnessWeights& coarser_lambda) {
-  const int nf = level.n_free;
-  const OneRings& r = level.rings;
-  std::vector<int> column(nf, -1);
-  std::vector<std::uint8_t> is_new(nf, 0);
-  for (const int v : splits.vertex)
-    if (v < nf) is_new[v] = 1;  // new G1 boundary vertices are no unknowns
-  CoarseSpace coarse;
-  for (int i = 0; i < nf; ++i)
-    if (!is_new[i]) {
-      column[i] = int(coarse.vertex.size());
-      coarse.vertex.push_back(i);
-    }
-  // A new vertex: the mean over its ring of the coarse vertices' values and the boundary's
-  // zeros; with none of those in its ring, the mean of its ring's rows, in rounds outwards.
-  std::vector<std::vector<std::pair<int, double>>> rows(nf);
+namespace {
+
+// Rows of coarse_space's interpolation P, per free vertex of the level: (column, weight).
+using InterpolationRows = std::vector<std::vector<std::pair<int, double>>>;
+
+// The rows of P: a kept vertex its own column; a new vertex (is_new) the mean over its ring
+// of the coarse vertices' values and the boundary's zeros; with none of those in its ring,
+// the mean of its ring's rows, in rounds outwards.
+InterpolationRows interpolation_rows(const OneRings& r, int nf,
+                                     const std::vector<std::uint8_t>& is_new,
+                                     const std::vector<int>& column, std::size_t n_columns) {
+  InterpolationRows rows(nf);
   for (int i = 0; i < nf; ++i)
     if (!is_new[i]) rows[i].emplace_back(column[i], 1.0);
   std::vector<int> pending;
@@ -72,7 +66,7 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       if (r.ring[k] < nf && !is_new[r.ring[k]]) rows[i].emplace_back(column[r.ring[k]], 1.0 / m);
   }
-  std::vector<double> sum(coarse.vertex.size(), 0.0);
+  std::vector<double> sum(n_columns, 0.0);
   std::vector<int> touched;
   while (!pending.empty()) {
     std::vector<int> next, done;
@@ -102,23 +96,24 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
     for (std::size_t d = 0; d < done.size(); ++d) rows[done[d]] = std::move(fresh[d]);
     pending.swap(next);
   }
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < nf; ++i)
-    for (const auto& [c, w] : rows[i]) entries.emplace_back(i, c, w);
-  coarse.P.resize(nf, Eigen::Index(coarse.vertex.size()));
-  coarse.P.setFromTriplets(entries.begin(), entries.end());
+  return rows;
+}
 
-  // The coarser level's weights in column ids: coarser vertex b is region vertex
-  // coarser.global[b], a vertex of the level that no split of it adds.
+// The coarser level's weights in coarse_space's column ids (`column`: the column of each
+// free vertex of the level, -1 for a new one): coarser vertex b is region vertex
+// coarser.global[b], a vertex of the level that no split of it adds.
+InnerFairnessWeights column_weights(const FairingRegion& level, const FairingRegion& coarser,
+                                    const InnerFairnessWeights& coarser_lambda,
+                                    const std::vector<int>& column, std::size_t n_columns) {
   std::vector<int> local_of_global(
       std::size_t(*std::max_element(level.global.begin(), level.global.end())) + 1, -1);
   for (int i = 0; i < level.n; ++i) local_of_global[level.global[i]] = i;
   auto column_of = [&](int b) {
     return b < coarser.n_free ? column[local_of_global[coarser.global[b]]] : -1;
   };
-  std::vector<int> coarser_of_column(coarse.vertex.size());
+  std::vector<int> coarser_of_column(n_columns);
   for (int b = 0; b < coarser.n_free; ++b) coarser_of_column[column_of(b)] = b;
-  InnerFairnessWeights& lambda = coarse.lambda;
+  InnerFairnessWeights lambda;
   lambda.offset.assign(1, 0);
   for (const int b : coarser_of_column) {
     for (int k = coarser_lambda.offset[b]; k < coarser_lambda.offset[b + 1]; ++k) {
@@ -127,6 +122,34 @@ CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
     }
     lambda.offset.push_back(int(lambda.neighbour.size()));
   }
+  return lambda;
+}
+
+}  // namespace
+
+CoarseSpace coarse_space(const FairingRegion& level, const VertexSplits& splits,
+                         const FairingRegion& coarser,
+                         const InnerFairnessWeights& coarser_lambda) {
+  const int nf = level.n_free;
+  const OneRings& r = level.rings;
+  std::vector<int> column(nf, -1);
+  std::vector<std::uint8_t> is_new(nf, 0);
+  for (const int v : splits.vertex)
+    if (v < nf) is_new[v] = 1;  // new G1 boundary vertices are no unknowns
+  CoarseSpace coarse;
+  for (int i = 0; i < nf; ++i)
+    if (!is_new[i]) {
+      column[i] = int(coarse.vertex.size());
+      coarse.vertex.push_back(i);
+    }
+  const InterpolationRows rows = interpolation_rows(r, nf, is_new, column, coarse.vertex.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < nf; ++i)
+    for (const auto& [c, w] : rows[i]) entries.emplace_back(i, c, w);
+  coarse.P.resize(nf, Eigen::Index(coarse.vertex.size()));
+  coarse.P.setFromTriplets(entries.begin(), entries.end());
+
+  coarse.lambda = column_weights(level, coarser, coarser_lambda, column, coarse.vertex.size());
   return coarse;
 }
 
@@ -255,6 +278,43 @@ void interpolate_from_coarser(const MultigridLevel& level, Positions& D) {
 
 }  // namespace
 
+bool Multigrid::coarse_correction(int l, const Positions& X, const Eigen::VectorXd* tau,
+                                  bool top, int offset, Positions& D) {
+  MultigridLevel& level = levels_[l];
+  Construction& construction = *level.construction;
+  const int nf = level.region.n_free;
+  Eigen::VectorXd defect = Eigen::VectorXd::Zero(level.region.n);
+  defect.head(nf) = construction.defects();
+  if (tau) defect.head(nf) -= *tau;
+  restrict_to_coarser(level, defect);
+
+  // The coarse problem d_c(Y) = d_c(Y_c) − R d at the injected positions Y_c.
+  MultigridLevel& coarse = levels_[l - 1];
+  const std::vector<int>& map = level.from_coarser;
+  Positions Yc(coarse.region.n, 3);
+  for (int c = 0; c < coarse.region.n; ++c) Yc.row(c) = X.row(map[c]);
+  coarse.construction->set_source(nullptr, false);
+  coarse.construction->evaluate(Yc);
+  Eigen::VectorXd tau_c = coarse.construction->defects();
+  for (int c = 0; c < coarse.region.n_free; ++c) tau_c(c) -= defect(map[c]);
+  Positions Y = Yc;
+  bool solved = true;
+  try {
+    cycle(l - 1, Y, &tau_c, false, offset + tuning_.smoothing);
+  } catch (const SolverError&) {
+    solved = false;  // the coarse problem diverged: smooth without its correction
+  }
+  coarse.construction->set_source(nullptr, true);
+  construction.set_source(tau, top);
+  if (cancelled_ || !solved) return solved;
+
+  // The coarse change, interpolated to the new vertices.
+  D = Positions::Zero(level.region.n, 3);
+  for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
+  interpolate_from_coarser(level, D);
+  return true;
+}
+
 void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top, int offset) {
   MultigridLevel& level = levels_[l];
   Construction& construction = *level.construction;
@@ -290,40 +350,14 @@ void Multigrid::cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top,
     ++state.rejections;
   };
 
-  Eigen::VectorXd defect = Eigen::VectorXd::Zero(level.region.n);
-  defect.head(nf) = construction.defects();
-  if (tau) defect.head(nf) -= *tau;
-  restrict_to_coarser(level, defect);
-
-  // The coarse problem d_c(Y) = d_c(Y_c) − R d at the injected positions Y_c.
-  MultigridLevel& coarse = levels_[l - 1];
-  const std::vector<int>& map = level.from_coarser;
-  Positions Yc(coarse.region.n, 3);
-  for (int c = 0; c < coarse.region.n; ++c) Yc.row(c) = X.row(map[c]);
-  coarse.construction->set_source(nullptr, false);
-  coarse.construction->evaluate(Yc);
-  Eigen::VectorXd tau_c = coarse.construction->defects();
-  for (int c = 0; c < coarse.region.n_free; ++c) tau_c(c) -= defect(map[c]);
-  Positions Y = Yc;
-  bool solved = true;
-  try {
-    cycle(l - 1, Y, &tau_c, false, offset + tuning_.smoothing);
-  } catch (const SolverError&) {
-    solved = false;  // the coarse problem diverged: smooth without its correction
-  }
-  coarse.construction->set_source(nullptr, true);
-  construction.set_source(tau, top);
+  Positions D;
+  const bool solved = coarse_correction(l, X, tau, top, offset, D);
   if (cancelled_) return;
   if (!solved) {
     reject();
     smooth(offset + tuning_.smoothing);
     return;
   }
-
-  // Interpolate the coarse change to the new vertices and add it.
-  Positions D = Positions::Zero(level.region.n, 3);
-  for (int c = 0; c < coarse.region.n_free; ++c) D.row(map[c]) = Y.row(c) - Yc.row(c);
-  interpolate_from_coarser(level, D);
   const Positions X_pre = X;
   X.topRows(nf) += state.damping * D.topRows(nf);
   IterationReport post;

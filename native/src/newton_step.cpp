@@ -1,7 +1,8 @@
 // Newton's method for the normal offsets, see newton_step.h.
-#include "geofair/newton_step.h"
+#include "newton_step.h"
 
-#include "geofair/mean_curvature.h"
+#include "common.h"
+#include "mean_curvature.h"
 
 #include <algorithm>
 #include <cmath>

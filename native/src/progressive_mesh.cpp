@@ -1,5 +1,7 @@
 // Progressive mesh by half-edge collapses with OpenMesh's decimater (section 7.4).
-#include "geofair/progressive_mesh.h"
+#include "progressive_mesh.h"
+
+#include "inner_fairness.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>

@@ -1,7 +1,7 @@
 // One-rings from OpenMesh's half-edge structure, and extraction of the fairing region.
-#include "geofair/region.h"
+#include "region.h"
 
-#include "geofair/mean_curvature.h"
+#include "common.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -88,11 +88,14 @@ bool OneRings::closed(int i) const {
   return true;
 }
 
-OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char* caller,
-                         const std::vector<int>* triangle_ids) {
+namespace {
+
+// The triangles as an OpenMesh half-edge mesh, checked (indices, repeated vertices, a
+// consistently oriented manifold); triangle_ids name the triangles in errors.
+void build_mesh(Mesh& mesh, int n_vertices, const Triangles& triangles, const char* caller,
+                const std::vector<int>* triangle_ids) {
   silence_openmesh();
   auto name = [&](Eigen::Index f) { return triangle_ids ? (*triangle_ids)[f] : int(f); };
-  Mesh mesh;
   mesh.reserve(n_vertices, 3 * triangles.rows() / 2 + 3, triangles.rows());
   for (int v = 0; v < n_vertices; ++v) mesh.add_vertex(Mesh::Point(0, 0, 0));
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
@@ -112,6 +115,67 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
                               "neighbour (faces must form a consistently oriented manifold)");
   }
 
+}
+
+// Appends the ring of vertex v to r (r.offset[v] set), counter-clockwise, one chain per fan;
+// `fan` and `used`: work space.
+void append_ring(const Mesh& mesh, int v, OneRings& r, std::vector<FanEdge>& fan,
+                 std::vector<std::uint8_t>& used) {
+  // Every triangle (v, w, u) at v contributes the fan edge w -> u; chaining the fan
+  // edges orders the ring counter-clockwise, with one chain per fan.
+  fan.clear();
+  for (auto h : mesh.voh_range(mesh.vertex_handle(v))) {
+    if (h.is_boundary()) continue;
+    const auto e = h.next();  // w -> u
+    const auto o = e.opp();
+    fan.push_back({e.from().idx(), e.to().idx(), o.is_boundary() ? -1 : o.next().to().idx()});
+  }
+  used.assign(fan.size(), 0);
+  auto find_from = [&](int w) {
+    for (std::size_t k = 0; k < fan.size(); ++k)
+      if (!used[k] && fan[k].from == w) return int(k);
+    return -1;
+  };
+  auto push = [&](int w, int face, int across) {
+    r.ring.push_back(w);
+    r.has_face.push_back(std::uint8_t(face));
+    r.across.push_back(across);
+  };
+  auto emit_chain = [&](int k) {
+    const std::size_t chain_start = r.ring.size();
+    const int first = fan[k].from;
+    for (;;) {
+      used[k] = 1;
+      push(fan[k].from, 1, fan[k].across);
+      const int nk = find_from(fan[k].to);
+      if (nk >= 0) {
+        k = nk;
+        continue;
+      }
+      if (fan[k].to != first)
+        push(fan[k].to, 0, -1);  // open fan: its last neighbour has no triangle after it
+      else if (chain_start != std::size_t(r.offset[v]))
+        r.has_face.back() = 0;  // a second closed fan cannot wrap to the ring's start
+      return;
+    }
+  };
+  // Open fans first: they start at a neighbour that no fan edge leads to.
+  for (std::size_t k = 0; k < fan.size(); ++k) {
+    bool is_start = true;
+    for (const auto& g : fan)
+      if (g.to == fan[k].from) is_start = false;
+    if (is_start && !used[k]) emit_chain(int(k));
+  }
+  for (std::size_t k = 0; k < fan.size(); ++k)
+    if (!used[k]) emit_chain(int(k));
+}
+
+}  // namespace
+
+OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char* caller,
+                         const std::vector<int>* triangle_ids) {
+  Mesh mesh;
+  build_mesh(mesh, n_vertices, triangles, caller, triangle_ids);
   OneRings r;
   r.offset.assign(n_vertices + 1, 0);
   r.ring.reserve(6 * n_vertices);
@@ -120,54 +184,8 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
   std::vector<FanEdge> fan;
   std::vector<std::uint8_t> used;
   for (int v = 0; v < n_vertices; ++v) {
-    // Every triangle (v, w, u) at v contributes the fan edge w -> u; chaining the fan
-    // edges orders the ring counter-clockwise, with one chain per fan.
-    fan.clear();
-    for (auto h : mesh.voh_range(mesh.vertex_handle(v))) {
-      if (h.is_boundary()) continue;
-      const auto e = h.next();  // w -> u
-      const auto o = e.opp();
-      fan.push_back({e.from().idx(), e.to().idx(), o.is_boundary() ? -1 : o.next().to().idx()});
-    }
-    used.assign(fan.size(), 0);
-    auto find_from = [&](int w) {
-      for (std::size_t k = 0; k < fan.size(); ++k)
-        if (!used[k] && fan[k].from == w) return int(k);
-      return -1;
-    };
-    auto push = [&](int w, int face, int across) {
-      r.ring.push_back(w);
-      r.has_face.push_back(std::uint8_t(face));
-      r.across.push_back(across);
-    };
-    auto emit_chain = [&](int k) {
-      const std::size_t chain_start = r.ring.size();
-      const int first = fan[k].from;
-      for (;;) {
-        used[k] = 1;
-        push(fan[k].from, 1, fan[k].across);
-        const int nk = find_from(fan[k].to);
-        if (nk >= 0) {
-          k = nk;
-          continue;
-        }
-        if (fan[k].to != first)
-          push(fan[k].to, 0, -1);  // open fan: its last neighbour has no triangle after it
-        else if (chain_start != std::size_t(r.offset[v]))
-          r.has_face.back() = 0;  // a second closed fan cannot wrap to the ring's start
-        return;
-      }
-    };
     r.offset[v] = int(r.ring.size());
-    // Open fans first: they start at a neighbour that no fan edge leads to.
-    for (std::size_t k = 0; k < fan.size(); ++k) {
-      bool is_start = true;
-      for (const auto& g : fan)
-        if (g.to == fan[k].from) is_start = false;
-      if (is_start && !used[k]) emit_chain(int(k));
-    }
-    for (std::size_t k = 0; k < fan.size(); ++k)
-      if (!used[k]) emit_chain(int(k));
+    append_ring(mesh, v, r, fan, used);
     r.offset[v + 1] = int(r.ring.size());
   }
   return r;
@@ -201,6 +219,63 @@ void check_finite(const Positions& V, const Triangles& F, const char* fn) {
                                 " has a non-finite coordinate");
 }
 
+// Work space of quadric_normal.
+struct QuadricSamples {
+  explicit QuadricSamples(int nv) : stamp(nv, -1) {}
+  std::vector<int> stamp;  // the vertex whose samples last took this one
+  std::vector<int> first_ring;
+  std::vector<Vec3> offsets;
+};
+
+// The quadric fit's normal at G1 boundary vertex v (estimate_boundary_normals), from the area
+// normal n0 and the surrounding triangles `incident[start[w] .. start[w + 1])` of every
+// vertex w; false where the fit is not trusted (n0 stays).
+bool quadric_normal(const Positions& V, const Triangles& F, int v, const Vec3& n0,
+                    const std::vector<int>& start, const std::vector<int>& incident,
+                    QuadricSamples& samples, Vec3& normal) {
+  std::vector<int>& stamp = samples.stamp;
+  std::vector<int>& first_ring = samples.first_ring;
+  std::vector<Vec3>& offsets = samples.offsets;
+  const Vec3 q = V.row(v);
+  // Samples: the vertices of the surrounding triangles at v, and of the triangles
+  // without a free vertex at those.
+  first_ring.clear();
+  offsets.clear();
+  stamp[v] = v;
+  bool finite = true;
+  auto take = [&](int w) {
+    if (stamp[w] == v) return false;
+    stamp[w] = v;
+    const Vec3 d = V.row(w).transpose() - q;
+    if (!d.allFinite()) finite = false;
+    offsets.push_back(d);
+    return true;
+  };
+  for (int k = start[v]; k < start[v + 1]; ++k)
+    for (int c = 0; c < 3; ++c)
+      if (take(F(incident[k], c))) first_ring.push_back(F(incident[k], c));
+  for (int w : first_ring)
+    for (int k = start[w]; k < start[w + 1]; ++k)
+      for (int c = 0; c < 3; ++c) take(F(incident[k], c));
+  if (!finite || int(offsets.size()) < kMinQuadricSamples) return false;
+  double mean_dd = 0.0;
+  for (const Vec3& d : offsets) mean_dd += d.squaredNorm();
+  const double unit = std::sqrt(mean_dd / double(offsets.size()));
+  if (!(unit > 0.0) || !std::isfinite(unit)) return false;
+  bool coincident = false;
+  for (Vec3& d : offsets) {
+    d /= unit;
+    if (!(d.squaredNorm() > 0.0)) coincident = true;
+  }
+  if (coincident) return false;
+  // Fit in the frame of n0, then once more in the frame of the fitted normal.
+  Vec3 n1, n2;
+  if (!fit_tangent_plane(offsets, n0, n1) || !fit_tangent_plane(offsets, n1, n2)) return false;
+  if (!(n2.dot(n0) > 0.0)) return false;
+  normal = n2;
+  return true;
+}
+
 }  // namespace
 
 Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
@@ -231,12 +306,9 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
   }
 
   Positions normals = Positions::Zero(nv, 3);
-  std::vector<int> stamp(nv, -1);  // the vertex whose samples last took this one
-  std::vector<int> first_ring;
-  std::vector<Vec3> offsets;
+  QuadricSamples samples(nv);
   for (int v = 0; v < nv; ++v) {
     if (!g1[v]) continue;
-    const Vec3 q = V.row(v);
     Vec3 sum = Vec3::Zero();
     for (int k = start[v]; k < start[v + 1]; ++k) {
       const int f = incident[k];
@@ -252,43 +324,8 @@ Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
     const Vec3 n0 = sum / len;
     normals.row(v) = n0;
     if (method == BoundaryNormalEstimate::Area) continue;
-
-    // Samples: the vertices of the surrounding triangles at v, and of the triangles
-    // without a free vertex at those.
-    first_ring.clear();
-    offsets.clear();
-    stamp[v] = v;
-    bool finite = true;
-    auto take = [&](int w) {
-      if (stamp[w] == v) return false;
-      stamp[w] = v;
-      const Vec3 d = V.row(w).transpose() - q;
-      if (!d.allFinite()) finite = false;
-      offsets.push_back(d);
-      return true;
-    };
-    for (int k = start[v]; k < start[v + 1]; ++k)
-      for (int c = 0; c < 3; ++c)
-        if (take(F(incident[k], c))) first_ring.push_back(F(incident[k], c));
-    for (int w : first_ring)
-      for (int k = start[w]; k < start[w + 1]; ++k)
-        for (int c = 0; c < 3; ++c) take(F(incident[k], c));
-    if (!finite || int(offsets.size()) < kMinQuadricSamples) continue;
-    double mean_dd = 0.0;
-    for (const Vec3& d : offsets) mean_dd += d.squaredNorm();
-    const double unit = std::sqrt(mean_dd / double(offsets.size()));
-    if (!(unit > 0.0) || !std::isfinite(unit)) continue;
-    bool coincident = false;
-    for (Vec3& d : offsets) {
-      d /= unit;
-      if (!(d.squaredNorm() > 0.0)) coincident = true;
-    }
-    if (coincident) continue;
-    // Fit in the frame of n0, then once more in the frame of the fitted normal.
-    Vec3 n1, n2;
-    if (!fit_tangent_plane(offsets, n0, n1) || !fit_tangent_plane(offsets, n1, n2)) continue;
-    if (!(n2.dot(n0) > 0.0)) continue;
-    normals.row(v) = n2;
+    Vec3 fitted;
+    if (quadric_normal(V, F, v, n0, start, incident, samples, fitted)) normals.row(v) = fitted;
   }
   return normals;
 }

@@ -1,5 +1,5 @@
 // The BLAS threads under UMFPACK, see sparse_lu.h.
-#include "geofair/sparse_lu.h"
+#include "sparse_lu.h"
 
 #if !defined(GEOFAIR_PORTABLE) && !defined(_WIN32)
 #include <dlfcn.h>

@@ -1,7 +1,7 @@
 // Range checks of the solver tuning (tuning.h).
 #include "geofair/tuning.h"
 
-#include "geofair/types.h"
+#include "geofair/errors.h"
 
 #include <cmath>
 #include <sstream>

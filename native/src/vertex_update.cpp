@@ -1,8 +1,8 @@
 // Vertex update along the normal with inner fairness (sections 7.2, 7.3).
-#include "geofair/vertex_update.h"
+#include "vertex_update.h"
 
-#include "geofair/inner_fairness.h"
-#include "geofair/mean_curvature.h"
+#include "inner_fairness.h"
+#include "mean_curvature.h"
 
 #include <algorithm>
 #include <cmath>

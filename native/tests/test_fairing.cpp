@@ -1,7 +1,7 @@
 // geofair::fair's stop requests (FairingOptions::stop_requested): the polls between the
 // steps that report no progress, through which fair() keeps its time limit.
 #include "geofair/fairing.h"
-#include "geofair/region.h"
+#include "region.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>

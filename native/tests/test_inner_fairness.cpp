@@ -1,7 +1,7 @@
 // Inner fairness weights (Schneider & Kobbelt 2001, section 7.3).
-#include "geofair/inner_fairness.h"
-#include "geofair/laplace_beltrami.h"
-#include "geofair/region.h"
+#include "inner_fairness.h"
+#include "laplace_beltrami.h"
+#include "region.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>

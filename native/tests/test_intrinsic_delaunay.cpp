@@ -1,5 +1,5 @@
 // Intrinsic Delaunay triangulation and its cotangent Laplacian (Bobenko & Springborn 2007).
-#include "geofair/intrinsic_delaunay.h"
+#include "intrinsic_delaunay.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Cotangent Laplace–Beltrami operator (Schneider & Kobbelt 2001, section 5, eqs. (5)-(7)).
-#include "geofair/laplace_beltrami.h"
+#include "laplace_beltrami.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>

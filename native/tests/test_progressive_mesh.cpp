@@ -1,6 +1,6 @@
 // The progressive mesh of the multigrid construction (Schneider & Kobbelt 2001, section
 // 7.4; Hoppe 1996): nested levels, replayable vertex splits.
-#include "geofair/progressive_mesh.h"
+#include "progressive_mesh.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>

@@ -46,7 +46,8 @@ struct FairingResult {
 
 /// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,
 /// with the G1 boundary condition of positions and unit normals at the fixed vertices that
-/// share a triangle with a free vertex.
+/// share a triangle with a free vertex. (Headers named below without geofair/ are the
+/// library's internal ones, in native/src/.)
 ///
 /// Inner fairness (section 7.3, options.inner_fairness, see inner_fairness_weights): uniform
 /// weights give a regular vertex distribution; conformal ones the discrete harmonic map
@@ -69,41 +70,46 @@ struct FairingResult {
 /// coarser levels for coarse-grid corrections. With options.levels = 1 the whole region is
 /// solved as one level.
 ///
-/// With options.iteration = Auto (the default) or Newton, the same hierarchy is solved by
-/// Newton's method level by level instead (nested iteration; Construction::run_newton,
-/// newton_step.h, globalized by pseudo-transient continuation): the base level from the
-/// linear initial mesh, each finer level from the
-/// prolongation of the coarser solution, its tangential relaxation and one local step of
-/// the construction above; the same discrete equations (12), all normal
-/// offsets per step from one inexact Newton step with the exact Jacobian's products. Its
-/// hierarchy coarsens the G1 boundary too (kNewtonDecimation in progressive_mesh.h), so the
-/// base level can be small, with a few steps on each level where the paper's iteration
-/// takes thousands (docs/NEWTON.md, README). Where Newton's method fails on the base level
-/// from its linear initial mesh, that level runs the paper's iteration with Newton attempts
-/// from its iterate (as below); a coarse level that stops unconverged with a merit of at
-/// most NewtonTuning::coarse_merit still starts the next. Where a coarse level fails, with
-/// uniform inner fairness the hierarchy is solved once more with the coarse levels' weights
-/// taken from the membrane of the finest uniform weights (membrane_positions in
-/// bilaplacian.h: the distribution an irregular connectivity asks for) instead of the
-/// smoothed copy, and once more with each coarse level's own uniform weights; where that
-/// fails too the finest level is solved alone (and a region solved as one level by default
-/// tries two, ScheduleTuning::newton_retry_min_free); where that stalls or fails, Auto
-/// starts over with the paper's steps below,
-/// with Newton's method tried again from their iterate on the finest level
-/// (after ScheduleTuning::newton_attempt_first iterations and each doubling); Paper runs
-/// them alone.
+/// Newton's method (Construction::run_newton, newton_step.h; beyond the paper, globalized
+/// by pseudo-transient continuation) solves the same discrete equations (12) level by level
+/// on its own hierarchy, which coarsens the G1 boundary too (kNewtonDecimation): the base
+/// level from the linear initial mesh (where Newton's method fails there, the paper's
+/// iteration and one Newton attempt from its iterate), each finer level from the
+/// prolongation of the coarser solution, its tangential relaxation and one local step of the
+/// construction above; a few steps per level where the paper's iteration takes thousands
+/// (docs/NEWTON.md). A coarse level that stops unconverged with a merit above
+/// NewtonTuning::coarse_merit ends that attempt.
+///
+/// The schedule (src/schedule.h, plan_attempts): fair() makes these attempts in order and
+/// returns the first that converges (or is cancelled):
+///  1. Newton's method on the hierarchy of as many levels as keep
+///     ScheduleTuning::newton_min_base_free free vertices on the base level (or
+///     options.levels), coarse uniform weights from the smoothed copy of the input;
+///  2. with uniform inner fairness, the same with the coarse weights of the membrane of the
+///     finest uniform weights (membrane_positions: the distribution an irregular
+///     connectivity asks for), its base level first solved with the smoothed copy's;
+///  3. with uniform inner fairness, the same with each coarse level's own uniform weights;
+///  4. Newton's method on the finest level alone;
+///  5. where the region was one level by default and has at least
+///     ScheduleTuning::newton_retry_min_free free vertices, Newton's method on two levels;
+///  6. the paper's iteration on its hierarchy (default_levels), with Newton's method tried
+///     from the finest level's iterate after ScheduleTuning::newton_attempt_first
+///     iterations and each doubling.
+/// Attempts 1–3 run where the hierarchy has more than one level. Iteration::Auto (the
+/// default) runs 1–6; Newton 1–5 and returns the last one's result whatever it is; Paper,
+/// and the linear bilaplacian outer fairness, 6 alone (without Newton attempts).
 ///
 /// Beyond the paper, each justified by measurement where it is implemented: the vertex
 /// update divides its step by a measured coupling factor (vertex_update.h); global
 /// iterations also move the vertices tangentially by a global inner-fairness step
 /// (inner_fairness.h); the hierarchy is measured on a smoothed copy of the input and keeps
 /// valences and the ratio of free to boundary vertices in bounds (progressive_mesh.h); the
-/// coarse levels use discrete-conformal weights of that copy (or of the membrane, or their
-/// own uniform weights, above) whatever the inner fairness,
-/// because uniform weights pull free vertices against a boundary that is denser than the
-/// coarse interior (docs/DESIGN_NOTES.md); only the finest level's inner fairness decides
-/// the result. The coarse levels stop at a
-/// 10 times looser tolerance.
+/// coarse levels take inner fairness weights of their own (coarse_level_weights: the
+/// smoothed copy's conformal weights for the paper's iteration; for Newton's method the
+/// original's conformal weights, or with uniform inner fairness the reference geometry's of
+/// the attempt above), because uniform weights pull free vertices against a boundary that
+/// is denser than the coarse interior (docs/DESIGN_NOTES.md); only the finest level's inner
+/// fairness decides the result. The coarse levels stop at a 10 times looser tolerance.
 ///
 /// Residual: L · max_i |H̄_i − H_i| over the free vertices, with H̄_i = Σ_j w_ij H_j /
 /// Σ_j w_ij the cotangent-weighted mean curvature of the neighbours (w_ij of eq. (6)), and L
@@ -122,7 +128,7 @@ struct FairingResult {
 /// \param free    #V flags, true where a vertex may move; every free vertex must be
 ///                surrounded by triangles (not on the mesh border)
 /// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
-///                for estimate_boundary_normals (region.h) of the surrounding surface
+///                for estimate_boundary_normals (building_blocks.h) of the surrounding surface
 /// \param polygon_ids #F polygon each triangle was tessellated from, or nullptr: uniform
 ///                inner fairness then runs over the polygon mesh's edges, not the
 ///                diagonals that split its polygons (inner_fairness_weights; beyond the

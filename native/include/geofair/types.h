@@ -1,18 +1,16 @@
-// Common types, options and exceptions of the geofair library.
+// Common types and options of the geofair library.
 //
 // Units: lengths are in mesh units; mean curvature H is in 1/length. Sign convention:
 // H > 0 on a sphere whose normals point outward (H = 1/r there).
 #pragma once
 
+#include "geofair/errors.h"
 #include "geofair/tuning.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include <chrono>
 #include <functional>
-#include <stdexcept>
-#include <string>
 
 namespace geofair {
 
@@ -21,35 +19,6 @@ using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// #F×3 triangle vertex indices (row-major), counter-clockwise seen from the normal side.
 using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Vec3 = Eigen::Vector3d;
-
-/// Wall-clock seconds between calls, for FairingResult::phase_seconds.
-class Laps {
- public:
-  /// Seconds since the last call (the first call: since construction).
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-/// A violated precondition of a public function (bad shapes, indices, NaN, topology).
-/// Messages start with the function name. Mapped to Python's ValueError.
-class InvalidInputError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
-/// A numerical failure (a solver broke down, the iteration diverged).
-/// Mapped to Python's RuntimeError.
-class SolverError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// How the tangent plane of a free vertex is estimated (Schneider & Kobbelt 2001, section 6).
 enum class NormalWeighting {
@@ -91,9 +60,25 @@ enum class Iteration {
   Paper,   ///< the local/global iteration of section 7 with progressive-mesh multigrid (7.4)
 };
 
-/// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
-/// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).
-constexpr int kParallelMin = 2500;
+/// How the normal of a G1 boundary vertex is estimated from the surface around the region.
+enum class BoundaryNormalEstimate {
+  /// Tangent plane of a least-squares quadric through the surrounding fixed vertices (see
+  /// estimate_boundary_normals): error O(h²) on a smooth surface. The default.
+  Quadric,
+  /// Area-weighted normal of the surrounding triangles: one-sided, tilted by about half a
+  /// ring's angle, error O(h). The estimate of earlier releases; the quadric's fallback.
+  Area,
+};
+
+/// The linearization of inner fairness in TangentialSolver::relax. Fixed: the tangent
+/// planes held fixed (section 7.3's update, all vertices at once). Turning: with the first-
+/// order turn of each tangent plane as its vertex moves along the surface (the normal's
+/// derivative D_i times the normal part ℓ_i of the Laplacian vector: diagonal blocks
+/// I + ℓ_i D_i), Newton's linearization. ℓ_i D_i is of order (h·κ)²/2, as small as the
+/// smallest eigenvalues of the fixed-plane system on a smooth surface: without it repeated
+/// solves reduce the distance to inner fairness only by a constant factor, with it
+/// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
+enum class TangentPlanes { Fixed, Turning };
 
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
@@ -117,7 +102,7 @@ struct FairingOptions {
   int cg_iterations = 10;
   /// Levels of the progressive-mesh multigrid (section 7.4): 1 = single level,
   /// 0 = picked from the region (Newton: as many as keep 700 free vertices on the base
-  /// level, fairing.cpp; Paper: default_levels, one level up to 1000 free vertices).
+  /// level, schedule.cpp; Paper: default_levels, one level up to 1000 free vertices).
   int levels = 0;
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
   /// spent (FairingResult::message says so). Negative: automatic with Iteration::Auto (the

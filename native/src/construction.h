@@ -2,11 +2,11 @@
 // Kobbelt 2001, sections 7.1-7.3), used on the single level and on every multigrid level.
 #pragma once
 
-#include "geofair/curvature_solve.h"
-#include "geofair/inner_fairness.h"
-#include "geofair/laplace_beltrami.h"
-#include "geofair/newton_step.h"
-#include "geofair/region.h"
+#include "curvature_solve.h"
+#include "inner_fairness.h"
+#include "laplace_beltrami.h"
+#include "newton_step.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <vector>
@@ -158,6 +158,17 @@ class Construction {
   void shift_mass(const Positions& X, Eigen::VectorXd& mass) const;
   void jacobian_product(const Positions& X, const Eigen::VectorXd& d0, const Eigen::VectorXd& v,
                         Eigen::VectorXd& out);
+  // The state of run_newton's pseudo-transient continuation: the shift σ (dimensionless),
+  // the merit of the current iterate, and the step's work vectors.
+  struct Continuation {
+    double sigma = 0.0;
+    double merit = 0.0;
+    Eigen::VectorXd mass, t, d0;
+  };
+  enum class StepOutcome { Taken, Rejected, Stalled };
+  // One step of the continuation from X (evaluated, `residual` its residual): taken, or
+  // taken back with σ raised, Stalled where σ passed shift_max.
+  StepOutcome continuation_step(Positions& X, Continuation& c, double& residual);
 
   const FairingRegion& region_;
   InnerFairnessWeights lambda_;

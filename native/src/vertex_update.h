@@ -2,8 +2,8 @@
 // move every free vertex so that its mean curvature becomes the target H~, eq. (13).
 #pragma once
 
-#include "geofair/inner_fairness.h"
-#include "geofair/region.h"
+#include "inner_fairness.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <Eigen/Core>

@@ -2,8 +2,8 @@
 // section 7.4, last part; Fig. 1c).
 #pragma once
 
-#include "geofair/inner_fairness.h"
-#include "geofair/region.h"
+#include "inner_fairness.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <vector>

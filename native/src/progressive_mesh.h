@@ -2,13 +2,14 @@
 // built by half-edge collapses (Hoppe 1996; Schneider & Kobbelt 2001, section 7.4, Fig. 6).
 #pragma once
 
-#include "geofair/inner_fairness.h"
-#include "geofair/region.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <vector>
 
 namespace geofair {
+
+struct InnerFairnessWeights;  // inner_fairness.h
 
 /// Vertex splits in flat arrays: split s re-inserts vertex[s] (region-local id) with the
 /// one-ring ring[offset[s] .. offset[s+1]) it had before it was collapsed, in order
@@ -64,7 +65,7 @@ struct Decimation {
 /// The hierarchy of the paper's iteration (Paper): the boundary locked, valences 5..8.
 constexpr Decimation kPaperDecimation{};
 
-/// The hierarchy of Newton's method on the levels (fairing.cpp; beyond the paper): the
+/// The hierarchy of Newton's method on the levels (nested_iteration.cpp; beyond the paper): the
 /// boundary coarsened (a locked boundary joins a dense boundary to a sparse interior by
 /// fans of long triangles), free valences 4..10, valences 3 and 4 collapsed first (they
 /// hold the largest defects after a prolongation when they survive into coarse levels);

@@ -6,7 +6,8 @@
 // minimal surfaces. Units: 1/length.
 #pragma once
 
-#include "geofair/region.h"
+#include "region.h"
+#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <Eigen/Core>
@@ -14,14 +15,6 @@
 #include <cmath>
 
 namespace geofair {
-
-/// An orthonormal basis (bx, by) of the plane with unit normal n, with bx × by = n: the
-/// tangent-plane frame of eqs. (9), (10) and of the quadric normal fits.
-inline void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
-  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  bx = n.cross(helper).normalized();
-  by = n.cross(bx);
-}
 
 /// Unit normal of vertex i from the triangles of its one-ring, weighted as requested.
 /// Returns the zero vector if the triangles are degenerate (no defined normal).
@@ -73,16 +66,5 @@ inline bool needs_spiral_samples(const OneRings& rings, int i) {
   return rings.valence(i) <= 4 || !rings.closed(i);
 }
 
-/// Mean curvature of every vertex of a triangle mesh (section 6).
-///
-/// \param V        #V×3 positions
-/// \param F        #F×3 consistently oriented triangles
-/// \param normals  #V×3 unit normals (the tangent planes), or nullptr to estimate them
-///                 with `weighting` from the triangles (section 6; the paper's is Area)
-/// \return #V mean curvatures, 1/length, H = 1/r on a sphere with outward normals;
-///         0 at vertices that belong to no triangle.
-/// \throw InvalidInputError for invalid topology, non-finite positions or normals.
-Eigen::VectorXd mean_curvature(const Positions& V, const Triangles& F, const Positions* normals,
-                               NormalWeighting weighting = NormalWeighting::Quadric);
 
 }  // namespace geofair

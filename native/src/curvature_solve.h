@@ -6,7 +6,7 @@
 // iterations with a diagonal preconditioner).
 #pragma once
 
-#include "geofair/laplace_beltrami.h"
+#include "laplace_beltrami.h"
 
 #include <Eigen/IterativeLinearSolvers>
 

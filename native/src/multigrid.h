@@ -3,9 +3,9 @@
 // corrections (full approximation scheme) added to the paper's coarse-to-fine iteration.
 #pragma once
 
-#include "geofair/construction.h"
-#include "geofair/progressive_mesh.h"
-#include "geofair/region.h"
+#include "construction.h"
+#include "progressive_mesh.h"
+#include "region.h"
 #include "geofair/types.h"
 
 #include <deque>
@@ -123,6 +123,10 @@ class Multigrid {
 
  private:
   void cycle(int l, Positions& X, const Eigen::VectorXd* tau, bool top, int offset);
+  // Steps 2 and 3 of a cycle on level l at X: the coarse problem solved by a cycle on l−1,
+  // its change interpolated to level l in D (#level×3). False where it diverged.
+  bool coarse_correction(int l, const Positions& X, const Eigen::VectorXd* tau, bool top,
+                         int offset, Positions& D);
 
   std::deque<MultigridLevel>& levels_;
   MultigridTuning tuning_;

@@ -2,8 +2,8 @@
 // vertices sit on the surface (Schneider & Kobbelt 2001, section 7.3).
 #pragma once
 
-#include "geofair/region.h"
-#include "geofair/sparse_lu.h"
+#include "region.h"
+#include "sparse_lu.h"
 #include "geofair/types.h"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -104,15 +104,6 @@ inline Vec3 weighted_centroid(const InnerFairnessWeights& lambda, const Position
   return c;
 }
 
-/// The linearization of inner fairness in TangentialSolver::relax. Fixed: the tangent
-/// planes held fixed (section 7.3's update, all vertices at once). Turning: with the first-
-/// order turn of each tangent plane as its vertex moves along the surface (the normal's
-/// derivative D_i times the normal part ℓ_i of the Laplacian vector: diagonal blocks
-/// I + ℓ_i D_i), Newton's linearization. ℓ_i D_i is of order (h·κ)²/2, as small as the
-/// smallest eigenvalues of the fixed-plane system on a smooth surface: without it repeated
-/// solves reduce the distance to inner fairness only by a constant factor, with it
-/// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
-enum class TangentPlanes { Fixed, Turning };
 
 /// Interpolation of corrections from a coarser level (multigrid.h, coarse_space):
 /// row i, free vertex i of the level, holds the weights of the coarser level's free vertices

@@ -4,7 +4,8 @@
 // al. 1999).
 #pragma once
 
-#include "geofair/region.h"
+#include "region.h"
+#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <Eigen/Sparse>
@@ -13,21 +14,12 @@
 
 namespace geofair {
 
-using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-
 /// Cotangent weights w_ij = cot α_ij + cot β_ij of the ring slots of vertex i, written to
 /// w[0 .. valence). α, β are the angles opposite edge (q_i, q_j) in the (one or two)
 /// triangles at that edge (eq. (5)). Dimensionless. A triangle whose area vanishes
 /// contributes cot = ±1e12 instead of ±inf.
 void cotangent_weights(const OneRings& rings, const Positions& X, int i, double* w);
 
-/// The cotangent Laplace–Beltrami matrix of a whole triangle mesh, #V×#V:
-/// L_ij = w_ij = cot α_ij + cot β_ij for every edge (one cotangent on a border edge),
-/// L_ii = −Σ_j L_ij. Symmetric, constants in its null space, negative semi-definite on
-/// meshes without obtuse angles; (L f)_i = (2 A_i / 3) Δ_B f(q_i) with eq. (5), and S of
-/// eqs. (6), (7) is −L restricted to the free rows and columns.
-/// \throw InvalidInputError for invalid topology or non-finite positions.
-SparseRowMatrix cotangent_laplacian(const Positions& V, const Triangles& F);
 
 /// The discrete Dirichlet problem Σ_j w_ij (H_i - H_j) = 0 at the free vertices,
 /// S H_I = b with S_ii = Σ_j w_ij (6), S_ij = -w_ij for free q_j (7),

@@ -4,6 +4,7 @@
 // vertices next to them; N(q_i) is the one-ring, D(q_i) the one-disk.
 #pragma once
 
+#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <cstdint>
@@ -75,56 +76,6 @@ struct FairingRegion {
   std::vector<std::uint8_t> polygon_diagonal;
 };
 
-/// How the normal of a G1 boundary vertex is estimated from the surface around the region.
-enum class BoundaryNormalEstimate {
-  /// Tangent plane of a least-squares quadric through the surrounding fixed vertices (see
-  /// estimate_boundary_normals): error O(h²) on a smooth surface. The default.
-  Quadric,
-  /// Area-weighted normal of the surrounding triangles: one-sided, tilted by about half a
-  /// ring's angle, error O(h). The estimate of earlier releases; the quadric's fallback.
-  Area,
-};
-
-/// Unit normals of the G1 boundary vertices estimated from the surrounding surface.
-///
-/// The G1 boundary is the set of fixed vertices that share a triangle with a free vertex;
-/// the *surrounding triangles* of a vertex are its triangles without a free vertex (the
-/// fixed surface around the region: free vertices' positions never enter, since fairing
-/// replaces them).
-///
-/// Quadric (beyond the paper): n0 = the area-weighted normal of the surrounding triangles
-/// (one-sided: error O(h) for edge length h). The samples are the fixed vertices within two
-/// rings reached through surrounding triangles (the vertices of the surrounding triangles at
-/// the vertex, and of the triangles without a free vertex at those). In the frame of n0,
-/// with the vertex q at the origin and lengths in units of the samples' rms distance, the
-/// heights z = ⟨p − q, n0⟩ of the samples p at tangent coordinates (x, y) are fitted by the
-/// paraboloid z = a x + b y + c x² + d xy + e y² through q (least squares, each equation
-/// weighted by 1/|p − q|²); the normal is that of the fitted plane, (n0 − a b_x − b b_y)/|…|,
-/// and the fit is repeated once in that normal's frame. Taylor's theorem makes the error
-/// O(h²) on a smooth surface wherever the samples determine the five coefficients
-/// (tests/test_boundary_normals.py asserts the order on spheres and cylinders). Falls back to n0 where the
-/// fit is ill-conditioned: fewer than 6 samples, a sample that is not finite, a condition
-/// number above 1e6 of the column-equilibrated 5×5 normal equations (for instance all
-/// samples on two straight rows, where y and y² cannot be told apart), a fitted plane
-/// tilted by 45° or more against the frame's, or a result facing away from n0.
-///
-/// Sign: oriented like the faces (positive dot product with n0, whose triangles are
-/// counter-clockwise seen from the normal side). Dimensionless unit vectors.
-///
-/// \param V        #V×3 positions, mesh units
-/// \param F        #F×3 consistently oriented triangles
-/// \param free     #V flags, true where a vertex may move
-/// \param method   Quadric (default) or Area
-/// \param caller   function name used at the start of error messages
-/// \return #V×3: unit normals at G1 boundary vertices; zero rows at every other vertex and
-///         at G1 boundary vertices without a surrounding triangle (the region reaches the
-///         mesh border there) or whose surrounding triangles are all degenerate; a row is
-///         not finite where a vertex of the surrounding triangles is not.
-/// \throw InvalidInputError if free has the wrong size or a triangle index is out of range.
-Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
-                                    const std::vector<bool>& free,
-                                    BoundaryNormalEstimate method = BoundaryNormalEstimate::Quadric,
-                                    const char* caller = "boundary_normals");
 
 /// Extracts the fairing region of a mesh.
 ///

@@ -1,9 +1,9 @@
 // The global normal step by Newton's method on eq. (12) (beyond the paper).
 #pragma once
 
-#include "geofair/laplace_beltrami.h"
-#include "geofair/region.h"
-#include "geofair/sparse_lu.h"
+#include "laplace_beltrami.h"
+#include "region.h"
+#include "sparse_lu.h"
 #include "geofair/types.h"
 
 #include <unsupported/Eigen/IterativeSolvers>

@@ -1,0 +1,38 @@
+// Small helpers shared by the library's sources (not part of the public API).
+#pragma once
+
+#include "geofair/types.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace geofair {
+
+/// An orthonormal basis (bx, by) of the plane with unit normal n, with bx × by = n: the
+/// tangent-plane frame of eqs. (9), (10) and of the quadric normal fits.
+inline void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
+  const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  bx = n.cross(helper).normalized();
+  by = n.cross(bx);
+}
+
+/// Wall-clock seconds between calls, for FairingResult::phase_seconds.
+class Laps {
+ public:
+  /// Seconds since the last call (the first call: since construction).
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
+/// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).
+constexpr int kParallelMin = 2500;
+
+}  // namespace geofair

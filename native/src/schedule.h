@@ -1,0 +1,35 @@
+// fair()'s schedule: the attempts it makes, in order, until one converges (fairing.h).
+#pragma once
+
+#include "nested_iteration.h"
+
+#include <vector>
+
+namespace geofair {
+
+/// The attempts of fair() for `problem`, in the order they run (docs/ARCHITECTURE.md):
+///
+/// | # | iteration | levels                    | coarse weights | when                        |
+/// |---|-----------|---------------------------|----------------|-----------------------------|
+/// | 1 | Newton    | newton_levels (or levels) | Smoothed       | more than one level         |
+/// | 2 | Newton    | same                      | Membrane       | 1 and uniform inner fairness|
+/// | 3 | Newton    | same                      | Own            | 1 and uniform inner fairness|
+/// | 4 | Newton    | 1                         | –              | always                      |
+/// | 5 | Newton    | 2                         | Smoothed       | one level by default and at |
+/// |   |           |                           |                | least newton_retry_min_free |
+/// | 6 | Paper     | default_levels (or levels)| –              | Auto: last; Paper: only     |
+///
+/// Newton's attempts (1–5) run with intrinsic outer fairness and Iteration::Auto or Newton;
+/// Auto's last attempt is the paper's iteration (6) with Newton attempts from its iterate;
+/// Iteration::Paper and the linear bilaplacian outer fairness run 6 alone.
+std::vector<Attempt> plan_attempts(const Problem& problem);
+
+/// Walks `attempts` (plan_attempts) and returns the first run that converged or was
+/// cancelled; with Iteration::Newton the last attempt's run whatever its outcome, with Auto
+/// the paper's. A stop requested between two attempts returns the input unchanged.
+/// `newton_iterations` accumulates Newton's steps of all attempts, `phases` their phases.
+/// \throw SolverError where Iteration::Newton's last attempt or the paper's iteration fails.
+SolveRun run_attempts(const Problem& problem, const std::vector<Attempt>& attempts,
+                      int& newton_iterations, Phases& phases);
+
+}  // namespace geofair
