@@ -264,6 +264,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   probe_H_.resize(region_.n);
   Continuation c;
   c.merit = merit();
+  double last_merit = c.merit;  // at the previous step
   c.mass.resize(region_.n_free);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, newton_run.iteration_offset + k);
@@ -287,7 +288,9 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
     if (residual < 0.5 * best) best = residual, best_at = k;
     report.stalled = k - best_at >= newton_run.patience ||
                      ((newton_run.from_initial_mesh || newton_run.prolongated) &&
-                      k == newton.far_steps && c.merit > newton.far_merit);
+                      k == newton.far_steps && c.merit > newton.far_merit) ||
+                     (k > 0 && c.merit <= newton_run.crawl_merit && c.merit > 0.5 * last_merit);
+    last_merit = c.merit;
     if (report.converged || report.stalled || k >= newton_run.max_iterations) break;
     if (options_.progress && !source_ &&
         !options_.progress(newton_run.iteration_offset + k, residual)) {

@@ -371,6 +371,7 @@ class NewtonLevels final : public LevelIteration {
       newton_run.polish_at_convergence = finest;
       newton_run.prolongated = l > 0;
       newton_run.from_initial_mesh = l == 0;
+      if (!finest) newton_run.crawl_merit = tuning.newton.coarse_merit;
       report = construction.run_newton(Y, newton_run);
     }
     phases.emplace_back(level_phase(l, "inner fairness"), report.relax_seconds);
