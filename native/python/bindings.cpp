@@ -189,7 +189,7 @@ py::dict defaults_py() {
   d["iteration"] = name(o.iteration, kIterationNames);
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
-  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free;
+  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free_vertex;
   d["time_limit_hard_factor"] = o.tuning.schedule.time_limit_hard_factor;
   py::dict tuning;
   for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
@@ -211,7 +211,7 @@ std::string fair_doc(std::string doc) {
   };
   const SolverTuning t;
   replace("{time_limit_base}", number(t.schedule.time_limit_base));
-  replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free * 1e3));
+  replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free_vertex * 1e3));
   replace("{time_limit_hard_factor}", number(t.schedule.time_limit_hard_factor));
   replace("{newton_step}", number(t.newton.max_step));
   replace("{polished_move}", number(t.newton.polished_move));

@@ -86,7 +86,8 @@ class TimeLimit {
     const bool automatic = options.time_limit < 0.0 && options.iteration == Iteration::Auto;
     const double none = std::numeric_limits<double>::infinity();
     // The automatic limit: `stall_` seconds without a halving of the residual, `limit_` in all.
-    stall_ = automatic ? schedule.time_limit_base + schedule.time_limit_per_free * double(n_free)
+    stall_ = automatic ? schedule.time_limit_base +
+                             schedule.time_limit_per_free_vertex * double(n_free)
                        : none;
     limit_ = options.time_limit >= 0.0 ? options.time_limit
              : automatic               ? schedule.time_limit_hard_factor * stall_
@@ -130,7 +131,8 @@ class TimeLimit {
 
   // Why an unconverged solve ended, with its figures.
   std::string why_not(const std::string& figures) const {
-    if (timed_out_) return "stopped at the time limit of " + scientific(limit_) + " s (" + figures + ")";
+    if (timed_out_)
+      return "stopped at the time limit of " + scientific(limit_) + " s (" + figures + ")";
     if (stalled_)
       return "stopped: the residual did not halve in " + scientific(stall_) +
              " s, the automatic time limit (" + figures + ")";

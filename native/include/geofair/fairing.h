@@ -139,7 +139,7 @@ struct FairingResult {
 /// Newton's attempts end by their own rule (no halving of the residual in newton.patience
 /// steps); the paper's iteration, the last attempt, stops once its residual has not fallen
 /// below half of its value at the last such fall for T = time_limit_base +
-/// time_limit_per_free × free vertices seconds; and the whole call stops after
+/// time_limit_per_free_vertex × free vertices seconds; and the whole call stops after
 /// time_limit_hard_factor × T. With
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
