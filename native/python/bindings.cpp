@@ -336,6 +336,25 @@ void bind_result(py::module_& m) {
                     "How the solve ended, one sentence: \"converged (...)\" or why not (the "
                     "time limit, max_iterations, cancelled), with the residual and tolerance.")
       .def_property_readonly(
+          "stop_reason",
+          [](const FairingResult& r) {
+            switch (r.stop_reason) {
+              case StopReason::Converged: return "converged";
+              case StopReason::MaxIterations: return "max_iterations";
+              case StopReason::TimeLimit: return "time_limit";
+              case StopReason::NoProgress: return "no_progress";
+              case StopReason::Cancelled: return "cancelled";
+              case StopReason::Diverged: return "diverged";
+            }
+            return "max_iterations";
+          },
+          "Why the solve ended, message's first clause as a value: \"converged\"; "
+          "\"max_iterations\" (a level spent max_iterations, or Newton's method stalled with "
+          "iteration=\"newton\"); \"time_limit\" (time_limit, or the automatic limit's hard "
+          "cap); \"no_progress\" (the automatic limit: the residual did not halve for its "
+          "span); \"cancelled\" (progress returned False); \"diverged\" "
+          "(iteration=\"auto\"'s last attempt failed: the input is returned).")
+      .def_property_readonly(
           "iteration",
           [](const FairingResult& r) {
             return std::string(r.iteration == Iteration::Newton ? "newton" : "paper");

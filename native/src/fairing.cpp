@@ -129,6 +129,14 @@ class TimeLimit {
 
   bool user_cancelled() const { return user_cancelled_; }
 
+  // Why an unconverged solve ended.
+  StopReason reason() const {
+    return timed_out_        ? StopReason::TimeLimit
+           : stalled_        ? StopReason::NoProgress
+           : user_cancelled_ ? StopReason::Cancelled
+                             : StopReason::MaxIterations;
+  }
+
   // Why an unconverged solve ended, with its figures.
   std::string why_not(const std::string& figures) const {
     if (timed_out_)
@@ -230,6 +238,7 @@ void describe(FairingResult& result, const FairingOptions& options, const TimeLi
   const std::string figures =
       "residual " + scientific(result.residual) + ", tolerance " + scientific(options.tolerance);
   result.message = result.converged ? "converged (" + figures + ")" : limit.why_not(figures);
+  result.stop_reason = result.converged ? StopReason::Converged : limit.reason();
   if (!how.empty()) result.message += "; " + how;
 }
 
@@ -252,6 +261,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.vertices = V;
     result.residual = input_residual(V, F, free, boundary_normals, options, polygon_ids);
     result.message = std::string(error.what()) + "; the input is returned unchanged";
+    result.stop_reason = StopReason::Diverged;
     count_result_folds(result, V, F, free);
     return result;
   }
