@@ -73,7 +73,7 @@ def test_tuning_override_reaches_the_solver():
     # An automatic time limit of 0 s stops the solve at once, unconverged.
     scene = scenes.sphere_cap(n_free=300, irregular=True, seed=13)
     args = (scene.vertices, scene.faces, scene.free)
-    zero = {"schedule.time_limit_base": 0.0, "schedule.time_limit_per_free": 0}
+    zero = {"schedule.time_limit_base": 0.0, "schedule.time_limit_per_free_vertex": 0}
     result = geofair.fair(*args, boundary_normals=scene.normals, tuning=zero)
     assert not result.converged and "time limit of 0.0e+00 s" in result.message
     assert geofair.fair(*args, boundary_normals=scene.normals, tuning={}).converged

@@ -151,6 +151,7 @@ def test_time_limit_stops_unconverged(iteration):
     r = fair(s, vertices=v, tolerance=1e-300, max_iterations=10**9, time_limit=0.3, iteration=iteration)
     elapsed = time.perf_counter() - start
     assert not r.converged and r.message.startswith("stopped at the time limit of 3.0e-01 s")
+    assert r.stop_reason == "time_limit"
     assert elapsed < 0.3 + 2.0  # one more iteration or level set-up after the limit, no more
     assert np.array_equal(r.vertices[~s.free], v[~s.free]) and np.isfinite(r.vertices).all()
 
@@ -162,7 +163,7 @@ def test_time_limit_zero_returns_the_input(levels):
     s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
     v = s.disturbed(seed=7, amplitude=0.1)
     r = fair(s, vertices=v, time_limit=0.0, levels=levels)
-    assert not r.converged and "time limit" in r.message
+    assert not r.converged and "time limit" in r.message and r.stop_reason == "time_limit"
     assert np.array_equal(r.vertices, v)
     assert r.iterations == 0 and r.newton_iterations == 0
     assert r.residual > 1.0  # the disturbed input's (44), not that of a solver's iterate

@@ -174,12 +174,13 @@ def test_multigrid_reports_iteration_limit_and_cancellation():
     v = s.disturbed(seed=4)
     kw = dict(boundary_normals=s.normals, levels=3)
     r = fair(v, s.faces, s.free, max_iterations=7, **kw)
-    assert not r.converged and r.residual > 1e-4
+    assert not r.converged and r.residual > 1e-4 and r.stop_reason == "max_iterations"
     assert r.iterations_per_level[-1] <= 7
     assert r.iterations == sum(r.iterations_per_level)
     calls = []
     r = fair(v, s.faces, s.free, progress=lambda k, res: calls.append(k) or False, **kw)
-    assert calls and not r.converged and r.iterations == 0
+    assert calls and not r.converged and r.iterations == 0 and r.stop_reason == "cancelled"
+    assert r.message.startswith("cancelled") and fair(v, s.faces, s.free, **kw).stop_reason == "converged"
 
 
 @pytest.fixture(scope="module")

@@ -99,6 +99,7 @@ def test_diverging_auto_solve_returns_the_input_unconverged():
     v, f, free = case["vertices"], case["faces"], case["free"]
     r = geofair.fair(v, f, free, boundary_normals=case["boundary_normals"])
     assert not r.converged and "diverged" in r.message and "unchanged" in r.message
+    assert r.stop_reason == "diverged"
     assert np.array_equal(r.vertices, v) and np.isfinite(r.residual) and r.residual > 1e-4
     assert (r.folds, r.new_folds) == (corpus.new_folds(None, v, f, free), 0)
     with pytest.raises(RuntimeError, match="diverged"):

@@ -95,6 +95,8 @@ class FairingReport:
             ``region``, ``uv`` (UV distortion before and after, with ``uv_read``, reading
             the UVs), ``solve``, ``write``.
         message: the library's account of how the solve ended (``geofair.FairingResult.message``).
+        stop_reason: why the solve ended, as a value (``geofair.FairingResult.stop_reason``:
+            "converged", "max_iterations", "time_limit", "no_progress", "cancelled", "diverged").
     """
 
     object_name: str
@@ -118,13 +120,15 @@ class FairingReport:
     folds: int = 0
     new_folds: int = 0
     message: str = ""
+    stop_reason: str = ""
 
     @property
     def stopped_at_time_limit(self):
         """The library's words where an unconverged solve stopped at its time limit, the given or the automatic
         one ("stopped at the time limit of 1.0e-02 s"), else ""."""
-        reason = self.message.split(" (", 1)[0]
-        return reason if not self.converged and reason.startswith("stopped") else ""
+        if self.converged or self.stop_reason not in ("time_limit", "no_progress"):
+            return ""
+        return self.message.split(" (", 1)[0]
 
     @property
     def changed(self):
@@ -394,6 +398,7 @@ class FairingRun(_WorkerThread):
             folds=int(getattr(result, "folds", 0)),
             new_folds=int(getattr(result, "new_folds", 0)),
             message=str(getattr(result, "message", "")),
+            stop_reason=str(getattr(result, "stop_reason", "")),
         )
 
     def _uv_distortion(self, positions):

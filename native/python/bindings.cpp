@@ -189,7 +189,7 @@ py::dict defaults_py() {
   d["iteration"] = name(o.iteration, kIterationNames);
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
-  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free;
+  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free_vertex;
   d["time_limit_hard_factor"] = o.tuning.schedule.time_limit_hard_factor;
   py::dict tuning;
   for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
@@ -211,7 +211,7 @@ std::string fair_doc(std::string doc) {
   };
   const SolverTuning t;
   replace("{time_limit_base}", number(t.schedule.time_limit_base));
-  replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free * 1e3));
+  replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free_vertex * 1e3));
   replace("{time_limit_hard_factor}", number(t.schedule.time_limit_hard_factor));
   replace("{newton_step}", number(t.newton.max_step));
   replace("{polished_move}", number(t.newton.polished_move));
@@ -335,6 +335,25 @@ void bind_result(py::module_& m) {
       .def_readonly("message", &FairingResult::message,
                     "How the solve ended, one sentence: \"converged (...)\" or why not (the "
                     "time limit, max_iterations, cancelled), with the residual and tolerance.")
+      .def_property_readonly(
+          "stop_reason",
+          [](const FairingResult& r) {
+            switch (r.stop_reason) {
+              case StopReason::Converged: return "converged";
+              case StopReason::MaxIterations: return "max_iterations";
+              case StopReason::TimeLimit: return "time_limit";
+              case StopReason::NoProgress: return "no_progress";
+              case StopReason::Cancelled: return "cancelled";
+              case StopReason::Diverged: return "diverged";
+            }
+            return "max_iterations";
+          },
+          "Why the solve ended, message's first clause as a value: \"converged\"; "
+          "\"max_iterations\" (a level spent max_iterations, or Newton's method stalled with "
+          "iteration=\"newton\"); \"time_limit\" (time_limit, or the automatic limit's hard "
+          "cap); \"no_progress\" (the automatic limit: the residual did not halve for its "
+          "span); \"cancelled\" (progress returned False); \"diverged\" "
+          "(iteration=\"auto\"'s last attempt failed: the input is returned).")
       .def_property_readonly(
           "iteration",
           [](const FairingResult& r) {

@@ -86,7 +86,8 @@ class TimeLimit {
     const bool automatic = options.time_limit < 0.0 && options.iteration == Iteration::Auto;
     const double none = std::numeric_limits<double>::infinity();
     // The automatic limit: `stall_` seconds without a halving of the residual, `limit_` in all.
-    stall_ = automatic ? schedule.time_limit_base + schedule.time_limit_per_free * double(n_free)
+    stall_ = automatic ? schedule.time_limit_base +
+                             schedule.time_limit_per_free_vertex * double(n_free)
                        : none;
     limit_ = options.time_limit >= 0.0 ? options.time_limit
              : automatic               ? schedule.time_limit_hard_factor * stall_
@@ -128,9 +129,18 @@ class TimeLimit {
 
   bool user_cancelled() const { return user_cancelled_; }
 
+  // Why an unconverged solve ended.
+  StopReason reason() const {
+    return timed_out_        ? StopReason::TimeLimit
+           : stalled_        ? StopReason::NoProgress
+           : user_cancelled_ ? StopReason::Cancelled
+                             : StopReason::MaxIterations;
+  }
+
   // Why an unconverged solve ended, with its figures.
   std::string why_not(const std::string& figures) const {
-    if (timed_out_) return "stopped at the time limit of " + scientific(limit_) + " s (" + figures + ")";
+    if (timed_out_)
+      return "stopped at the time limit of " + scientific(limit_) + " s (" + figures + ")";
     if (stalled_)
       return "stopped: the residual did not halve in " + scientific(stall_) +
              " s, the automatic time limit (" + figures + ")";
@@ -228,6 +238,7 @@ void describe(FairingResult& result, const FairingOptions& options, const TimeLi
   const std::string figures =
       "residual " + scientific(result.residual) + ", tolerance " + scientific(options.tolerance);
   result.message = result.converged ? "converged (" + figures + ")" : limit.why_not(figures);
+  result.stop_reason = result.converged ? StopReason::Converged : limit.reason();
   if (!how.empty()) result.message += "; " + how;
 }
 
@@ -250,6 +261,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.vertices = V;
     result.residual = input_residual(V, F, free, boundary_normals, options, polygon_ids);
     result.message = std::string(error.what()) + "; the input is returned unchanged";
+    result.stop_reason = StopReason::Diverged;
     count_result_folds(result, V, F, free);
     return result;
   }

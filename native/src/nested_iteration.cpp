@@ -355,8 +355,9 @@ class NewtonLevels final : public LevelIteration {
     const SolverTuning& tuning = options.tuning;
     Construction& construction = *levels_[l].construction;
     const double tolerance = options.tolerance * (finest ? 1.0 : tuning.schedule.coarse_tolerance);
-    const int budget = finest ? options.max_iterations
-                              : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
+    const int budget =
+        finest ? options.max_iterations
+               : std::min(options.max_iterations, tuning.schedule.coarse_newton_steps);
     IterationReport report;
     double paper_seconds = 0.0;
     if (l == 0 && !finest) {
@@ -487,7 +488,8 @@ class PaperLevels final : public LevelIteration {
 
   void finish(FairingResult& result) override {
     for (const MultigridLevel& done : levels_)
-      if (done.construction) result.iterations_per_level.push_back(int(done.construction->iterations()));
+      if (done.construction)
+        result.iterations_per_level.push_back(int(done.construction->iterations()));
     result.newton_iterations += attempts_.steps();
     if (attempts_.converged_after() >= 0)
       result.message = "Newton's method converged from the paper's iterate after " +
@@ -514,9 +516,9 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
   if (newton)
     iteration = std::make_unique<NewtonLevels>(p, levels, Xs, attempt.reference, newton_iterations);
   Laps laps;
-  ProgressiveMesh hierarchy =
-      build_hierarchy(p.region, p.X0, p.lambda_finest, attempt.levels,
-                      newton ? kNewtonDecimation : kPaperDecimation, p.options.tuning.hierarchy, Xs);
+  ProgressiveMesh hierarchy = build_hierarchy(p.region, p.X0, p.lambda_finest, attempt.levels,
+                                              newton ? kNewtonDecimation : kPaperDecimation,
+                                              p.options.tuning.hierarchy, Xs);
   // The reference of Newton's uniform coarse weights (coarse_level_weights; empty: their own).
   Positions Xr = !newton || attempt.reference == CoarseReference::Own ? Positions()
                  : attempt.reference == CoarseReference::Membrane && hierarchy.triangles.size() > 1

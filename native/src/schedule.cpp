@@ -20,12 +20,13 @@ std::vector<Attempt> plan_attempts(const Problem& p) {
   const FairingOptions& o = p.options;
   const ScheduleTuning& schedule = o.tuning.schedule;
   std::vector<Attempt> attempts;
-  const bool newton = o.outer_fairness == OuterFairness::Intrinsic && o.iteration != Iteration::Paper;
+  const bool intrinsic = o.outer_fairness == OuterFairness::Intrinsic;
+  const bool newton = intrinsic && o.iteration != Iteration::Paper;
   const bool uniform = o.inner_fairness == InnerFairness::Uniform;
   const int levels = o.levels > 0 ? o.levels : newton_levels(p.region, schedule);
   if (newton && levels > 1) {
     attempts.push_back({Iteration::Newton, levels, CoarseReference::Smoothed});
-    // The membrane needs the finest uniform weights' row sums (not kept for polygons).
+    // The membrane needs symmetric finest weights (InnerFairnessWeights::row_sum given).
     if (uniform && p.lambda_finest.row_sum.size() == std::size_t(p.lambda_finest.size()))
       attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane});
     if (uniform) attempts.push_back({Iteration::Newton, levels, CoarseReference::Own});
@@ -35,9 +36,9 @@ std::vector<Attempt> plan_attempts(const Problem& p) {
   if (newton && levels == 1 && o.levels == 0 && p.region.n_free >= schedule.newton_retry_min_free)
     attempts.push_back({Iteration::Newton, 2, CoarseReference::Smoothed});
   if (!newton || o.iteration == Iteration::Auto) {
-    const int paper_levels = o.outer_fairness != OuterFairness::Intrinsic ? 1
-                             : o.levels > 0                               ? o.levels
-                                                                          : default_levels(p.region.n_free);
+    const int paper_levels = !intrinsic     ? 1
+                             : o.levels > 0 ? o.levels
+                                            : default_levels(p.region.n_free);
     attempts.push_back({Iteration::Paper, paper_levels, CoarseReference::Smoothed});
   }
   return attempts;

@@ -10,6 +10,16 @@
 
 namespace geofair {
 
+/// Why geofair::fair returned: the first clause of FairingResult::message as a value.
+enum class StopReason {
+  Converged,      ///< residual <= tolerance
+  MaxIterations,  ///< a level spent options.max_iterations (or Newton's method stalled)
+  TimeLimit,      ///< options.time_limit, or the automatic limit's hard cap, was spent
+  NoProgress,     ///< the automatic time limit: the residual did not halve for its span
+  Cancelled,      ///< options.progress returned false or options.stop_requested true
+  Diverged,       ///< Auto's last attempt failed (SolverError); the input is returned
+};
+
 /// Outcome of geofair::fair.
 struct FairingResult {
   Positions vertices;      ///< #V×3; rows of fixed vertices are bit-identical to the input
@@ -23,6 +33,7 @@ struct FairingResult {
   /// How the solve ended, one sentence for a user: "converged", or why not (the time
   /// limit, max_iterations, cancelled, no progress) with the residual and tolerance.
   std::string message;
+  StopReason stop_reason = StopReason::MaxIterations;  ///< message's first clause as a value
   /// The iteration that produced the result: Newton or Paper (Auto falls back to Paper).
   Iteration iteration = Iteration::Paper;
   /// Newton steps performed, including those of an attempt that Auto abandoned.
@@ -139,7 +150,7 @@ struct FairingResult {
 /// Newton's attempts end by their own rule (no halving of the residual in newton.patience
 /// steps); the paper's iteration, the last attempt, stops once its residual has not fallen
 /// below half of its value at the last such fall for T = time_limit_base +
-/// time_limit_per_free × free vertices seconds; and the whole call stops after
+/// time_limit_per_free_vertex × free vertices seconds; and the whole call stops after
 /// time_limit_hard_factor × T. With
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.

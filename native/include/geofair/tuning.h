@@ -161,7 +161,7 @@ struct ScheduleTuning {
   /// once its residual has not halved for this many seconds ...
   double time_limit_base = 5.0;
   /// ... plus this many seconds per free vertex ...
-  double time_limit_per_free = 2e-4;
+  double time_limit_per_free_vertex = 2e-4;
   /// ... and any solve after this many times that span (a hard cap).
   double time_limit_hard_factor = 5.0;
   /// Iteration::Auto, where it runs the paper's iteration: Newton's method is tried from the
@@ -255,7 +255,8 @@ void for_each_tuning_field(Tuning& t, F&& f) {
     true, true);
   f("bilaplacian.exact_residual", t.bilaplacian.exact_residual, 0, 1, true, true);
   f("schedule.time_limit_base", t.schedule.time_limit_base, 0, inf, false, false);
-  f("schedule.time_limit_per_free", t.schedule.time_limit_per_free, 0, inf, false, false);
+  f("schedule.time_limit_per_free_vertex", t.schedule.time_limit_per_free_vertex, 0, inf, false,
+    false);
   f("schedule.time_limit_hard_factor", t.schedule.time_limit_hard_factor, 1, inf, false, false);
   f("schedule.newton_attempt_first", t.schedule.newton_attempt_first, 1, inf, false, false);
   f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);

@@ -107,7 +107,7 @@ struct FairingOptions {
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
   /// spent (FairingResult::message says so). Negative: automatic with Iteration::Auto (the
   /// paper's iteration stops once its residual has not halved for T = time_limit_base +
-  /// time_limit_per_free × free vertices seconds, the call after time_limit_hard_factor × T;
+  /// time_limit_per_free_vertex × free vertices seconds, the call after time_limit_hard_factor × T;
   /// tuning.schedule, fairing.h), none with an iteration chosen explicitly (the reference
   /// iterations run to max_iterations); infinity: none.
   double time_limit = -1.0;

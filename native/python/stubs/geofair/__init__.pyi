@@ -70,6 +70,11 @@ class FairingResult:
         Normalized residual of the returned mesh (dimensionless, see fair).
         """
     @property
+    def stop_reason(self) -> str:
+        """
+        Why the solve ended, message's first clause as a value: "converged"; "max_iterations" (a level spent max_iterations, or Newton's method stalled with iteration="newton"); "time_limit" (time_limit, or the automatic limit's hard cap); "no_progress" (the automatic limit: the residual did not halve for its span); "cancelled" (progress returned False); "diverged" (iteration="auto"'s last attempt failed: the input is returned).
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         (n, 3) float64 positions; fixed rows are bit-identical to the input.
