@@ -28,6 +28,7 @@ def test_signature_uses_the_library_defaults():
         "cg_iterations",
         "levels",
         "iteration",
+        "boundary",
         "time_limit",
     ):
         assert signature[name] == defaults[name], name

@@ -113,6 +113,8 @@ const Choices<NormalWeighting> kNormalWeightingNames{{"area", NormalWeighting::A
                                                      {"quadric", NormalWeighting::Quadric}};
 const Choices<Iteration> kIterationNames{
     {"auto", Iteration::Auto}, {"newton", Iteration::Newton}, {"paper", Iteration::Paper}};
+const Choices<BoundaryCondition> kBoundaryNames{{"g1", BoundaryCondition::G1},
+                                                {"g0", BoundaryCondition::G0}};
 
 template <class Enum>
 Enum parse(const std::string& value, const char* name, Choices<Enum> choices) {
@@ -187,6 +189,7 @@ py::dict defaults_py() {
   d["cg_iterations"] = o.cg_iterations;
   d["levels"] = o.levels;
   d["iteration"] = name(o.iteration, kIterationNames);
+  d["boundary"] = name(o.boundary, kBoundaryNames);
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
   d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free_vertex;
@@ -229,7 +232,8 @@ std::string fair_doc(std::string doc) {
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
-                      const py::object& boundary_normals, const py::object& polygon_ids,
+                      const std::string& boundary, const py::object& boundary_normals,
+                      const py::object& polygon_ids,
                       const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
                       double tolerance, int max_iterations, double damping, int cg_iterations,
@@ -240,14 +244,15 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   const std::vector<bool> mask = to_mask(free, V.rows());
   std::optional<std::vector<int>> polygons;
   if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
-  std::optional<Positions> normals;
-  if (!boundary_normals.is_none()) {
+  FairingOptions options;
+  options.boundary = parse(boundary, "boundary", kBoundaryNames);
+  std::optional<Positions> normals;  // not read with G0
+  if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
     normals = to_positions(boundary_normals, "boundary_normals");
     if (normals->rows() != V.rows())
       throw InvalidInputError("boundary_normals must have the shape of vertices " +
                               std::to_string(V.rows()) + "×3");
   }
-  FairingOptions options;
   options.inner_fairness = parse_inner_fairness(inner_fairness);
   options.outer_fairness = parse(outer_fairness, "outer_fairness", kOuterFairnessNames);
   options.normal_weighting = parse_weighting(normal_weighting);
@@ -403,7 +408,8 @@ dotted name, e.g. "newton.patience"; their units and ranges: native/include/geof
   const FairingOptions d;
   static const std::string fair_docstring = fair_doc(R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
 (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
-condition (fixed positions and unit normals) at the fixed vertices next to free ones.
+condition (fixed positions and unit normals) at the fixed vertices next to free ones, or
+with boundary="g0" the G0 condition (fixed positions, H = 0).
 
 Parameters
 ----------
@@ -412,13 +418,25 @@ faces : (m, 3) integer array, triangles, consistently oriented (counter-clockwis
     the normal side), manifold around the free region.
 free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
     by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
-    vertex form the G1 boundary.
-boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
-    prescribed unit normals (other rows are ignored); one whose dot product with the
-    estimate of geofair.boundary_normals is negative is rejected (flipped normals or
-    faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
-    least-squares quadric through the fixed vertices around it (error O(h²); earlier
-    releases took the one-sided area-weighted normal, O(h)).
+    vertex form the boundary.
+boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
+    normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
+    surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
+    on the boundary; Δ_B H = 0 then gives H ≡ 0, the minimal surface spanned by the
+    boundary (a plane for a planar loop, a catenoid between two coaxial circles close
+    enough together; the intrinsic counterpart of Blender's Fair Positions and CGAL's fair
+    with continuity 0). With "g0" boundary_normals is ignored (not read, not checked),
+    nothing is estimated from the surface around the region, so the region may reach the
+    mesh border, and the linear initial mesh (and outer_fairness="bilaplacian") is the
+    membrane Δf = 0: Δ²f = 0 with Δf = 0 at the boundary, the linear counterpart of H = 0.
+    H is signed as in geofair.mean_curvature (H = 1/r on a sphere with outward normals);
+    with "g0" its sign does not matter, it vanishes on the boundary and in the result.
+boundary_normals : (n, 3) float64 array or None, read with boundary="g1" only. Rows at
+    G1 boundary vertices are the prescribed unit normals (other rows are ignored); one
+    whose dot product with the estimate of geofair.boundary_normals is negative is
+    rejected (flipped normals or faces). None: geofair.boundary_normals(vertices, faces,
+    free), the tangent plane of a least-squares quadric through the fixed vertices around
+    it (error O(h²); earlier releases took the one-sided area-weighted normal, O(h)).
 polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
     triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
     whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
@@ -528,6 +546,7 @@ Raises
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+        py::arg("boundary") = name(d.boundary, kBoundaryNames),
         py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
         py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
         py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),

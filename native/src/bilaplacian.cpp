@@ -78,9 +78,10 @@ BilaplacianSystem assemble_bilaplacian(const FairingRegion& region,
   // the terms of free j also to K_s.
   auto add_laplacian = [&](int row, double weight, int j) {
     const bool free_j = j < nf;
-    const Mat3 P = free_j ? Mat3::Identity()
-                          : Mat3(region.g1_normals.row(j - nf).transpose() *
-                                 region.g1_normals.row(j - nf));
+    const Mat3 P = free_j                     ? Mat3::Identity()
+                   : region.boundary == BoundaryCondition::G0 ? Mat3::Zero()
+                                              : Mat3(region.g1_normals.row(j - nf).transpose() *
+                                                     region.g1_normals.row(j - nf));
     Vec3 constant = Vec3::Zero();
     auto add_term = [&](int k, double c) {  // weight · c · P f_k
       if (k < nf) {

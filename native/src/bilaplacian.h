@@ -32,7 +32,10 @@ Positions membrane_positions(const FairingRegion& region, const InnerFairnessWei
 /// its Laplacian is taken as the normal component of the one-sided umbrella,
 /// Δf(q_b) = n_b n_bᵀ (Σ_j λ_bj f_j − f_b): a smooth surface's Laplacian is normal to it,
 /// and since the normal curvature is even in the direction, the one-sided average sees
-/// the same normal offset as the full ring would. This couples the three coordinates
+/// the same normal offset as the full ring would. G0 boundary (region.boundary): Δf(q_b) = 0,
+/// the linear counterpart of H = 0 (Δf ≈ 2H n); then Δf = 0 at every free vertex too, so
+/// the solution is membrane_positions' (solved here as the system above with P_b = 0,
+/// which takes weights without row sums too). This couples the three coordinates
 /// through n_b only next to the boundary. With symmetric weights (known row sums, see
 /// InnerFairnessWeights::row_sum) the 3#V_I×3#V_I system, its equations scaled by the row
 /// sums, is symmetric positive definite and is solved by conjugate gradients preconditioned

@@ -48,14 +48,25 @@ void Construction::curvatures(const Positions& X, Positions& N, Eigen::VectorXd&
   const OneRings& rings = region_.rings;
   const NormalWeighting w = options_.normal_weighting;
   const int nf = region_.n_free, n = region_.n;
+  // G0: H = 0 prescribed on the boundary; its tangent planes, which only the spiral samples
+  // of free neighbours read, follow the surface (Max's weights, as on coarse levels).
+  const bool g0 = region_.boundary == BoundaryCondition::G0;
 #pragma omp parallel if (n > kParallelMin)
   {
 #pragma omp for schedule(static)
     for (int i = 0; i < nf; ++i) N.row(i) = vertex_normal(rings, X, i, w);
+    if (g0) {
 #pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i)
+      for (int i = nf; i < n; ++i) {
+        const Vec3 normal = vertex_normal(rings, X, i, NormalWeighting::Max);
+        if (normal.squaredNorm() > 0.0) N.row(i) = normal;
+      }
+    }
+#pragma omp for schedule(static)
+    for (int i = 0; i < (g0 ? nf : n); ++i)
       H(i) = moreton_sequin(rings, X, N, i, X.row(i), N.row(i), needs_spiral_samples(rings, i)).H;
   }
+  if (g0) H.tail(n - nf).setZero();
 }
 
 double Construction::merit() const {

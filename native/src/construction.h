@@ -51,7 +51,8 @@ class Construction {
                const FairingOptions& options, double length);
 
   /// Normals and Moreton–Séquin H of all vertices of X (#region×3), S and the residual
-  /// (with the source term, if one is set).
+  /// (with the source term, if one is set). With a G0 boundary its H is 0 and its normals
+  /// are re-estimated from X (they enter the spiral samples of free neighbours only).
   double evaluate(const Positions& X);
 
   /// Iterates until the residual reaches `tolerance` or `max_iterations` iterations; local

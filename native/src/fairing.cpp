@@ -172,7 +172,8 @@ class TimeLimit {
 double input_residual(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                       const Positions* boundary_normals, const FairingOptions& options,
                       const std::vector<int>* polygon_ids) {
-  FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids);
+  FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids,
+                                        options.boundary);
   const Positions X0 = gather(V, region.global);
   std::iota(region.global.begin(), region.global.end(), 0);
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
@@ -190,7 +191,8 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   omp_set_num_threads(solve_threads());
 #endif
   const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
-  const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids);
+  const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids,
+                                              options.boundary);
   const Positions X0 = gather(V, region.global);  // the original mesh
   const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
   if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");

@@ -171,9 +171,10 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
     const int v = splits.vertex[s];
     H(v) = h;
     if (v >= level.n_free) {
-      // A G1 boundary vertex (the boundary coarsened): its position is fixed, its normal
-      // prescribed.
+      // A boundary vertex (the boundary coarsened): its position is fixed, its normal
+      // prescribed (G1) or its H (G0).
       N.row(v) = level.g1_normals.row(v - level.n_free);
+      if (level.boundary == BoundaryCondition::G0) H(v) = 0.0;
       continue;
     }
     X.row(v) = q;

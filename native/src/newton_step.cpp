@@ -58,6 +58,7 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
                           const std::vector<double>& w) {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
+  const bool g0 = region_.boundary == BoundaryCondition::G0;
   // Columns of J by forward differences: move free vertex m by h along its normal and
   // re-estimate H at m and its ring (normals held fixed). Each thread moves vertices in
   // its own copy of X.
@@ -75,6 +76,10 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
           h;
       for (int k = begin; k < end; ++k) {
         const int j = r.ring[k];
+        if (j >= nf && g0) {  // H = 0 prescribed on a G0 boundary
+          jacobian_[nf + k] = 0.0;
+          continue;
+        }
         jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), N.row(j),
                                             needs_spiral_samples(r, j)).H - H(j)) / h;
       }

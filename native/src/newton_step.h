@@ -86,7 +86,8 @@ namespace geofair {
 /// The preconditioner is the sparse LU factorization (SuiteSparse's UMFPACK with OpenBLAS)
 /// of an approximate Jacobian D J_N that holds the normals and the weights fixed: the
 /// derivatives of H by forward differences at each free vertex m and its ring (column m
-/// touches H_m and the H of m's ring), so D J_N is a 2-ring sparse matrix. It is
+/// touches H_m and the H of m's ring; not a G0 boundary's, whose H = 0 is prescribed), so
+/// D J_N is a 2-ring sparse matrix. It is
 /// factorized at the first step and again only after a step whose GMRES needed more than
 /// half of its iterations or failed, or when the shift σ differs from the factorized one by
 /// more than NewtonTuning::shift_refactorization (shifts below shift_negligible count as
@@ -104,7 +105,8 @@ class NewtonStep {
   using JacobianProduct = JacobianOperator::Function;
 
   /// \param X      #region×3 positions
-  /// \param N      #region×3 unit normals at X (G1 normals in the boundary rows)
+  /// \param N      #region×3 unit normals at X (G1 normals, or G0 estimates, in the boundary
+  ///               rows)
   /// \param H      #region Moreton–Séquin mean curvatures at X, N
   /// \param w      cotangent weights per ring slot of the free vertices (DirichletMatrix)
   /// \param defects #V_I defects d = Σ_j w_ij (H_i − H_j) (DirichletMatrix::defects), 1/length

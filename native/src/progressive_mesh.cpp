@@ -331,6 +331,7 @@ FairingRegion level_region(const FairingRegion& region, const Triangles& triangl
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
     for (int c = 0; c < 3; ++c) level.triangles(t, c) = local[triangles(t, c)];
   level.rings = build_one_rings(level.n, level.triangles, "fair");
+  level.boundary = region.boundary;
   level.g1_normals.resize(level.n - level.n_free, 3);
   for (int b = level.n_free; b < level.n; ++b)
     level.g1_normals.row(b - level.n_free) = region.g1_normals.row(level.global[b] - region.n_free);

@@ -472,11 +472,31 @@ void set_g1_normals(FairingRegion& region, const Positions& V, const Triangles& 
   }
 }
 
+// region.g1_normals with G0: the normalized sums of the cross products of each boundary
+// vertex's region triangles (area-weighted, one-sided), at the input positions.
+void set_g0_normals(FairingRegion& region, const Positions& V) {
+  const int nf = region.n_free;
+  region.g1_normals = Positions::Zero(region.n - nf, 3);
+  for (Eigen::Index t = 0; t < region.triangles.rows(); ++t) {
+    const Vec3 a = V.row(region.global[region.triangles(t, 0)]);
+    const Vec3 b = V.row(region.global[region.triangles(t, 1)]);
+    const Vec3 c = V.row(region.global[region.triangles(t, 2)]);
+    const Vec3 cross = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k)
+      if (region.triangles(t, k) >= nf) region.g1_normals.row(region.triangles(t, k) - nf) += cross;
+  }
+  for (int b = 0; b < region.n - nf; ++b) {
+    const double len = region.g1_normals.row(b).norm();
+    if (len > 0.0) region.g1_normals.row(b) /= len;
+  }
+}
+
 }  // namespace
 
 FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                              const Positions* boundary_normals, bool check_orientation,
-                             const std::vector<int>* polygon_ids) {
+                             const std::vector<int>* polygon_ids,
+                             BoundaryCondition boundary) {
   const char* fn = "fair";
   check_indices(V, F, free, fn);
   check_finite(V, F, fn);
@@ -484,7 +504,11 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
     throw InvalidInputError(prefix(fn) + "polygon_ids has " + std::to_string(polygon_ids->size()) +
                             " entries for " + std::to_string(F.rows()) + " triangles");
   FairingRegion region = region_mesh(V, F, free, polygon_ids, fn);
-  set_g1_normals(region, V, F, free, boundary_normals, check_orientation, fn);
+  region.boundary = boundary;
+  if (boundary == BoundaryCondition::G0)
+    set_g0_normals(region, V);
+  else
+    set_g1_normals(region, V, F, free, boundary_normals, check_orientation, fn);
   return region;
 }
 

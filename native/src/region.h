@@ -68,7 +68,13 @@ struct FairingRegion {
   std::vector<int> global;  ///< local -> index in the caller's mesh
   OneRings rings;           ///< one-rings within the region's triangles (local ids)
   Triangles triangles;      ///< region triangles (local ids)
-  Positions g1_normals;     ///< (n - n_free)×3 prescribed unit normals of V_B
+  /// (n - n_free)×3 unit normals of V_B: with G1 the prescribed ones; with G0 the
+  /// one-sided normals of the region's own triangles at the input, only a start for the
+  /// tangent planes that spiral samples and prolongations read (the construction
+  /// re-estimates them from the current positions), no boundary condition.
+  Positions g1_normals;
+  /// G1: positions and g1_normals prescribed; G0: positions only, H = 0 on V_B.
+  BoundaryCondition boundary = BoundaryCondition::G1;
   /// Per ring slot of `rings` (empty: no polygons given): 1 where the edge from the vertex
   /// to that neighbour is a diagonal of one of the caller's polygons (both its triangles
   /// were tessellated from the same polygon, extract_region's polygon_ids), 0 where it is
@@ -92,13 +98,16 @@ struct FairingRegion {
 ///        (Blender's loop triangles' polygon_index), or nullptr: fills
 ///        region.polygon_diagonal. An edge is a diagonal where its two triangles carry the
 ///        same id.
+/// \param boundary  G0: boundary_normals is not read and nothing is estimated from the
+///        surrounding surface (the region may reach the mesh border); see g1_normals.
 /// \throw InvalidInputError if no vertex is free, a free vertex is in no triangle or on
 ///        the mesh border, a boundary normal is missing (no surrounding triangle), zero,
 ///        not unit length (|1-|n|| > 1e-6), not finite or pointing against the surface's
 ///        orientation, or the topology is invalid; if polygon_ids has not #F entries.
 FairingRegion extract_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                              const Positions* boundary_normals, bool check_orientation = true,
-                             const std::vector<int>* polygon_ids = nullptr);
+                             const std::vector<int>* polygon_ids = nullptr,
+                             BoundaryCondition boundary = BoundaryCondition::G1);
 
 /// Folded edges of a result (beyond the paper): edges with a free endpoint whose two
 /// triangles face apart (the cross products of their edges have a negative dot product).

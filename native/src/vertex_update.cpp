@@ -45,6 +45,7 @@ void coupling_factors(const FairingRegion& region, const std::vector<double>& we
                       Positions& N, std::vector<double>& rho) {
   const OneRings& rings = region.rings;
   const int nf = region.n_free;
+  const bool g0 = region.boundary == BoundaryCondition::G0;
   rho.assign(nf, 1.0);
   std::vector<Vec3> saved;
   auto estimate = [&](int j) {
@@ -69,7 +70,8 @@ void coupling_factors(const FairingRegion& region, const std::vector<double>& we
         N.row(rings.ring[k]) = vertex_normal(rings, X, rings.ring[k], weighting);
     double defect = estimate(i) - H(i);
     for (int k = begin; k < end; ++k)
-      defect -= weights[k] / sum_w * (estimate(rings.ring[k]) - H(rings.ring[k]));
+      if (rings.ring[k] < nf || !g0)  // G0: the boundary's H = 0 does not react
+        defect -= weights[k] / sum_w * (estimate(rings.ring[k]) - H(rings.ring[k]));
     X.row(i) = q;
     N.row(i) = saved[0];
     for (int k = begin; k < end; ++k) N.row(rings.ring[k]) = saved[1 + k - begin];

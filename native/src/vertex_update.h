@@ -54,6 +54,7 @@ double update_free_vertices(const FairingRegion& region, const InnerFairnessWeig
 /// \param weights w_ij per ring slot of the free vertices (DirichletMatrix::weights)
 /// \param H       #region mean curvatures of the positions X with normals N
 /// \param X, N    positions and normals (restored on return)
+/// With a G0 boundary (region.boundary) the boundary neighbours' H = 0 does not react.
 /// \param rho     output, #V_I; 1 where undefined (H′ ≤ 0 or Σ_j w_ij ≤ 0)
 void coupling_factors(const FairingRegion& region, const std::vector<double>& weights,
                       NormalWeighting weighting, const Eigen::VectorXd& H, Positions& X,

@@ -1,4 +1,4 @@
-// Intrinsic fairing of a mesh region with G1 boundary conditions: the discrete solution of
+// Intrinsic fairing of a mesh region with G1 (or G0) boundary conditions: the discrete solution of
 // Δ_B H = 0 (Schneider & Kobbelt 2001, eqs. (4), (12); construction of section 7).
 #pragma once
 
@@ -59,6 +59,13 @@ struct FairingResult {
 /// with the G1 boundary condition of positions and unit normals at the fixed vertices that
 /// share a triangle with a free vertex. (Headers named below without geofair/ are the
 /// library's internal ones, in native/src/.)
+///
+/// With options.boundary = G0 (beyond the paper) the boundary keeps its positions only and
+/// H = 0 is prescribed there: S H~ = b has b = 0, so the result has H ≡ 0, the minimal
+/// surface spanned by the boundary. boundary_normals is not read, nothing is estimated from
+/// the surface around the region (which may then reach the mesh border), and the linear
+/// initial mesh is Δ²f = 0 with Δf = 0 at the boundary, i.e. the membrane Δf = 0
+/// (bilaplacian.h), the minimal surface's linearization.
 ///
 /// Inner fairness (section 7.3, options.inner_fairness, see inner_fairness_weights): uniform
 /// weights give a regular vertex distribution; conformal ones the discrete harmonic map
@@ -139,7 +146,8 @@ struct FairingResult {
 /// \param free    #V flags, true where a vertex may move; every free vertex must be
 ///                surrounded by triangles (not on the mesh border)
 /// \param boundary_normals #V×3 unit normals read at the G1 boundary vertices, or nullptr
-///                for estimate_boundary_normals (building_blocks.h) of the surrounding surface
+///                for estimate_boundary_normals (building_blocks.h) of the surrounding
+///                surface; ignored with options.boundary = G0
 /// \param polygon_ids #F polygon each triangle was tessellated from, or nullptr: uniform
 ///                inner fairness then runs over the polygon mesh's edges, not the
 ///                diagonals that split its polygons (inner_fairness_weights; beyond the

@@ -60,6 +60,17 @@ enum class Iteration {
   Paper,   ///< the local/global iteration of section 7 with progressive-mesh multigrid (7.4)
 };
 
+/// The boundary condition at the fixed vertices next to the free ones (beyond the paper's
+/// G1). Δ_B H = 0 is of fourth order and needs two conditions on the boundary.
+enum class BoundaryCondition {
+  G1,  ///< positions and unit normals (the paper's); H of the boundary vertices estimated
+       ///< from their one-sided rings and the prescribed normals. The default.
+  /// Positions only, with H = 0 on the boundary: the solution has H ≡ 0, the minimal
+  /// surface spanned by the boundary (Blender's Fair Positions, CGAL's continuity 0 are
+  /// its linear counterpart Δf = 0). No boundary normals are read or estimated.
+  G0,
+};
+
 /// How the normal of a G1 boundary vertex is estimated from the surface around the region.
 enum class BoundaryNormalEstimate {
   /// Tangent plane of a least-squares quadric through the surrounding fixed vertices (see
@@ -90,6 +101,7 @@ struct FairingOptions {
   OuterFairness outer_fairness = OuterFairness::Intrinsic;
   NormalWeighting normal_weighting = NormalWeighting::Quadric;
   Iteration iteration = Iteration::Auto;
+  BoundaryCondition boundary = BoundaryCondition::G1;
   /// Stop when the residual L·max|H̄ − H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the

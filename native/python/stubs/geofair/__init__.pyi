@@ -147,11 +147,12 @@ def defaults() -> dict:
     "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
     dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
-    condition (fixed positions and unit normals) at the fixed vertices next to free ones.
+    condition (fixed positions and unit normals) at the fixed vertices next to free ones, or
+    with boundary="g0" the G0 condition (fixed positions, H = 0).
     
     Parameters
     ----------
@@ -160,13 +161,25 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary_
         the normal side), manifold around the free region.
     free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
         by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
-        vertex form the G1 boundary.
-    boundary_normals : (n, 3) float64 array or None. Rows at G1 boundary vertices are the
-        prescribed unit normals (other rows are ignored); one whose dot product with the
-        estimate of geofair.boundary_normals is negative is rejected (flipped normals or
-        faces). None: geofair.boundary_normals(vertices, faces, free), the tangent plane of a
-        least-squares quadric through the fixed vertices around it (error O(h²); earlier
-        releases took the one-sided area-weighted normal, O(h)).
+        vertex form the boundary.
+    boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
+        normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
+        surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
+        on the boundary; Δ_B H = 0 then gives H ≡ 0, the minimal surface spanned by the
+        boundary (a plane for a planar loop, a catenoid between two coaxial circles close
+        enough together; the intrinsic counterpart of Blender's Fair Positions and CGAL's fair
+        with continuity 0). With "g0" boundary_normals is ignored (not read, not checked),
+        nothing is estimated from the surface around the region, so the region may reach the
+        mesh border, and the linear initial mesh (and outer_fairness="bilaplacian") is the
+        membrane Δf = 0: Δ²f = 0 with Δf = 0 at the boundary, the linear counterpart of H = 0.
+        H is signed as in geofair.mean_curvature (H = 1/r on a sphere with outward normals);
+        with "g0" its sign does not matter, it vanishes on the boundary and in the result.
+    boundary_normals : (n, 3) float64 array or None, read with boundary="g1" only. Rows at
+        G1 boundary vertices are the prescribed unit normals (other rows are ignored); one
+        whose dot product with the estimate of geofair.boundary_normals is negative is
+        rejected (flipped normals or faces). None: geofair.boundary_normals(vertices, faces,
+        free), the tangent plane of a least-squares quadric through the fixed vertices around
+        it (error O(h²); earlier releases took the one-sided area-weighted normal, O(h)).
     polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
         triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
         whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
