@@ -496,7 +496,8 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     method fails on the base level from its linear initial mesh, the base level runs
     {attempt_first} iterations of the paper's iteration and one Newton attempt from there; a
     coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
-    most {coarse_merit} still starts the next. Where a coarse level fails, the hierarchy is solved
+    most {coarse_merit} still starts the next, and a coarse level above the base stops once its
+    merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
     again with other coarse weights (uniform inner fairness: from the membrane of the
     finest weights, then each level's own uniform weights), then the finest level alone;
     a region solved as one level (fewer than 4 × {min_base_free} free vertices) with at least

@@ -34,8 +34,9 @@ struct NewtonRun {
   bool polish_at_convergence = false;  ///< inner fairness at the converged shape (finest level)
   bool prolongated = false;            ///< X prolongated from a coarser level: a local step first
   bool from_initial_mesh = false;      ///< X a linear initial mesh: the far-start rule
-  /// > 0: stop (stalled) once the merit is at most this and the last step did not halve it
-  /// (a coarse level crawling near its solution: the next level's steps do better).
+  /// > 0: stop (stalled) once the merit is at most this and the last step did not halve it,
+  /// a rejected step included (a coarse level crawling near its solution: the next level's
+  /// steps do better).
   double crawl_merit = 0.0;
 };
 

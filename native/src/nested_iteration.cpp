@@ -399,8 +399,14 @@ class NewtonLevels final : public LevelIteration {
     return true;
   }
 
+  // Also frees the level's construction, splits and weights: the next level needs only
+  // its region, weights and coarse space.
   void count(int l, const IterationReport& report, FairingResult& result) override {
-    levels_[l].construction.reset();  // the next level needs only its weights and space
+    MultigridLevel& level = levels_[l];
+    level.construction.reset();
+    level.splits = VertexSplits();
+    level.weights = std::vector<double>();
+    level.from_coarser = std::vector<int>();
     result.iterations_per_level.push_back(report.iterations);
     result.iterations += report.iterations;
   }
@@ -569,10 +575,10 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
     laps.lap();
     if (!iteration->accept(l, finest, report, result)) break;
     solution.store(lr, Y, construction);
-    iteration->count(l, report, result);
+    iteration->count(l, report, result);  // the last use of `construction` (Newton frees it)
     result.vertices_per_level.push_back(lr.n);
     result.residual = report.residual;
-    result.converged = finest && report.converged;
+    result.converged = finest && report.converged && !report.cancelled;
     if (report.cancelled) {
       // Cancelled on a coarse level: the input unchanged rather than a mix of levels.
       run.cancelled = true;

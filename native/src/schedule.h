@@ -12,13 +12,17 @@ namespace geofair {
 /// | # | iteration | levels                    | coarse weights | when                        |
 /// |---|-----------|---------------------------|----------------|-----------------------------|
 /// | 1 | Newton    | newton_levels (or levels) | Smoothed       | more than one level         |
-/// | 2 | Newton    | same                      | Membrane       | 1 and uniform inner fairness|
+/// | 2 | Newton    | same                      | Membrane       | 1, uniform, symmetric (*)   |
 /// | 3 | Newton    | same                      | Own            | 1 and uniform inner fairness|
 /// | 4 | Newton    | 1                         | –              | always                      |
 /// | 5 | Newton    | 2                         | Smoothed       | one level by default and at |
 /// |   |           |                           |                | least newton_retry_min_free |
-/// | 6 | Paper     | default_levels (or levels)| –              | Auto: last; Paper: only     |
+/// | 6 | Paper     | default_levels (or levels;| –              | Auto: last; Paper: only     |
+/// |   |           | 1 with bilaplacian outer) |                |                             |
 ///
+/// "More than one level": the levels asked for (newton_levels or options.levels), before
+/// decimation, which may build fewer. (*) The finest weights symmetric
+/// (InnerFairnessWeights::row_sum given), which the membrane needs.
 /// Newton's attempts (1–5) run with intrinsic outer fairness and Iteration::Auto or Newton;
 /// Auto's last attempt is the paper's iteration (6) with Newton attempts from its iterate;
 /// Iteration::Paper and the linear bilaplacian outer fairness run 6 alone.

@@ -1,5 +1,5 @@
-// Intrinsic fairing of a mesh region with G1 (or G0) boundary conditions: the discrete solution of
-// Δ_B H = 0 (Schneider & Kobbelt 2001, eqs. (4), (12); construction of section 7).
+// Intrinsic fairing of a mesh region with G1 (or G0) boundary conditions: the discrete
+// solution of Δ_B H = 0 (Schneider & Kobbelt 2001, eqs. (4), (12); construction of section 7).
 #pragma once
 
 #include "geofair/types.h"
@@ -103,17 +103,18 @@ struct FairingResult {
 ///  1. Newton's method on the hierarchy of as many levels as keep
 ///     ScheduleTuning::newton_min_base_free free vertices on the base level (or
 ///     options.levels), coarse uniform weights from the smoothed copy of the input;
-///  2. with uniform inner fairness, the same with the coarse weights of the membrane of the
-///     finest uniform weights (membrane_positions: the distribution an irregular
+///  2. with uniform inner fairness (and symmetric finest weights), the same with the coarse
+///     weights of the membrane of the finest uniform weights (membrane_positions: the distribution an irregular
 ///     connectivity asks for), its base level first solved with the smoothed copy's;
 ///  3. with uniform inner fairness, the same with each coarse level's own uniform weights;
 ///  4. Newton's method on the finest level alone;
 ///  5. where the region was one level by default and has at least
 ///     ScheduleTuning::newton_retry_min_free free vertices, Newton's method on two levels;
-///  6. the paper's iteration on its hierarchy (default_levels), with Newton's method tried
+///  6. the paper's iteration on its hierarchy (default_levels or options.levels; one level
+///     with the linear bilaplacian outer fairness), with Newton's method tried
 ///     from the finest level's iterate after ScheduleTuning::newton_attempt_first
 ///     iterations and each doubling.
-/// Attempts 1–3 run where the hierarchy has more than one level. Iteration::Auto (the
+/// Attempts 1–3 run where more than one level is asked for (the count before decimation). Iteration::Auto (the
 /// default) runs 1–6; Newton 1–5 and returns the last one's result whatever it is; Paper,
 /// and the linear bilaplacian outer fairness, 6 alone (without Newton attempts).
 ///

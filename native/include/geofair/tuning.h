@@ -27,8 +27,9 @@ struct NewtonTuning {
   int coarse_patience = 8;
   /// A coarse level that stops unconverged with its merit (Construction::merit, the RMS of
   /// the scaled defects; dimensionless, like the residual) at most this starts the next
-  /// level all the same: its max-norm residual is that of a few vertices (docs/DESIGN_NOTES.md,
-  /// "Coarse levels of large irregular caps").
+  /// level all the same: its max-norm residual is that of a few vertices; a prolongated
+  /// coarse level stops as soon as its merit is at most this and a step no longer halves it
+  /// (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
   double coarse_merit = 1e-2;
   /// A run from a linear initial mesh or from a prolongated coarser level whose merit
   /// (Construction::merit) is still above far_merit after far_steps steps stops as stalled:

@@ -239,7 +239,8 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
         method fails on the base level from its linear initial mesh, the base level runs
         100 iterations of the paper's iteration and one Newton attempt from there; a
         coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
-        most 0.01 still starts the next. Where a coarse level fails, the hierarchy is solved
+        most 0.01 still starts the next, and a coarse level above the base stops once its
+        merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
         again with other coarse weights (uniform inner fairness: from the membrane of the
         finest weights, then each level's own uniform weights), then the finest level alone;
         a region solved as one level (fewer than 4 × 700 free vertices) with at least
