@@ -30,7 +30,7 @@ def accepted_values(option):
     vertices = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
     with pytest.raises(ValueError, match=f"{option} must be one of") as error:
         geofair.fair(vertices, np.array([[0, 1, 2]]), np.zeros(3, dtype=bool), **{option: "no such value"})
-    return re.findall(r"'([a-z_]+)'", str(error.value).split(", got")[0])
+    return re.findall(r"'([a-z0-9_]+)'", str(error.value).split(", got")[0])
 
 
 @pytest.mark.parametrize(
@@ -38,6 +38,7 @@ def accepted_values(option):
     [
         ("inner_fairness", "INNER_FAIRNESS_ITEMS"),
         ("outer_fairness", "OUTER_FAIRNESS_ITEMS"),
+        ("boundary", "BOUNDARY_ITEMS"),
         ("iteration", "ITERATION_ITEMS"),
     ],
 )

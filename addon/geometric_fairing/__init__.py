@@ -14,7 +14,7 @@ bl_info = {
     "version": (0, 0, 0),  # the build writes pyproject.toml's version here (cmake/stamp_version.cmake)
     "blender": (3, 4, 0),
     "location": "View3D > Sidebar > Fairing (Edit Mode); Edit Mode > Mesh > Geometric Fairing",
-    "description": "Fair the selected faces: intrinsic fairing Δ_B H = 0 with a G1 boundary",
+    "description": "Fair the selected faces: intrinsic fairing Δ_B H = 0 with a G1 (or G0) boundary",
     "category": "Mesh",
 }
 

@@ -15,8 +15,12 @@ raises :class:`NotConvergedError`.
 
 Hidden faces take no part unless ``use_hidden`` is set: the mesh ends at them
 as at an open border (see :func:`region.find_region`), so a hidden face's
-vertices never move, and those next to the region are fixed G1 boundary
-vertices with normals from the visible faces.
+vertices never move, and those next to the region are fixed boundary vertices
+(G1: with normals from the visible faces).
+
+With ``boundary="g0"`` (positions only) no boundary normal is estimated or
+checked: the library reads none, and a region that reaches the open mesh border
+needs none there either.
 """
 
 import math
@@ -38,11 +42,12 @@ class FairingOptions:
 
     ``time_limit`` None is automatic (the library's). The upper-case values earlier versions of the
     add-on took ("UNIFORM", "CONFORMAL", "INTRINSIC", "BILAPLACIAN", "AUTO", "NEWTON", "PAPER") are
-    still accepted: a string value is taken in lower case.
+    still accepted: a string value is taken in lower case (so is "G0" for ``boundary``).
     """
 
     inner_fairness: str = properties.DEFAULTS["inner_fairness"]
     outer_fairness: str = properties.DEFAULTS["outer_fairness"]
+    boundary: str = properties.DEFAULTS["boundary"]
     tolerance: float = properties.DEFAULTS["tolerance"]
     max_iterations: int = properties.DEFAULTS["max_iterations"]
     levels: int = properties.DEFAULTS["levels"]
@@ -54,7 +59,7 @@ class FairingOptions:
     keep_unconverged: bool = False
 
     def __post_init__(self):
-        for name in ("inner_fairness", "outer_fairness", "iteration"):
+        for name in ("inner_fairness", "outer_fairness", "boundary", "iteration"):
             if isinstance(getattr(self, name), str):
                 setattr(self, name, getattr(self, name).lower())
 
@@ -71,7 +76,9 @@ class FairingReport:
         object_name: the mesh object.
         free_vertices: vertices that could move.
         pinned_vertices: vertices inside the region kept fixed by the pin group.
-        border_fixed_vertices: vertices inside the region kept fixed on the open mesh border.
+        border_fixed_vertices: vertices inside the region kept fixed on the open mesh border
+            (with ``boundary="g0"`` boundary vertices like any other: :meth:`summary` does not
+            mention them).
         hidden_fixed_vertices: vertices inside the region kept fixed because they belong to a
             hidden face too (without ``use_hidden``).
         converged: the residual fell below the tolerance.
@@ -97,6 +104,7 @@ class FairingReport:
         message: the library's account of how the solve ended (``geofair.FairingResult.message``).
         stop_reason: why the solve ended, as a value (``geofair.FairingResult.stop_reason``:
             "converged", "max_iterations", "time_limit", "no_progress", "cancelled", "diverged").
+        boundary: the boundary condition of the run, "g1" or "g0".
     """
 
     object_name: str
@@ -121,6 +129,7 @@ class FairingReport:
     new_folds: int = 0
     message: str = ""
     stop_reason: str = ""
+    boundary: str = "g1"
 
     @property
     def stopped_at_time_limit(self):
@@ -141,7 +150,7 @@ class FairingReport:
         if self.pinned_vertices:
             text += f" ({self.pinned_vertices} pinned)"
         text += f", {self.iterations} iterations, residual {self.residual:.3g}, {self.seconds:.2f} s"
-        if self.border_fixed_vertices:
+        if self.border_fixed_vertices and self.boundary != "g0":  # G0 needs nothing from the faces around
             text += f"; {self.border_fixed_vertices} vertices on the open mesh border kept fixed"
         if self.hidden_fixed_vertices:
             text += f"; {self.hidden_fixed_vertices} vertices of hidden faces kept fixed"
@@ -277,9 +286,11 @@ class FairingRun(_WorkerThread):
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles
         )
-        self.boundary_normals = region.boundary_normals(
-            self.region, mesh.vertices, mesh.triangles[self.present_triangles], native.geofair.boundary_normals
-        )
+        self.boundary_normals = None  # G0: positions only, the library reads no normals
+        if options.boundary != "g0":
+            self.boundary_normals = region.boundary_normals(
+                self.region, mesh.vertices, mesh.triangles[self.present_triangles], native.geofair.boundary_normals
+            )
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
@@ -399,6 +410,7 @@ class FairingRun(_WorkerThread):
             new_folds=int(getattr(result, "new_folds", 0)),
             message=str(getattr(result, "message", "")),
             stop_reason=str(getattr(result, "stop_reason", "")),
+            boundary=self.options.boundary,
         )
 
     def _uv_distortion(self, positions):
@@ -539,7 +551,9 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             defaults of options not given.
         **options: ``geofair.fair``'s options by its names and values: ``inner_fairness``
             ("uniform", "conformal" or "conformal_intrinsic"), ``outer_fairness``
-            ("intrinsic" or "bilaplacian"), ``tolerance``, ``max_iterations``, ``levels``,
+            ("intrinsic" or "bilaplacian"), ``boundary`` ("g1": positions and the tangent
+            planes of the surface around, the default; "g0": positions only, the minimal
+            surface spanned by the boundary, no normals needed), ``tolerance``, ``max_iterations``, ``levels``,
             ``iteration`` ("auto", "newton" or "paper": the solver), ``time_limit``
             (seconds, or None: automatic); the upper-case values of earlier versions
             ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
@@ -596,6 +610,7 @@ def store_last_run(window_manager, options, report=None, error=None, object_name
     last = session.last_run
     last.inner_fairness = options.inner_fairness
     last.outer_fairness = options.outer_fairness
+    last.boundary = options.boundary
     last.tolerance = options.tolerance
     last.not_faired = ""
     last.iteration = ""

@@ -88,7 +88,7 @@ def edit_mode_meshes(context):
 
 
 class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
-    """Fair the selected faces: smooth surface with G1 continuity to the unselected faces"""
+    """Fair the selected faces: a smooth surface meeting the unselected faces with G1 continuity, or G0 (Boundary)"""
 
     bl_idname = "mesh.geometric_fairing"
     bl_label = "Geometric Fairing"

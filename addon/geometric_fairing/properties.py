@@ -55,6 +55,23 @@ OUTER_FAIRNESS_ITEMS = (
     ),
 )
 
+BOUNDARY_ITEMS = (
+    (
+        "g1",
+        "Tangent (G1)",
+        "Keeps the positions of the region's boundary and the tangent planes of the surface around it (estimated "
+        "from the unselected faces): the faired surface continues the surrounding surface smoothly",
+    ),
+    (
+        "g0",
+        "Position (G0)",
+        "Keeps the positions of the region's boundary only: the minimal surface spanned by the boundary (mean "
+        "curvature 0; a plane for a planar loop), the intrinsic counterpart of Blender's Fair Positions. Reads "
+        "nothing from the faces around, so the region may reach the open mesh border; the surface may meet the "
+        "surrounding one at a crease",
+    ),
+)
+
 ITERATION_ITEMS = (
     (
         "auto",
@@ -82,6 +99,7 @@ _LIBRARY = native.geofair.defaults() if native.geofair is not None else {}
 DEFAULTS = {
     "inner_fairness": _LIBRARY.get("inner_fairness", INNER_FAIRNESS_ITEMS[0][0]),
     "outer_fairness": _LIBRARY.get("outer_fairness", OUTER_FAIRNESS_ITEMS[0][0]),
+    "boundary": _LIBRARY.get("boundary", BOUNDARY_ITEMS[0][0]),
     "tolerance": _LIBRARY.get("tolerance", 1e-15),
     "max_iterations": _LIBRARY.get("max_iterations", 1),
     "levels": _LIBRARY.get("levels", 0),
@@ -92,6 +110,7 @@ DEFAULTS = {
 LIBRARY_OPTION_NAMES = (
     "inner_fairness",
     "outer_fairness",
+    "boundary",
     "tolerance",
     "max_iterations",
     "levels",
@@ -132,6 +151,16 @@ def _outer_fairness(**options):
         description="Which surface is computed",
         items=OUTER_FAIRNESS_ITEMS,
         default=DEFAULTS["outer_fairness"],
+        **options,
+    )
+
+
+def _boundary(**options):
+    return EnumProperty(
+        name="Boundary",
+        description="What the faired surface keeps at the boundary of the region",
+        items=BOUNDARY_ITEMS,
+        default=DEFAULTS["boundary"],
         **options,
     )
 
@@ -218,7 +247,7 @@ def _pin_group(**options):
     return StringProperty(
         name="Pin Group",
         description="Vertex group of vertices inside the region that must not move (non-zero weight): they join "
-        "the G1 boundary with their current normal. Empty: no pins",
+        "the boundary (Tangent (G1): with their current normal). Empty: no pins",
         **options,
     )
 
@@ -227,8 +256,8 @@ def _use_hidden(**options):
     return BoolProperty(
         name="Use Hidden Faces",
         description="Let hidden faces take part like visible ones. Off: a hidden face is left out, as if the mesh "
-        "ended there; its vertices never move, and those next to the region are fixed, with normals from the "
-        "visible faces",
+        "ended there; its vertices never move, and those next to the region are fixed (Tangent (G1): with normals "
+        "from the visible faces)",
         default=False,
         **options,
     )
@@ -301,6 +330,7 @@ class FairingProperties:
 
     inner_fairness: _inner_fairness(options={"SKIP_SAVE"})
     outer_fairness: _outer_fairness(options={"SKIP_SAVE"})
+    boundary: _boundary(options={"SKIP_SAVE"})
     tolerance: _tolerance(options={"SKIP_SAVE"})
     max_iterations: _max_iterations(options={"SKIP_SAVE"})
     levels: _levels(options={"SKIP_SAVE"})
@@ -317,6 +347,7 @@ class FairingSettings(bpy.types.PropertyGroup):
 
     inner_fairness: _inner_fairness()
     outer_fairness: _outer_fairness()
+    boundary: _boundary()
     tolerance: _tolerance(**_follows_preference("tolerance"))
     max_iterations: _max_iterations(**_follows_preference("max_iterations"))
     levels: _levels(**_follows_preference("levels"))
@@ -397,6 +428,7 @@ class FairingLastRun(bpy.types.PropertyGroup):
     not_faired: StringProperty(description="Objects in Edit Mode that could not be faired, with the reason")
     inner_fairness: StringProperty()
     outer_fairness: StringProperty()
+    boundary: StringProperty()
     tolerance: FloatProperty()
     has_uv: BoolProperty()
     uv_triangles: IntProperty()

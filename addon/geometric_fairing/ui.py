@@ -38,6 +38,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         column = layout.column()
         column.prop(settings, "inner_fairness", text="Inner")
         column.prop(settings, "outer_fairness", text="Outer")
+        column.prop(settings, "boundary")
         column.prop(settings, "tolerance")
         column.prop(settings, "max_iterations", text="Iterations")
         column.prop(settings, "levels")
@@ -97,6 +98,7 @@ class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
             ("Tolerance", f"{last.tolerance:.2g}"),
             ("Inner", _item_name(properties.INNER_FAIRNESS_ITEMS, last.inner_fairness)),
             ("Outer", _item_name(properties.OUTER_FAIRNESS_ITEMS, last.outer_fairness)),
+            ("Boundary", _item_name(properties.BOUNDARY_ITEMS, last.boundary)),
         ]
         if last.has_uv:
             after = "unchanged" if last.status == "CANCELLED" else f"{last.uv_after_mean:.3f} / {last.uv_after_max:.2f}"

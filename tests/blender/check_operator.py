@@ -245,6 +245,7 @@ def check_library_options(obj, addon):
     for name, values in (
         ("inner_fairness", ["uniform", "conformal", "conformal_intrinsic"]),
         ("outer_fairness", ["intrinsic", "bilaplacian"]),
+        ("boundary", ["g1", "g0"]),
         ("iteration", ["auto", "newton", "paper"]),
     ):
         assert [item.identifier for item in rna[name].enum_items] == values, (name, list(rna[name].enum_items))
@@ -303,6 +304,38 @@ def check_library_options(obj, addon):
     assert np.array_equal(current_positions(obj), before)
     assert "Time Limit" in [item.name for item in rna.values()] and settings.time_limit == 0.0
     print("ok: the time limit from the operator, the panel and the preferences reaches the solver")
+
+
+def check_boundary(obj, addon):
+    """The Boundary option (boundary) reaches geofair.fair from the operator and from the panel; default G1.
+
+    The numbers (plane, catenoid) are check_scripting.py's; here the path through the operator."""
+    settings = bpy.context.scene.geometric_fairing
+    rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties["boundary"]
+    names = {item.identifier: (item.name, item.description) for item in rna.enum_items}
+    assert names["g1"][0] == "Tangent (G1)" and "tangent planes" in names["g1"][1], names
+    assert names["g0"][0] == "Position (G0)" and "Fair Positions" in names["g0"][1], names
+    assert settings.boundary == rna.default == "g1"
+    bpy.ops.ed.undo_push(message="before the boundaries")
+    before = current_positions(obj)
+    results = {}
+    for given in ("g1", "g0"):
+        result, error = fair(boundary=given, inner_fairness="conformal")  # uniform folds an edge with G0 here
+        assert result == {"FINISHED"}, (given, error)
+        last = check_last_run("CONVERGED", boundary=given, folds=0)
+        results[given] = current_positions(obj)
+        assert "Boundary" in draw_panels(addon) and names[given][0] in draw_panels(addon)
+        print(f"ok: boundary={given!r} from the operator: {last.message}")
+        bpy.ops.ed.undo()
+        assert np.array_equal(current_positions(obj), before)
+    assert np.abs(results["g1"] - results["g0"]).max() > 1e-3, "G0 and G1 gave the same surface"
+    settings.boundary = "g0"  # from the panel
+    result, error = fair(inner_fairness="conformal")
+    assert result == {"FINISHED"} and np.array_equal(current_positions(obj), results["g0"]), error
+    check_last_run("CONVERGED", boundary="g0")
+    bpy.ops.ed.undo()
+    settings.boundary = "g1"
+    print("ok: the Boundary option from the operator and the panel reaches the solver")
 
 
 def check_pins_and_region_group(obj):
@@ -393,12 +426,15 @@ def main():
     check_fairing(obj, outer_fairness="bilaplacian", tolerance=1e-5, max_iterations=500)
     check_library_options(obj, addon)
     check_iteration(obj, addon)
+    check_boundary(obj, addon)
     check_preferences(obj, addon)
     # Brow and eye socket: reaches the open border around the eye, whose vertices stay fixed.
     # Conformal inner fairness: uniform may diverge on this region (a known limitation of the solver).
     select_faces(obj, lambda c: np.linalg.norm(c - [0.45, -0.75, 0.5]) < 0.15)
     check_fairing(obj, inner_fairness="conformal")
     assert bpy.context.window_manager.geometric_fairing.last_run.message.count("on the open mesh border kept fixed")
+    check_fairing(obj, inner_fairness="conformal", boundary="g0")  # G0 needs nothing from the faces around
+    assert "open mesh border" not in bpy.context.window_manager.geometric_fairing.last_run.message
 
     select_faces(obj, lambda c: False)
     expect_cancelled(obj, "nothing selected", "No face is selected")

@@ -12,9 +12,14 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/bl
   σ1/σ2 = 2 on every triangle, read through the add-on's mesh reading in both
   modes.
 - Blender's UV sphere with its cap flattened: faired back onto the sphere with the
-  defaults (uniform inner fairness over the quads' edges).
+  defaults (uniform inner fairness over the quads' edges, the G1 boundary); with
+  boundary="g0" it stays the flat disk its boundary circle spans.
+- boundary="g0" (positions only): a planar loop gives the plane, also where the surface
+  around it slopes and the region reaches the open mesh border; the tube between two
+  circles of radius a cosh(h/a) narrows to the catenoid; no boundary normal is estimated.
 """
 
+import math
 import sys
 import time
 
@@ -300,13 +305,154 @@ def check_flattened_uv_sphere_cap(addon):
     sphere.data.polygons.foreach_get("loop_start", starts)
     faces = np.logical_or.reduceat(cap[corners], starts)  # the faces with a vertex above the plane
     report = addon.fair_object(sphere, region=faces)
-    assert report.converged, report.summary()
+    assert report.converged and report.boundary == "g1", report.summary()  # the default
     after = positions(sphere)
     radial = np.abs(np.linalg.norm(after[cap], axis=1) - 1.0).max()
     assert radial < 1e-3, radial  # measured 7.0e-4 (float32 positions)
     assert np.array_equal(after[~cap], flat[~cap])
     print(f"ok: the flattened UV-sphere cap faired back onto the sphere ({radial:.1e}): {report.summary()}")
+    sphere.data.vertices.foreach_set("co", flat.astype(np.float32).ravel())
+    sphere.data.update()
+    report = addon.fair_object(sphere, region=faces, boundary="g0")
+    ring = np.zeros(len(flat), dtype=bool)  # the boundary circle: the region's vertices below the cap
+    ring[corners[np.repeat(faces, np.diff(np.append(starts, len(corners))))]] = True
+    ring &= ~cap
+    disk = np.abs(positions(sphere)[cap, 2] - flat[ring, 2].mean()).max()
+    assert report.converged and np.ptp(flat[ring, 2]) < 1e-6 and disk < 1e-6, (disk, report.summary())
+    print(f"ok: with G0 the cap is the flat disk its boundary circle spans ({disk:.1e})")
     bpy.data.objects.remove(sphere)
+
+
+def add_funnel_grid(ring):
+    """Blender's grid (2 × 2) as a funnel around a planar square loop: the vertices of the square ring
+    ``ring`` (counted from the centre, max(|x|, |y|) = m) at z = 0, those inside it raised by a bump,
+    those outside sloping up, z = 0.5 (max(|x|, |y|) - m); the faces inside the loop selected
+    (Edit Mode). Returns the grid and its vertices inside the loop."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=16, size=2.0)
+    grid = bpy.context.active_object
+    co = positions(grid)
+    square = np.abs(co[:, :2]).max(axis=1)
+    m = np.unique(square)[ring]
+    inside = square < m - 1e-6
+    co[:, 2] = np.where(inside, 0.3 * (m - square), 0.5 * (square - m))
+    grid.data.vertices.foreach_set("co", co.ravel())
+    grid.data.update()
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(grid, lambda c: np.abs(c[:2]).max() < m)
+    return grid, inside
+
+
+def check_g0_planar_loop(addon):
+    """G0 spans a planar loop by the plane, whatever the surface around it; G1 follows that surface."""
+    grid, inside = add_funnel_grid(ring=5)
+    before = positions(grid)
+    report = addon.fair_object(grid, boundary="g0")
+    after = positions(grid)
+    assert report.converged and report.boundary == "g0" and report.free_vertices == inside.sum() > 50, report
+    assert np.array_equal(after[~inside], before[~inside]), "a vertex outside the region moved"
+    plane = float(np.abs(after[inside, 2]).max())
+    assert plane < 1e-6, plane  # measured 0 (Blender 3.4, bpy 4.5)
+    assert bpy.context.window_manager.geometric_fairing.last_run.boundary == "g0"
+    print(f"ok: G0, a planar loop with the surface around it sloping: the plane, |z| <= {plane:.1e}")
+    bm = bmesh.from_edit_mesh(grid.data)
+    for vertex, co in zip(bm.verts, before, strict=True):
+        vertex.co = co
+    bmesh.update_edit_mesh(grid.data)
+    report = addon.fair_object(grid)  # G1: the tangent planes of the funnel bend the surface
+    g1 = float(np.abs(positions(grid)[inside, 2]).max())
+    assert report.converged and report.boundary == "g1" and g1 > 100 * max(plane, 1e-6), g1
+    print(f"ok: G1 on the same loop follows the sloping surface around it (|z| up to {g1:.3f})")
+
+    # The whole grid selected: the region reaches the open mesh border, whose vertices are G0's boundary.
+    select_faces(grid, lambda c: True)
+    border = np.array([vertex.is_boundary for vertex in bmesh.from_edit_mesh(grid.data).verts])
+    before = positions(grid)
+    report = addon.fair_object(grid, boundary="g0")
+    after = positions(grid)
+    assert report.converged and report.free_vertices == np.count_nonzero(~border), report
+    assert np.array_equal(after[border], before[border]) and "open mesh border" not in report.summary(), report
+    # The border is a square loop in the plane z = 0.5 (1 - m) of the outermost ring.
+    plane = float(np.abs(after[~border, 2] - before[border, 2].mean()).max())
+    assert np.ptp(before[border, 2]) == 0.0 and plane < 1e-6, plane
+    print(f"ok: G0 with the region reaching the open mesh border: the plane ({plane:.1e}): {report.summary()}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(grid)
+
+
+def check_g0_estimates_no_normals(addon):
+    """With G0 the add-on estimates and checks no boundary normal (the library reads none)."""
+    grid, inside = add_funnel_grid(ring=4)
+    estimate = addon.region.boundary_normals
+
+    def no_normals(*args, **kwargs):
+        raise AssertionError("boundary normals estimated")
+
+    addon.region.boundary_normals = no_normals
+    try:
+        report = addon.fair_object(grid, boundary="G0")  # upper case, as fair_object takes every option
+        assert report.converged and report.boundary == "g0", report
+        expect_error(AssertionError, "boundary normals estimated", lambda: addon.fair_object(grid, boundary="g1"))
+    finally:
+        addon.region.boundary_normals = estimate
+    print("ok: G0 estimates no boundary normals, G1 does")
+    expect_error(ValueError, "boundary must be one of", lambda: addon.fair_object(grid, boundary="g2"))
+    settings = bpy.context.scene.geometric_fairing
+    assert settings.boundary == "g1"
+    settings.boundary = "g0"  # from the panel
+    report = addon.fair_object(grid)
+    assert report.boundary == "g0" and report.converged, report
+    settings.boundary = "g1"
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(grid)
+    print("ok: the panel's Boundary reaches fair_object")
+
+
+def add_tube(radius, heights, segments):
+    """A tube of quads around the z axis: rings of ``segments`` vertices of ``radius`` at ``heights``
+    (bmesh), faces facing outwards; active, in Object Mode."""
+    mesh = bpy.data.meshes.new("Tube")
+    bm = bmesh.new()
+    angles = 2.0 * np.pi * np.arange(segments) / segments
+    rings = [[bm.verts.new((radius * math.cos(t), radius * math.sin(t), z)) for t in angles] for z in heights]
+    for lower, upper in zip(rings, rings[1:], strict=False):
+        for k in range(segments):
+            bm.faces.new((lower[k], lower[(k + 1) % segments], upper[(k + 1) % segments], upper[k]))
+    bm.to_mesh(mesh)
+    bm.free()
+    tube = bpy.data.objects.new("Tube", mesh)
+    bpy.context.scene.collection.objects.link(tube)
+    bpy.context.view_layer.objects.active = tube
+    return tube
+
+
+def catenoid_error(addon, segments, intervals, a=1.0, h=0.6, **options):
+    """The cylinder through the circles of radius a cosh(h/a) at z = ±h, with two more rings beyond
+    each (unselected), faired between them: the largest |r - a cosh(z/a)| / a of the free vertices."""
+    dz = 2.0 * h / intervals
+    tube = add_tube(a * math.cosh(h / a), np.linspace(-h - 2 * dz, h + 2 * dz, intervals + 5), segments)
+    report = addon.fair_object(tube, region=np.abs(face_centres(tube)[:, 2]) < h, tolerance=1e-8, **options)
+    p = positions(tube).astype(np.float64)
+    free = np.abs(p[:, 2]) < h - 0.5 * dz
+    assert report.converged and report.free_vertices == np.count_nonzero(free) == segments * (intervals - 1), report
+    bpy.data.objects.remove(tube)
+    return float(np.abs(np.hypot(p[free, 0], p[free, 1]) - a * np.cosh(p[free, 2] / a)).max() / a)
+
+
+def check_g0_catenoid(addon):
+    """G0 between two coaxial circles (h = 0.6 a, inside the stable range h < 1.2 a): the catenoid."""
+    coarse = catenoid_error(addon, 32, 6, boundary="g0")
+    fine = catenoid_error(addon, 64, 12, boundary="g0")
+    # Measured 2.1e-3 and 5.3e-4 (Blender 3.4 and bpy 4.5): the discretization error falls like h².
+    assert fine < 1e-3 and fine < 0.4 * coarse, (coarse, fine)
+    # What the bound rules out: G1 keeps the cylinder (its tangent planes), 0.19 a at the waist;
+    # the linear membrane (G0 with bilaplacian outer fairness) is 6e-3 a off.
+    cylinder = catenoid_error(addon, 64, 12, boundary="g1")
+    membrane = catenoid_error(addon, 64, 12, boundary="g0", outer_fairness="bilaplacian")
+    assert cylinder > 0.1 and membrane > 5 * fine, (cylinder, membrane)
+    print(
+        f"ok: G0 between two circles: the catenoid within {fine:.1e} a (64 × 12; {coarse:.1e} at 32 × 6); "
+        f"G1 {cylinder:.2f} a, the linear membrane {membrane:.1e} a"
+    )
 
 
 def check_without_registering(folder):
@@ -323,7 +469,7 @@ def check_defaults(addon):
     library = addon.native.geofair.defaults()
     options = addon.FairingOptions()
     operator = bpy.ops.mesh.geometric_fairing.get_rna_type().properties
-    for name in ("inner_fairness", "outer_fairness", "tolerance", "max_iterations", "levels", "iteration"):
+    for name in ("inner_fairness", "outer_fairness", "boundary", "tolerance", "max_iterations", "levels", "iteration"):
         value = library[name]  # the library's values, also the enums' identifiers
         assert getattr(options, name) == value, (name, getattr(options, name), value)
         # Blender stores a FloatProperty in single precision.
@@ -348,6 +494,9 @@ def main():
     check_shape_key(addon)
     check_uv_distortion(addon)
     check_flattened_uv_sphere_cap(addon)
+    check_g0_planar_loop(addon)
+    check_g0_estimates_no_normals(addon)
+    check_g0_catenoid(addon)
     disable_addon()
     check_without_registering(folder)
     print("check_scripting: all checks passed")
