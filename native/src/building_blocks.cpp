@@ -2,6 +2,7 @@
 // (geofair/building_blocks.h); the single building blocks are defined with their layers.
 #include "geofair/building_blocks.h"
 
+#include "common.h"
 #include "inner_fairness.h"
 #include "progressive_mesh.h"
 #include "region.h"
@@ -17,11 +18,9 @@ std::pair<Positions, double> relax_inner_fairness(const Positions& V, const Tria
     throw InvalidInputError("normals must have the shape of vertices " +
                             std::to_string(V.rows()) + "×3");
   const FairingRegion region = extract_region(V, F, free, &normals, true, polygon_ids);
-  Positions X(region.n, 3), N(region.n, 3);
-  for (int i = 0; i < region.n; ++i) {
-    X.row(i) = V.row(region.global[i]);
-    N.row(i) = normals.row(region.global[i]).normalized();
-  }
+  Positions X = gather(V, region.global);
+  Positions N = gather(normals, region.global);
+  for (int i = 0; i < region.n; ++i) N.row(i) = N.row(i).normalized();
   if (!N.allFinite()) throw InvalidInputError("normals must be nonzero and finite");
   const InnerFairnessWeights lambda = inner_fairness_weights(region, X, inner);
   TangentialSolver solver(region.rings, lambda, region.n_free,
@@ -42,8 +41,7 @@ std::vector<Triangles> progressive_mesh_levels(const Positions& V, const Triangl
   placeholder_normals.col(2).setOnes();  // the hierarchy does not read normals
   const FairingRegion region =
       extract_region(V, F, free, &placeholder_normals, /*check_orientation=*/false);
-  Positions X(region.n, 3);
-  for (int i = 0; i < region.n; ++i) X.row(i) = V.row(region.global[i]);
+  const Positions X = gather(V, region.global);
   const int n = levels > 0 ? levels : default_levels(region.n_free);
   const Positions smoothed = hierarchy_positions(region, X, nullptr);
   std::vector<Triangles> out;

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace geofair {
 
@@ -14,6 +15,13 @@ inline void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
   const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   bx = n.cross(helper).normalized();
   by = n.cross(bx);
+}
+
+/// Rows `ids` of X (#ids×3), e.g. a region's positions from the caller's by region.global.
+inline Positions gather(const Positions& X, const std::vector<int>& ids) {
+  Positions Y(Eigen::Index(ids.size()), 3);
+  for (std::size_t i = 0; i < ids.size(); ++i) Y.row(Eigen::Index(i)) = X.row(ids[i]);
+  return Y;
 }
 
 /// Wall-clock seconds between calls, for FairingResult::phase_seconds.

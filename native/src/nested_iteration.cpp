@@ -17,12 +17,6 @@
 
 namespace geofair {
 
-Positions gather(const Positions& X, const std::vector<int>& ids) {
-  Positions Y(Eigen::Index(ids.size()), 3);
-  for (std::size_t i = 0; i < ids.size(); ++i) Y.row(Eigen::Index(i)) = X.row(ids[i]);
-  return Y;
-}
-
 bool stop_requested(const FairingOptions& options) {
   return options.stop_requested && options.stop_requested();
 }
@@ -406,7 +400,6 @@ class NewtonLevels final : public LevelIteration {
     level.construction.reset();
     level.splits = VertexSplits();
     level.weights = std::vector<double>();
-    level.from_coarser = std::vector<int>();
     result.iterations_per_level.push_back(report.iterations);
     result.iterations += report.iterations;
   }
@@ -563,9 +556,11 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
       std::vector<int> local;
       Y = solution.prolongated(lr, hierarchy.splits[l], Xs, lambda, level.splits, level.weights,
                                local, p.options.tuning.multigrid.prolongation_sweeps);
-      const FairingRegion& coarser = levels[l - 1].region;
-      level.from_coarser.resize(coarser.n);
-      for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
+      if (!newton) {  // the paper's multigrid cycles inject the coarser level through it
+        const FairingRegion& coarser = levels[l - 1].region;
+        level.from_coarser.resize(coarser.n);
+        for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
+      }
     }
     if (finest) hierarchy = ProgressiveMesh(), Xs = Xr = Positions();  // memory of the finest
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());

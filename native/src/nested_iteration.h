@@ -86,7 +86,4 @@ SolveRun stopped_run(const Positions& X0, Iteration iteration);
 double finite_residual(const FairingRegion& level, const InnerFairnessWeights& lambda,
                        const FairingOptions& options, double L, const Positions& X);
 
-/// Rows `ids` of X.
-Positions gather(const Positions& X, const std::vector<int>& ids);
-
 }  // namespace geofair
