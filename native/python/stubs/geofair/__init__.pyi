@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -25,9 +25,19 @@ class FairingResult:
         True if the residual reached the tolerance.
         """
     @property
+    def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
+        """
+        (m', 3) int32 triangles of the result: the input's unless .remeshed (then the input faces without a free vertex, unchanged and first, then the region's new ones).
+        """
+    @property
     def folds(self) -> int:
         """
         Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves, or keep them from a folded input; .message then says so.
+        """
+    @property
+    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+        """
+        (n',) bool: the result's free vertices (the input's mask unless .remeshed).
         """
     @property
     def iteration(self) -> str:
@@ -60,9 +70,24 @@ class FairingResult:
         Newton steps performed, including an attempt that iteration="auto" abandoned for the paper's iteration.
         """
     @property
+    def origin_barycentric(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 barycentric coordinates in .origin_face (rows sum to 1); zero rows where .origin_face is -1. With .origin_face they carry per-corner data (UVs) over from the input.
+        """
+    @property
+    def origin_face(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (n',) int32: for each free vertex of a remeshed region the input face (row of the input faces) it was created on, on the input surface before fairing; -1 for the other rows and for every row unless .remeshed.
+        """
+    @property
     def phase_seconds(self) -> list[tuple[str, float]]:
         """
-        Wall-clock seconds of the solve's phases, a list of (name, seconds) in the order they ran: "hierarchy", then per level l (0 = coarsest) "level l initial mesh", "level l set-up" and, for Newton's method, "level l inner fairness", "level l Newton steps", "level l polishes", for the paper's iteration "level l iterations" (an abandoned attempt's phases included). They do not overlap: their sum stays below the call's wall time.
+        Wall-clock seconds of the solve's phases, a list of (name, seconds) in the order they ran: "remesh" where the region was remeshed, "hierarchy", then per level l (0 = coarsest) "level l initial mesh", "level l set-up" and, for Newton's method, "level l inner fairness", "level l Newton steps", "level l polishes", for the paper's iteration "level l iterations" (an abandoned attempt's phases included). They do not overlap: their sum stays below the call's wall time.
+        """
+    @property
+    def remeshed(self) -> bool:
+        """
+        True when the region's triangles were replaced (fair's remesh).
         """
     @property
     def residual(self) -> float:
@@ -75,14 +100,55 @@ class FairingResult:
         Why the solve ended, message's first clause as a value: "converged"; "max_iterations" (a level spent max_iterations, or Newton's method stalled with iteration="newton"); "time_limit" (time_limit, or the automatic limit's hard cap); "no_progress" (the automatic limit: the residual did not halve for its span); "cancelled" (progress returned False); "diverged" (iteration="auto"'s last attempt failed: the input is returned).
         """
     @property
+    def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (k,) int32: rows of .vertices in no face (input free rows that the remesh did not reuse, input positions kept); empty unless .remeshed.
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
-        (n, 3) float64 positions; fixed rows are bit-identical to the input.
+        (n', 3) float64 positions; fixed rows are bit-identical to the input. n' = n unless .remeshed (then max(n, #fixed + #new free)).
         """
     @property
     def vertices_per_level(self) -> list[int]:
         """
         Region vertices (free and G1 boundary) on each level, coarsest first.
+        """
+class RemeshedRegion:
+    """
+    Result of geofair.remesh_region.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
+        """
+        (m', 3) int32 triangles: the input faces without a free vertex (unchanged, in input order), then the region's new triangles.
+        """
+    @property
+    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+        """
+        (n',) bool: True exactly at the new region's free vertices.
+        """
+    @property
+    def origin_barycentric(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 barycentric coordinates in origin_face (rows sum to 1; vertices[i] = Σ_k b[i, k] * input_vertices[input_faces[f, k]] to round-off); zeros where origin_face is -1.
+        """
+    @property
+    def origin_face(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (n',) int32: for each free vertex the input face (row of the input faces) its position lies on; -1 for fixed vertices and unreferenced rows.
+        """
+    @property
+    def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (k,) int32: input free rows that no new vertex reuses (in no face, not free).
+        """
+    @property
+    def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
         """
 def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, method: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
@@ -141,13 +207,14 @@ def defaults() -> dict:
     -------
     dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
     "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-    "damping" (float), "time_limit" (None: automatic), the automatic time limit of
-    iteration="auto" (time without a halving of the residual), "time_limit_base" (seconds) plus
+    "damping" (float), "remesh" (False, True or "if_needed"), "time_limit" (None: automatic),
+    the automatic time limit of iteration="auto" (time without a halving of the residual),
+    "time_limit_base" (seconds) plus
     "time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
     "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
     dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: typing.Any = False, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -162,6 +229,20 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
     free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
         by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
         vertex form the boundary.
+    remesh : False (default; also "off"), True (also "always") or "if_needed". False: the
+        connectivity is kept (the paper's setting). True: the region's triangles (those with a
+        free vertex) are first replaced by geofair.remesh_region's isotropic remesh at the mean
+        length of the region's border edges (fixed vertices and the region's border edges
+        kept; the G1 normals taken from the input), then faired. "if_needed": faired with the
+        connectivity kept first; where that does not converge or folds triangles over that
+        were not folded, remeshed and faired again: the remeshed result is returned if it
+        converged without new folds, else the better of the two (converged first, then fewer
+        new folds, then the smaller residual); .message says which. A remeshed result has
+        other vertices and faces: n' rows (fixed rows keep index and position, the input's free
+        rows are reused, extra rows appended; .unreferenced lists free rows left over), its
+        .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
+        the input surface (to carry UVs over). polygon_ids do not apply to the new triangles.
+        An explicit time_limit covers the whole call; the automatic one applies to each solve.
     boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
         normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
         surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
@@ -279,7 +360,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
     
     Returns
     -------
-    FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
+    FairingResult with .vertices (n', 3) float64 (n' = n unless remeshed), .faces (m', 3)
+    int32, .free (n',) bool, .remeshed, .unreferenced, .origin_face and .origin_barycentric
+    (see remesh; the input's faces and mask, -1 and zeros when not remeshed), .converged,
+    .iterations (all levels),
     .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
     .iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
     triangles the result flips over, and those not folded in the input) and .phase_seconds
@@ -394,5 +478,44 @@ def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.A
     
     Raises ValueError for invalid input, RuntimeError (geofair.SolverError) if the system is
     singular.
+    """
+def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, target_edge_length: typing.Any = None, iterations: typing.SupportsInt | typing.SupportsIndex = 5) -> RemeshedRegion:
+    """
+    Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
+    remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
+    runs before fairing: the region's triangles (those with a free vertex) are replaced, the
+    fixed vertices and the region's border edges are kept.
+    
+    Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
+    vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
+    degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
+    counting the edges outside the region), and moves each free vertex to the area-weighted
+    centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
+    the closest point of the input region's triangles.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, triangles; those with a free vertex must form a consistently
+        oriented 2-manifold.
+    free : (n,) bool array, True where a vertex may move (not on the mesh border).
+    target_edge_length : float > 0 in mesh units, or None (default): the mean length of the
+        region's border edges (of all its edges where it has no border).
+    iterations : int >= 0, rounds of split, collapse, flip and relaxation (0: the input).
+    
+    Returns
+    -------
+    RemeshedRegion with .vertices (n', 3) float64, .faces (m', 3) int32 (the faces without a
+    free vertex unchanged and first, then the new ones), .free (n',) bool, .unreferenced (k,)
+    int32, .origin_face (n',) int32 and .origin_barycentric (n', 3) float64 (where each free
+    vertex lies on the input surface). Rows of fixed vertices keep their index and position
+    bit-identically; a surviving input free vertex keeps its row, the other new free vertices
+    take the remaining input free rows in increasing order, then rows appended after n, so
+    n' = max(n, #fixed + #new free); free rows left over are listed in .unreferenced.
+    
+    Raises
+    ------
+    ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+    border, a region that is not a consistently oriented 2-manifold, invalid options).
     """
 __version__: str
