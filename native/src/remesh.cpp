@@ -36,10 +36,14 @@ constexpr double kSplitAbove = 4.0 / 3.0;
 constexpr double kCollapseBelow = 4.0 / 5.0;
 // Shape of a triangle: twice its area over its longest edge squared (√3/2 equilateral, 0
 // degenerate). No operation may leave a triangle thinner than this, or thinner than the
-// triangle it replaces where that was thinner already: a lower bound that only splits could
-// ratchet down otherwise (each split of a short edge halves the shape; on the random cap at
-// a quarter of the border's edge length, shapes of 5e-7 after two iterations).
+// triangle it replaces where that was thinner already; except that a split of a triangle's
+// longest edge may halve its shape (kLongestEdgeSplit): longest-edge bisection keeps the
+// smallest angle above half the input's (Rivara 1984), while splits of other edges would
+// ratchet shapes down without bound.
 constexpr double kMinShape = 0.05;
+// The fraction of the bound above that a split of a triangle's longest edge must keep: a
+// midpoint's children keep half the shape; the rest is room for the projection's offset.
+constexpr double kLongestEdgeSplit = 0.45;
 // Passes of split_long_edges per iteration.
 constexpr int kSplitPasses = 10;
 
@@ -55,16 +59,18 @@ double shape(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 // Whether triangle (a, b, c), replacing one of normal `before` (a cross product) and shape
-// `was`, faces the same way and keeps its shape (kMinShape).
-bool keeps_shape(const Vec3& before, double was, const Vec3& a, const Vec3& b, const Vec3& c) {
+// `was`, faces the same way and keeps `fraction` of its shape bound (kMinShape).
+bool keeps_shape(const Vec3& before, double was, const Vec3& a, const Vec3& b, const Vec3& c,
+                 double fraction = 1.0) {
   const double s = shape(a, b, c);
-  return (b - a).cross(c - a).dot(before) > 0.0 && s > 0.0 && s >= std::min(kMinShape, was);
+  return (b - a).cross(c - a).dot(before) > 0.0 && s > 0.0 &&
+         s >= fraction * std::min(kMinShape, was);
 }
 
 // keeps_shape against the old triangle (p, q, r).
 bool keeps_shape(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b,
-                 const Vec3& c) {
-  return keeps_shape((q - p).cross(r - p), shape(p, q, r), a, b, c);
+                 const Vec3& c, double fraction = 1.0) {
+  return keeps_shape((q - p).cross(r - p), shape(p, q, r), a, b, c, fraction);
 }
 
 // Closest point on triangle (a, b, c) to p, as barycentric coordinates (Ericson,
@@ -427,13 +433,18 @@ void Remesher::set_valence_offsets(const std::vector<int>& global_to_local) {
   }
 }
 
-// Whether splitting edge e at p keeps the four new triangles' orientation and shape.
+// Whether splitting edge e at p keeps the four new triangles' orientation and shape (a
+// triangle whose longest edge e is: kLongestEdgeSplit of it).
 bool Remesher::split_ok(EH e, const Vec3& p) const {
   for (int k = 0; k < 2; ++k) {
-    const HH h = mesh_.halfedge_handle(e, k);  // its triangle (a, b, c) becomes (a, p, c), (p, b, c)
+    const HH h = mesh_.halfedge_handle(e, k);  // its triangle (a, b, c): (a, p, c), (p, b, c)
     const Vec3 a = point(mesh_.from_vertex_handle(h)), b = point(mesh_.to_vertex_handle(h));
     const Vec3 c = point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
-    if (!keeps_shape(a, b, c, a, p, c) || !keeps_shape(a, b, c, p, b, c)) return false;
+    const double ab = (b - a).squaredNorm();
+    const bool longest = ab >= (c - b).squaredNorm() && ab >= (a - c).squaredNorm();
+    const double fraction = longest ? kLongestEdgeSplit : 1.0;
+    if (!keeps_shape(a, b, c, a, p, c, fraction) || !keeps_shape(a, b, c, p, b, c, fraction))
+      return false;
   }
   return true;
 }
