@@ -487,11 +487,13 @@ def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, 
     fixed vertices and the region's border edges are kept.
     
     Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
-    vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
-    degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
-    counting the edges outside the region), and moves each free vertex to the area-weighted
-    centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
-    the closest point of the input region's triangles.
+    vertex into a neighbour; never one that would create an edge longer than 4/3 L), flips
+    interior edges towards valence 6 (4 on the mesh border, counting the edges outside the
+    region), and moves each free vertex to the area-weighted centroid of its one-ring in its
+    tangent plane. Every new or moved vertex is projected onto the closest point of the input
+    region's triangles. No step turns a triangle over, leaves it thinner (twice the area over
+    the longest edge squared) than 0.05 and than the triangle it replaces, or puts a vertex on
+    the region's border; such a step is skipped.
     
     Parameters
     ----------
