@@ -241,8 +241,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
         other vertices and faces: n' rows (fixed rows keep index and position, the input's free
         rows are reused, extra rows appended; .unreferenced lists free rows left over), its
         .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
-        the input surface (to carry UVs over). polygon_ids do not apply to the new triangles.
-        An explicit time_limit covers the whole call; the automatic one applies to each solve.
+        the input surface (to carry UVs over); its .folds and .new_folds count its own
+        triangles (new: not folded in the remesh before fairing). polygon_ids do not apply to
+        the new triangles. An explicit time_limit covers the whole call; the automatic one
+        applies to each solve.
     boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
         normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
         surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
