@@ -11,7 +11,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <cstdlib>
 #include <string>
@@ -96,6 +98,20 @@ std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
     throw InvalidInputError("free must have dtype bool, got " + dtype_of(a));
   const auto c = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(a);
   return std::vector<bool>(c.data(), c.data() + n);
+}
+
+// A std::vector as a new 1-D numpy array (bool or int32).
+py::array_t<bool> bool_array(const std::vector<bool>& v) {
+  py::array_t<bool> a(py::ssize_t(v.size()));
+  bool* p = a.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i) p[i] = v[i];
+  return a;
+}
+
+py::array_t<int> int_array(const std::vector<int>& v) {
+  py::array_t<int> a(py::ssize_t(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
 }
 
 // The Python names of the options' values, one table per enum: parse() reads them, name()
@@ -787,6 +803,94 @@ Raises
 ValueError for invalid input.)doc");
 }
 
+// geofair.remesh_region and its result, geofair.RemeshedRegion.
+void bind_remesh(py::module_& m) {
+  py::class_<RemeshedRegion>(m, "RemeshedRegion", "Result of geofair.remesh_region.")
+      .def_readonly("vertices", &RemeshedRegion::vertices,
+                    "(n', 3) float64 positions, mesh units; rows of fixed vertices are "
+                    "bit-identical to the input, n' = max(n, #fixed + #new free).")
+      .def_readonly("faces", &RemeshedRegion::faces,
+                    "(m', 3) int32 triangles: the input faces without a free vertex "
+                    "(unchanged, in input order), then the region's new triangles.")
+      .def_property_readonly(
+          "free", [](const RemeshedRegion& r) { return bool_array(r.free); },
+          "(n',) bool: True exactly at the new region's free vertices.")
+      .def_property_readonly(
+          "unreferenced", [](const RemeshedRegion& r) { return int_array(r.unreferenced); },
+          "(k,) int32: input free rows that no new vertex reuses (in no face, not free).")
+      .def_property_readonly(
+          "origin_face", [](const RemeshedRegion& r) { return int_array(r.origin_face); },
+          "(n',) int32: for each free vertex the input face (row of the input faces) its "
+          "position lies on; -1 for fixed vertices and unreferenced rows.")
+      .def_readonly("origin_barycentric", &RemeshedRegion::origin_barycentric,
+                    "(n', 3) float64 barycentric coordinates in origin_face (rows sum to 1; "
+                    "vertices[i] = Σ_k b[i, k] * input_vertices[input_faces[f, k]] to "
+                    "round-off); zeros where origin_face is -1.")
+      .def("__repr__", [](const RemeshedRegion& r) {
+        return "RemeshedRegion(vertices=" + std::to_string(r.vertices.rows()) +
+               ", faces=" + std::to_string(r.faces.rows()) +
+               ", free=" + std::to_string(std::count(r.free.begin(), r.free.end(), true)) + ")";
+      });
+
+  m.def(
+      "remesh_region",
+      [](const py::object& vertices, const py::object& faces, const py::object& free,
+         const py::object& target_edge_length, int iterations) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        RemeshOptions options;
+        options.iterations = iterations;
+        if (!target_edge_length.is_none()) {
+          options.target_edge_length = target_edge_length.cast<double>();
+          if (!(options.target_edge_length > 0.0) || !std::isfinite(options.target_edge_length))
+            throw InvalidInputError(
+                "remesh_region: target_edge_length must be None or a positive finite number, "
+                "got " + std::string(py::str(target_edge_length)));
+        }
+        py::gil_scoped_release release;
+        return remesh_region(V, F, mask, options);
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+      py::arg("target_edge_length") = py::none(), py::arg("iterations") = RemeshOptions{}.iterations,
+      R"doc(Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
+remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
+runs before fairing: the region's triangles (those with a free vertex) are replaced, the
+fixed vertices and the region's border edges are kept.
+
+Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
+vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
+degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
+counting the edges outside the region), and moves each free vertex to the area-weighted
+centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
+the closest point of the input region's triangles.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, triangles; those with a free vertex must form a consistently
+    oriented 2-manifold.
+free : (n,) bool array, True where a vertex may move (not on the mesh border).
+target_edge_length : float > 0 in mesh units, or None (default): the mean length of the
+    region's border edges (of all its edges where it has no border).
+iterations : int >= 0, rounds of split, collapse, flip and relaxation (0: the input).
+
+Returns
+-------
+RemeshedRegion with .vertices (n', 3) float64, .faces (m', 3) int32 (the faces without a
+free vertex unchanged and first, then the new ones), .free (n',) bool, .unreferenced (k,)
+int32, .origin_face (n',) int32 and .origin_barycentric (n', 3) float64 (where each free
+vertex lies on the input surface). Rows of fixed vertices keep their index and position
+bit-identically; a surviving input free vertex keeps its row, the other new free vertices
+take the remaining input free rows in increasing order, then rows appended after n, so
+n' = max(n, #fixed + #new free); free rows left over are listed in .unreferenced.
+
+Raises
+------
+ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+border, a region that is not a consistently oriented 2-manifold, invalid options).)doc");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(geofair, m) {
@@ -803,4 +907,5 @@ PYBIND11_MODULE(geofair, m) {
   bind_laplacians(m);
   bind_solver_steps(m);
   bind_geometry(m);
+  bind_remesh(m);
 }
