@@ -2,6 +2,7 @@
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
+#include "geofair/hole_filling.h"
 #include "geofair/tuning.h"
 #include "geofair/types.h"
 
@@ -100,8 +101,8 @@ std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
   return std::vector<bool>(c.data(), c.data() + n);
 }
 
-// A std::vector as a new 1-D numpy array (bool or int32). The bool array is returned as
-// py::array: pybind11-stubgen cannot import the numpy.bool of array_t<bool>'s signature.
+// A std::vector as a new 1-D numpy array (bool or int32). The bool one is returned as a
+// plain array: pybind11-stubgen cannot name numpy's bool type (scripts/make_stubs.py).
 py::array bool_array(const std::vector<bool>& v) {
   py::array_t<bool> a(py::ssize_t(v.size()));
   bool* p = a.mutable_data();
@@ -266,29 +267,16 @@ std::string fair_doc(std::string doc) {
   return doc;
 }
 
-FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
-                      const py::object& remesh, const std::string& boundary, const py::object& boundary_normals,
-                      const py::object& polygon_ids,
-                      const std::string& inner_fairness,
-                      const std::string& outer_fairness, const std::string& normal_weighting,
-                      double tolerance, int max_iterations, double damping, int cg_iterations,
-                      int levels, const std::string& iteration, const py::object& progress,
-                      const py::object& time_limit, const py::object& tuning) {
-  const Positions V = to_positions(vertices, "vertices");
-  const Triangles F = to_triangles(faces);
-  const std::vector<bool> mask = to_mask(free, V.rows());
-  std::optional<std::vector<int>> polygons;
-  if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
+// The fairing keywords that fair and fill_holes share, as FairingOptions.
+FairingOptions fairing_options(const std::string& boundary, const std::string& inner_fairness,
+                               const std::string& outer_fairness,
+                               const std::string& normal_weighting, double tolerance,
+                               int max_iterations, double damping, int cg_iterations,
+                               int levels, const std::string& iteration,
+                               const py::object& time_limit, const py::object& tuning,
+                               const char* caller) {
   FairingOptions options;
-  options.remesh = parse_remesh(remesh);
   options.boundary = parse(boundary, "boundary", kBoundaryNames);
-  std::optional<Positions> normals;  // not read with G0
-  if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
-    normals = to_positions(boundary_normals, "boundary_normals");
-    if (normals->rows() != V.rows())
-      throw InvalidInputError("boundary_normals must have the shape of vertices " +
-                              std::to_string(V.rows()) + "×3");
-  }
   options.inner_fairness = parse_inner_fairness(inner_fairness);
   options.outer_fairness = parse(outer_fairness, "outer_fairness", kOuterFairnessNames);
   options.normal_weighting = parse_weighting(normal_weighting);
@@ -301,13 +289,19 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   if (!time_limit.is_none()) {
     options.time_limit = time_limit.cast<double>();
     if (!(options.time_limit >= 0.0))
-      throw InvalidInputError("fair: time_limit must be None or a number >= 0 (seconds), got " +
+      throw InvalidInputError(std::string(caller) +
+                              ": time_limit must be None or a number >= 0 (seconds), got " +
                               std::string(py::str(time_limit)));
   }
   if (!tuning.is_none()) set_tuning(tuning, options.tuning);
+  return options;
+}
 
-  // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
-  // KeyboardInterrupt) stops the run and is re-raised.
+// Runs solve() without the GIL with options.progress calling `progress` (re-taking the GIL
+// at most every 0.1 s); an exception in the callback (e.g. KeyboardInterrupt) stops the run
+// and is re-raised.
+template <class Solve>
+FairingResult with_progress(FairingOptions& options, const py::object& progress, Solve solve) {
   std::optional<py::error_already_set> callback_error;
   if (!progress.is_none()) {
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -328,11 +322,81 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   FairingResult result;
   {
     py::gil_scoped_release release;
-    result = fair(V, F, mask, normals ? &*normals : nullptr, options,
-                  polygons ? &*polygons : nullptr);
+    result = solve();
   }
   if (callback_error) throw *callback_error;
   return result;
+}
+
+FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
+                      const py::object& remesh, const std::string& boundary,
+                      const py::object& boundary_normals,
+                      const py::object& polygon_ids,
+                      const std::string& inner_fairness,
+                      const std::string& outer_fairness, const std::string& normal_weighting,
+                      double tolerance, int max_iterations, double damping, int cg_iterations,
+                      int levels, const std::string& iteration, const py::object& progress,
+                      const py::object& time_limit, const py::object& tuning) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  const std::vector<bool> mask = to_mask(free, V.rows());
+  std::optional<std::vector<int>> polygons;
+  if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
+  FairingOptions options = fairing_options(boundary, inner_fairness, outer_fairness,
+                                           normal_weighting, tolerance, max_iterations, damping,
+                                           cg_iterations, levels, iteration, time_limit, tuning,
+                                           "fair");
+  options.remesh = parse_remesh(remesh);
+  std::optional<Positions> normals;  // not read with G0
+  if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
+    normals = to_positions(boundary_normals, "boundary_normals");
+    if (normals->rows() != V.rows())
+      throw InvalidInputError("boundary_normals must have the shape of vertices " +
+                              std::to_string(V.rows()) + "×3");
+  }
+  return with_progress(options, progress, [&] {
+    return fair(V, F, mask, normals ? &*normals : nullptr, options,
+                polygons ? &*polygons : nullptr);
+  });
+}
+
+// A list of vertex loops (sequences of integers) from Python; None: empty.
+std::vector<std::vector<int>> to_loops(const py::object& loops) {
+  std::vector<std::vector<int>> out;
+  if (loops.is_none()) return out;
+  for (const py::handle loop : loops) {
+    std::vector<int> indices;
+    for (const py::handle v : loop) indices.push_back(v.cast<int>());
+    out.push_back(std::move(indices));
+  }
+  if (out.empty()) throw InvalidInputError("fill_holes: loops is empty (None fills every hole)");
+  return out;
+}
+
+FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
+                            const py::object& loops, const py::object& target_edge_length,
+                            const std::string& boundary, const std::string& inner_fairness,
+                            const std::string& outer_fairness,
+                            const std::string& normal_weighting, double tolerance,
+                            int max_iterations, double damping, int cg_iterations, int levels,
+                            const std::string& iteration, const py::object& progress,
+                            const py::object& time_limit, const py::object& tuning) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  const std::vector<std::vector<int>> holes = to_loops(loops);
+  double length = 0.0;
+  if (!target_edge_length.is_none()) {
+    length = target_edge_length.cast<double>();
+    if (!(length > 0.0) || !std::isfinite(length))
+      throw InvalidInputError(
+          "fill_holes: target_edge_length must be None or a positive finite number, got " +
+          std::string(py::str(target_edge_length)));
+  }
+  FairingOptions options = fairing_options(boundary, inner_fairness, outer_fairness,
+                                           normal_weighting, tolerance, max_iterations, damping,
+                                           cg_iterations, levels, iteration, time_limit, tuning,
+                                           "fill_holes");
+  return with_progress(options, progress, [&] { return fill_holes(V, F, holes, options, length); });
 }
 
 Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
@@ -367,10 +431,11 @@ void bind_result(py::module_& m) {
       .def_readonly("faces", &FairingResult::faces,
                     "(m', 3) int32 triangles of the result: the input's unless .remeshed (then "
                     "the input faces without a free vertex, unchanged and first, then the "
-                    "region's new ones).")
+                    "region's new ones; fill_holes: the input's faces, then the fill's).")
       .def_property_readonly(
           "free", [](const FairingResult& r) { return bool_array(r.free); },
-          "(n',) bool: the result's free vertices (the input's mask unless .remeshed).")
+          "(n',) bool: the result's free vertices (the input's mask unless .remeshed; "
+          "fill_holes: exactly the new vertices).")
       .def_readonly("remeshed", &FairingResult::remeshed,
                     "True when the region's triangles were replaced (fair's remesh).")
       .def_property_readonly(
@@ -868,6 +933,91 @@ Raises
 ValueError for invalid input.)doc");
 }
 
+// geofair.fill_holes and geofair.boundary_loops.
+void bind_holes(py::module_& m) {
+  const FairingOptions d;
+  m.def("fill_holes", &fill_holes_py, py::arg("vertices"), py::arg("faces"),
+        py::arg("loops") = py::none(), py::kw_only(), py::arg("target_edge_length") = py::none(),
+        py::arg("boundary") = name(d.boundary, kBoundaryNames),
+        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
+        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
+        py::arg("tuning") = py::none(),
+        R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
+loop keeps its positions and takes its unit normals from the faces around it (the G1
+boundary of Schneider & Kobbelt 2001, section 4; estimated as geofair.boundary_normals
+does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
+or catenoid is filled with that surface (beyond the paper: the triangulation and refinement).
+
+Each hole's loop is triangulated (Liepa 2003, "Filling holes in meshes": the triangulation
+with the smallest largest dihedral angle, the faces around the loop included, then the
+smallest area; loops of more than 500 vertices get a fan around their centroid), the edges
+across the hole are split, the patch is remeshed isotropically at target_edge_length
+(geofair.remesh_region), and all patches are faired together by geofair.fair with the new
+vertices free.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, triangles, consistently oriented, manifold.
+loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops);
+    or a list of loops, each a sequence of vertex indices along one boundary loop (any start
+    vertex, either direction).
+target_edge_length : edge length of the fill in mesh units, or None (default): the mean
+    length of the hole's loop edges.
+boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
+damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
+    geofair.fair; boundary="g0" fills with the minimal surface spanned by the loop.
+
+Returns
+-------
+FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
+vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
+after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
+new vertices; .remeshed True; .converged, .residual, .message, .stop_reason, .folds and
+.new_folds as for fair.
+
+Raises
+------
+ValueError when a loop is not a boundary loop of the mesh (the offending pair of vertices is
+named), a vertex is on two given loops, the mesh has no hole, or for the input fair refuses
+(the message names the problem and the vertex or face); RuntimeError as fair.)doc");
+  m.def(
+      "boundary_loops",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        std::vector<std::vector<int>> loops;
+        {
+          py::gil_scoped_release release;
+          loops = boundary_loops(V, F);
+        }
+        py::list out;
+        for (const auto& loop : loops) out.append(int_array(loop));
+        return out;
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(The boundary loops (holes) of a triangle mesh.
+
+Parameters
+----------
+vertices : (n, 3) float64 array; faces : (m, 3) integer array, consistently oriented, manifold.
+
+Returns
+-------
+list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
+(a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
+added into the hole is oriented like its neighbours; empty for a closed mesh.
+
+Raises
+------
+ValueError for invalid triangles or a vertex on two loops (holes that touch).)doc");
+}
+
 // geofair.remesh_region and its result, geofair.RemeshedRegion.
 void bind_remesh(py::module_& m) {
   py::class_<RemeshedRegion>(m, "RemeshedRegion", "Result of geofair.remesh_region.")
@@ -975,4 +1125,5 @@ PYBIND11_MODULE(geofair, m) {
   bind_solver_steps(m);
   bind_geometry(m);
   bind_remesh(m);
+  bind_holes(m);
 }

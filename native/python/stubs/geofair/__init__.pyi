@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -27,7 +27,7 @@ class FairingResult:
     @property
     def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
         """
-        (m', 3) int32 triangles of the result: the input's unless .remeshed (then the input faces without a free vertex, unchanged and first, then the region's new ones).
+        (m', 3) int32 triangles of the result: the input's unless .remeshed (then the input faces without a free vertex, unchanged and first, then the region's new ones; fill_holes: the input's faces, then the fill's).
         """
     @property
     def folds(self) -> int:
@@ -37,7 +37,7 @@ class FairingResult:
     @property
     def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
         """
-        (n',) bool: the result's free vertices (the input's mask unless .remeshed).
+        (n',) bool: the result's free vertices (the input's mask unless .remeshed; fill_holes: exactly the new vertices).
         """
     @property
     def iteration(self) -> str:
@@ -150,6 +150,24 @@ class RemeshedRegion:
         """
         (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
         """
+def boundary_loops(vertices: typing.Any, faces: typing.Any) -> list:
+    """
+    The boundary loops (holes) of a triangle mesh.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array; faces : (m, 3) integer array, consistently oriented, manifold.
+    
+    Returns
+    -------
+    list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
+    (a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
+    added into the hole is oriented like its neighbours; empty for a closed mesh.
+    
+    Raises
+    ------
+    ValueError for invalid triangles or a vertex on two loops (holes that touch).
+    """
 def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, method: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
     The unit normals fair() prescribes at the G1 boundary when it is given no
@@ -375,6 +393,48 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
     ------
     ValueError for invalid input (the message names the problem and the vertex or face),
     RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
+    """
+def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None, *, target_edge_length: typing.Any = None, boundary: str = 'g1', inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+    """
+    Fill holes of a triangle mesh with intrinsically faired patches: each hole's
+    loop keeps its positions and takes its unit normals from the faces around it (the G1
+    boundary of Schneider & Kobbelt 2001, section 4; estimated as geofair.boundary_normals
+    does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
+    or catenoid is filled with that surface (beyond the paper: the triangulation and refinement).
+    
+    Each hole's loop is triangulated (Liepa 2003, "Filling holes in meshes": the triangulation
+    with the smallest largest dihedral angle, the faces around the loop included, then the
+    smallest area; loops of more than 500 vertices get a fan around their centroid), the edges
+    across the hole are split, the patch is remeshed isotropically at target_edge_length
+    (geofair.remesh_region), and all patches are faired together by geofair.fair with the new
+    vertices free.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, triangles, consistently oriented, manifold.
+    loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops);
+        or a list of loops, each a sequence of vertex indices along one boundary loop (any start
+        vertex, either direction).
+    target_edge_length : edge length of the fill in mesh units, or None (default): the mean
+        length of the hole's loop edges.
+    boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
+    damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
+        geofair.fair; boundary="g0" fills with the minimal surface spanned by the loop.
+    
+    Returns
+    -------
+    FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
+    vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
+    after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
+    new vertices; .remeshed True; .converged, .residual, .message, .stop_reason, .folds and
+    .new_folds as for fair.
+    
+    Raises
+    ------
+    ValueError when a loop is not a boundary loop of the mesh (the offending pair of vertices is
+    named), a vertex is on two given loops, the mesh has no hole, or for the input fair refuses
+    (the message names the problem and the vertex or face); RuntimeError as fair.
     """
 def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], int]:
     """
