@@ -59,11 +59,23 @@ class Written:
 
 @contextlib.contextmanager
 def editable_bmesh(obj):
-    """The BMesh of ``obj``'s mesh to change: the edit mesh in Edit Mode, else a copy written back on success."""
+    """The BMesh of ``obj``'s mesh to change: the edit mesh in Edit Mode, else a copy written back on success.
+
+    Everything is checked before the first change, but should writing still fail, the edit
+    mesh is restored from a copy taken before (never a half-written mesh).
+    """
     mesh = obj.data
     if obj.mode == "EDIT":
         bm = bmesh.from_edit_mesh(mesh)
-        yield bm
+        snapshot = bm.copy()
+        try:
+            yield bm
+        except BaseException:
+            _restore(bm, snapshot)
+            bmesh.update_edit_mesh(mesh, loop_triangles=True, destructive=True)
+            raise
+        finally:
+            snapshot.free()
         bm.normal_update()
         bmesh.update_edit_mesh(mesh, loop_triangles=True, destructive=True)
         return
@@ -76,6 +88,19 @@ def editable_bmesh(obj):
         mesh.update()
     finally:
         bm.free()
+
+
+def _restore(bm, snapshot):
+    """Put the contents of ``snapshot`` back into ``bm`` (through a temporary mesh data-block)."""
+    import bpy
+
+    temporary = bpy.data.meshes.new("geometric_fairing_restore")
+    try:
+        snapshot.to_mesh(temporary)
+        bm.clear()
+        bm.from_mesh(temporary)
+    finally:
+        bpy.data.meshes.remove(temporary)
 
 
 def _lookup(bm):
@@ -131,7 +156,7 @@ def has_shape_keys(obj):
     return obj.data.shape_keys is not None
 
 
-def replace_region(obj, data, input_index, old_free, result, active_uv_name=None):
+def replace_region(obj, data, input_index, old_free, result):
     """Replace the region's faces of ``obj``'s mesh by a remeshed result (``result.remeshed``).
 
     Args:
@@ -141,7 +166,6 @@ def replace_region(obj, data, input_index, old_free, result, active_uv_name=None
         old_free: ``(n,)`` bool, the free mask given to the library.
         result: the library's result (``vertices``, ``faces``, ``free``, ``origin_face``,
             ``origin_barycentric``).
-        active_uv_name: the UV map whose corners are returned for the distortion figures.
 
     Returns:
         :class:`Written`.
@@ -208,6 +232,8 @@ def replace_region(obj, data, input_index, old_free, result, active_uv_name=None
         needed = np.unique(np.concatenate([region_input, origin_face[used_free]]))
         corner_loops = {int(t): [loop_at(c) for c in data.triangle_corners[input_index[t]]] for t in needed}
         corner_layers = _corner_layers(bm)
+        active_uv = bm.loops.layers.uv.active
+        active_uv_name = active_uv.name if active_uv is not None else None
         deform = bm.verts.layers.deform.active
         point_colours = _point_colour_layers(bm)
         fixed_in_new = np.setdiff1d(used, free_rows)
@@ -271,8 +297,18 @@ def replace_region(obj, data, input_index, old_free, result, active_uv_name=None
         if old_seams:
             written.notes.append(f"{old_seams} seam edges inside the region are gone (new edges have no seam)")
 
-        # -- write ------------------------------------------------------------------------------
+        # Every element the write reads or removes, before the first change (the index tables go stale).
         row_vert = {int(row): verts[int(row)] for row in fixed_in_new}
+        source_faces = [bm_faces[origin_polygon[f]] for f in range(len(new_faces))]
+        leftover_sources = [
+            (bm_faces[int(data.triangle_face[lt])], [loop_at(c) for c in data.triangle_corners[lt]])
+            for lt in leftover.tolist()
+        ]
+        touched_faces = [bm_faces[int(p)] for p in touched]
+        removed = [verts[int(row)] for row in np.flatnonzero(old_free[:n])]
+        old_edges = {edge for face in touched_faces for edge in face.edges}
+
+        # -- write ------------------------------------------------------------------------------
         for row in used_free.tolist():
             vertex = verts.new(vertices[row].tolist())
             source = nearest_corner[row].vert
@@ -288,10 +324,9 @@ def replace_region(obj, data, input_index, old_free, result, active_uv_name=None
                     vertex[layer] = tuple(sum(bary[k] * colours[i * 3 + k] for k in range(3)))
                 if weights is not None:
                     _set_deform(vertex, deform, _blend_weights(weights, bary))
-        old_edges = {edge for polygon in touched.tolist() for edge in bm_faces[polygon].edges}
         created = []
         for f, tri in enumerate(new_faces.tolist()):
-            source = bm_faces[origin_polygon[f]]
+            source = source_faces[f]
             face = bm_faces.new([row_vert[row] for row in tri])
             face.copy_from(source)
             face.select = source.select
@@ -304,18 +339,15 @@ def replace_region(obj, data, input_index, old_free, result, active_uv_name=None
                 for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
                     _set_loop_value(loop, kind, layer, tuple(values[f, k]))
             created.append(face)
-        for lt in leftover.tolist():
-            polygon = bm_faces[int(data.triangle_face[lt])]
-            corners = [loop_at(c) for c in data.triangle_corners[lt]]
+        for polygon, corners in leftover_sources:
             face = bm_faces.new([loop.vert for loop in corners])
             face.copy_from(polygon)
             face.select = polygon.select
             for loop, old in zip(face.loops, corners, strict=True):
                 loop.copy_from(old)
             created.append(face)
-        for polygon in [bm_faces[int(p)] for p in touched]:
+        for polygon in touched_faces:
             bm_faces.remove(polygon)
-        removed = [verts[int(row)] for row in np.flatnonzero(old_free[:n])]
         for vertex in removed:
             verts.remove(vertex)
         for edge in old_edges:
@@ -415,6 +447,8 @@ def add_fill(obj, data, result):
         known = np.zeros(size, dtype=bool)
         known[boundary_rows] = True
         corner_layers = _corner_layers(bm)
+        active_uv = bm.loops.layers.uv.active
+        active_uv_name = active_uv.name if active_uv is not None else None
         corner_values = []
         for kind, name, layer, width in corner_layers:
             values = np.zeros((size, width))
@@ -432,7 +466,7 @@ def add_fill(obj, data, result):
                     f"{what} is not continuous around the hole ({jumps} boundary vertices on a seam): "
                     "the fill's values are interpolated from one side"
                 )
-            if kind == "uv" and layer == bm.loops.layers.uv.active:
+            if kind == "uv" and name == active_uv_name:
                 written.metric_uvs = filled[new_faces]
         point_colours = _point_colour_layers(bm)
         deform = bm.verts.layers.deform.active
@@ -463,10 +497,13 @@ def add_fill(obj, data, result):
         centres = vertices[new_faces].mean(axis=1)
         nearest_edge = np.argmin(np.linalg.norm(centres[:, None] - midpoints[None], axis=2), axis=1)
 
+        # Every element the write reads, before the first change (the index tables go stale).
         row_vert = {int(v): verts[int(v)] for v in boundary_rows}
+        nearest_verts = [verts[int(v)] for v in nearest_vertex]
+        source_faces = [bm_faces[across_face[int(e)][1]] for e in nearest_edge]
         for i, row in enumerate(new_rows.tolist()):
             vertex = verts.new(vertices[row].tolist())
-            vertex.copy_from(verts[int(nearest_vertex[i])])
+            vertex.copy_from(nearest_verts[i])
             vertex.co = vertices[row].tolist()
             vertex.hide = False
             vertex.select = True
@@ -477,7 +514,7 @@ def add_fill(obj, data, result):
                 _set_deform(vertex, deform, dict(zip(groups, values[row].tolist(), strict=True)))
             row_vert[row] = vertex
         for f, tri in enumerate(new_faces.tolist()):
-            source = bm_faces[across_face[int(nearest_edge[f])][1]]
+            source = source_faces[f]
             face = bm_faces.new([row_vert[row] for row in tri])
             face.copy_from(source)
             face.hide = False
