@@ -208,53 +208,6 @@ def flipped_uv_triangles(new_corner_uvs, old_corner_uvs):
 # -- holes ---------------------------------------------------------------------------------------
 
 
-def mesh_boundary_loops(triangles, n):
-    """The mesh's boundary loops (holes and open borders): lists of vertex rows along edges with one triangle.
-
-    Each loop runs along its triangles' edges (the direction of the faces around it). A vertex
-    where two loops touch makes the split ambiguous; the library checks such loops.
-    """
-    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    heads = triangles.ravel()
-    tails = triangles[:, [1, 2, 0]].ravel()
-    outline = ~np.isin(tails * n + heads, heads * n + tails)
-    successors = {}
-    for head, tail in zip(heads[outline].tolist(), tails[outline].tolist(), strict=True):
-        successors.setdefault(head, []).append(tail)
-    loops = []
-    while successors:
-        start = next(iter(successors))
-        loop = [start]
-        vertex = _pop(successors, start)
-        while vertex != start:
-            loop.append(vertex)
-            if vertex not in successors:  # an open chain: non-manifold or misoriented faces
-                break
-            vertex = _pop(successors, vertex)
-        loops.append(np.array(loop, dtype=np.int64))
-    return loops
-
-
-def _pop(successors, vertex):
-    following = successors[vertex]
-    tail = following.pop()
-    if not following:
-        del successors[vertex]
-    return tail
-
-
-def selected_loops(loops, selected_edge_keys, n):
-    """The loops all of whose edges are selected (``selected_edge_keys``: min * n + max of selected edges)."""
-    selected = np.asarray(selected_edge_keys, dtype=np.int64)
-    chosen = []
-    for loop in loops:
-        following = np.roll(loop, -1)
-        keys = np.minimum(loop, following) * n + np.maximum(loop, following)
-        if np.isin(keys, selected).all():
-            chosen.append(loop)
-    return chosen
-
-
 def boundary_corner_values(triangles, corner_values, loop, n, tolerance=SAME_VALUE):
     """The values of a hole's boundary vertices from the faces around it, and whether they are continuous.
 
@@ -360,7 +313,8 @@ def harmonic_fill(vertices, faces, known, known_values, iterations=2000, toleran
     to_a = (a >= 0) & (b < 0)
     to_b = (b >= 0) & (a < 0)
     for column in range(values.shape[1]):
-        rhs = np.bincount(a[to_a], weights=weights[to_a] * values[edges[to_a, 1], column], minlength=m)
+        rhs = np.zeros(m)
+        rhs += np.bincount(a[to_a], weights=weights[to_a] * values[edges[to_a, 1], column], minlength=m)
         rhs += np.bincount(b[to_b], weights=weights[to_b] * values[edges[to_b, 0], column], minlength=m)
         x = np.full(m, rhs.sum() / max(diagonal.sum(), 1e-300))
         r = rhs - apply(x)

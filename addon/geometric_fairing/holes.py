@@ -21,46 +21,6 @@ from . import carry, fairing, mesh_edit, mesh_io, native, properties, region
 # The panel's options Fill Holes uses (geofair.fill_holes takes fair's options but the region's).
 FILL_OPTION_NAMES = properties.LIBRARY_OPTION_NAMES
 
-NO_HOLE = "'{name}' has no hole: every edge has two faces"
-NO_HOLE_SELECTED = (
-    "No hole is selected: select the whole boundary loop of each hole to fill (Alt+click one of its edges), "
-    "or deselect everything to fill every hole"
-)
-OPEN_LOOP_SELECTED = (
-    "The selected boundary edges close no hole: select the whole boundary loop of a hole (Alt+click one of its edges)"
-)
-
-
-def choose_loops(loops, n, selected_edges, any_selected, all_holes=False):
-    """The holes to fill among the mesh's boundary ``loops`` (no bpy).
-
-    Args:
-        loops: the mesh's boundary loops (:func:`carry.mesh_boundary_loops`).
-        n: number of vertices.
-        selected_edges: ``(E, 2)`` vertex pairs of the selected edges.
-        any_selected: whether anything at all is selected in the mesh.
-        all_holes: every hole, whatever is selected.
-
-    Raises:
-        region.NothingSelectedError: nothing to fill.
-        region.RegionError: selected boundary edges that close no loop.
-    """
-    if not loops:
-        raise region.NothingSelectedError(NO_HOLE)
-    if all_holes or not any_selected:
-        return list(loops)
-    edges = np.asarray(selected_edges, dtype=np.int64).reshape(-1, 2)
-    keys = np.minimum(edges[:, 0], edges[:, 1]) * n + np.maximum(edges[:, 0], edges[:, 1])
-    chosen = carry.selected_loops(loops, keys, n)
-    if chosen:
-        return chosen
-    on_boundary = np.concatenate(
-        [np.minimum(loop, np.roll(loop, -1)) * n + np.maximum(loop, np.roll(loop, -1)) for loop in loops]
-    )
-    if np.isin(keys, on_boundary).any():
-        raise region.RegionError(OPEN_LOOP_SELECTED)
-    raise region.NothingSelectedError(NO_HOLE_SELECTED)
-
 
 class FillRun(fairing.FairingRun):
     """Filling the holes of the mesh of ``obj`` (Edit Mode or Object Mode).
@@ -102,13 +62,8 @@ class FillRun(fairing.FairingRun):
         self.timings["read"] = time.perf_counter() - clock
         n = len(mesh.vertices)
         edges = mesh_io.edge_selection(obj)
-        loops = carry.mesh_boundary_loops(mesh.triangles, n)
-        try:
-            self.loops = choose_loops(loops, n, edges, bool(mesh.vertex_selected.any()), all_holes)
-        except region.NothingSelectedError as error:
-            if str(error) == NO_HOLE:
-                raise region.NothingSelectedError(NO_HOLE.format(name=obj.name)) from None
-            raise
+        loops = region.mesh_holes(mesh.triangles, n)
+        self.loops = region.choose_holes(loops, n, edges, bool(mesh.vertex_selected.any()), all_holes, obj.name)
         # What the shared progress and status read: the boundary vertices stand for the region.
         self.region = types.SimpleNamespace(free=np.zeros(sum(len(loop) for loop in self.loops), dtype=bool))
         self.iteration = 0
