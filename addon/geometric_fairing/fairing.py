@@ -219,7 +219,7 @@ def short_number(x):
 CONFORMAL_HINT = "Conformal inner fairness converges on more meshes."
 KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
 REMESH_HINT = "Remesh 'If Needed' may help (it changes the triangles)."
-REMESH_SCRIPT_HINT = "remesh='if_needed' may help (it changes the triangles)."
+REMESH_SCRIPT_HINT = "Passing remesh='if_needed' may help (it changes the triangles)."
 
 
 def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT, remesh="off", remesh_hint=REMESH_SCRIPT_HINT):
@@ -296,6 +296,8 @@ class FairingRun(_WorkerThread):
             vertex group, a wrong mask.
         RuntimeError: the compiled module cannot be loaded.
     """
+
+    remesh_hint = REMESH_SCRIPT_HINT  # added to a solver failure with Remesh off (the operator's: REMESH_HINT)
 
     def __init__(self, obj, options, faces=None, progress=None):
         if native.geofair is None:
@@ -416,7 +418,7 @@ class FairingRun(_WorkerThread):
         cancelled = self._cancel.is_set()  # even if it converged meanwhile: the user asked for the mesh as it was
         if self.error is not None and not cancelled:
             if type(self.error) is RuntimeError and self.options.remesh == "off":
-                raise SolverFailedError(f"{self.error} {REMESH_HINT}") from self.error
+                raise SolverFailedError(f"{self.error} {self.remesh_hint}") from self.error
             raise self.error
         result = self.result
         uv_after = None

@@ -90,6 +90,32 @@ def editable_bmesh(obj):
         bm.free()
 
 
+# The attribute layers copied from the nearest old element (by name on BMesh's layer access; the ones a
+# Blender version lacks are skipped). Not BMElem.copy_from: in Blender 4.x it also copies the element's
+# Python reference and leaves the new element's Python object invalid.
+VERTEX_KINDS = ("bevel_weight", "crease", "paint_mask", "skin", "float", "int", "bool", "float_vector", "string")
+FACE_KINDS = ("face_map", "float", "int", "bool", "float_vector", "string", "color", "float_color")
+LOOP_KINDS = ("float", "int", "bool", "float_vector", "string", "color", "float_color")
+
+
+def _layers(access, kinds):
+    layers = []
+    for kind in kinds:
+        collection = getattr(access, kind, None)
+        if collection is not None:
+            layers += collection.values()
+    return layers
+
+
+def _copy_layers(destination, source, layers):
+    """Copy the values of ``layers`` from element ``source`` to ``destination`` (skipping any that refuse)."""
+    for layer in layers:
+        try:
+            destination[layer] = source[layer]
+        except (TypeError, ValueError, AttributeError):
+            pass
+
+
 def _restore(bm, snapshot):
     """Put the contents of ``snapshot`` back into ``bm`` (through a temporary mesh data-block)."""
     import bpy
@@ -287,7 +313,7 @@ def replace_region(obj, data, input_index, old_free, result):
             else:  # all three fixed: the polygon of a region triangle at its first vertex
                 origin_polygon[f] = fixed_loop[tri[0]].face.index if tri[0] in fixed_loop else int(touched[0])
         if obj.data.has_custom_normals:
-            written.notes.append("custom split normals of the new faces are copied from the nearest old corner")
+            written.notes.append("custom split normals are not carried over to the new faces")
         old_seams = sum(
             1
             for polygon in touched.tolist()
@@ -309,13 +335,14 @@ def replace_region(obj, data, input_index, old_free, result):
         old_edges = {edge for face in touched_faces for edge in face.edges}
 
         # -- write ------------------------------------------------------------------------------
+        vertex_layers = _layers(bm.verts.layers, VERTEX_KINDS)
+        face_layers = _layers(bm.faces.layers, FACE_KINDS)
+        loop_layers = _layers(bm.loops.layers, LOOP_KINDS)
         for row in used_free.tolist():
             vertex = verts.new(vertices[row].tolist())
             source = nearest_corner[row].vert
-            vertex.copy_from(source)
-            vertex.co = vertices[row].tolist()
+            _copy_layers(vertex, source, vertex_layers)
             vertex.select = source.select
-            vertex.hide = False
             row_vert[row] = vertex
             if row in point_values:
                 colours, weights = point_values[row]
@@ -328,23 +355,26 @@ def replace_region(obj, data, input_index, old_free, result):
         for f, tri in enumerate(new_faces.tolist()):
             source = source_faces[f]
             face = bm_faces.new([row_vert[row] for row in tri])
-            face.copy_from(source)
+            _copy_layers(face, source, face_layers)
+            face.material_index, face.smooth = source.material_index, source.smooth
             face.select = source.select
-            face.hide = False
             for k, loop in enumerate(face.loops):
                 row = tri[k]
                 old = nearest_corner.get(row) if new_free[row] else fixed_loop.get(row)
                 if old is not None:
-                    loop.copy_from(old)
+                    _copy_layers(loop, old, loop_layers)
                 for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
                     _set_loop_value(loop, kind, layer, tuple(values[f, k]))
             created.append(face)
         for polygon, corners in leftover_sources:
             face = bm_faces.new([loop.vert for loop in corners])
-            face.copy_from(polygon)
+            _copy_layers(face, polygon, face_layers)
+            face.material_index, face.smooth = polygon.material_index, polygon.smooth
             face.select = polygon.select
             for loop, old in zip(face.loops, corners, strict=True):
-                loop.copy_from(old)
+                _copy_layers(loop, old, loop_layers)
+                for kind, _, layer, _ in corner_layers:
+                    _set_loop_value(loop, kind, layer, _loop_value(old, kind, layer))
             created.append(face)
         for polygon in touched_faces:
             bm_faces.remove(polygon)
@@ -498,14 +528,15 @@ def add_fill(obj, data, result):
         nearest_edge = np.argmin(np.linalg.norm(centres[:, None] - midpoints[None], axis=2), axis=1)
 
         # Every element the write reads, before the first change (the index tables go stale).
+        vertex_layers = _layers(bm.verts.layers, VERTEX_KINDS)
+        face_layers = _layers(bm.faces.layers, FACE_KINDS)
+        loop_layers = _layers(bm.loops.layers, LOOP_KINDS)
         row_vert = {int(v): verts[int(v)] for v in boundary_rows}
         nearest_verts = [verts[int(v)] for v in nearest_vertex]
         source_faces = [bm_faces[across_face[int(e)][1]] for e in nearest_edge]
         for i, row in enumerate(new_rows.tolist()):
             vertex = verts.new(vertices[row].tolist())
-            vertex.copy_from(nearest_verts[i])
-            vertex.co = vertices[row].tolist()
-            vertex.hide = False
+            _copy_layers(vertex, nearest_verts[i], vertex_layers)
             vertex.select = True
             for j, layer in enumerate(point_colours):
                 vertex[layer] = tuple(point_filled[j][row])
@@ -516,17 +547,17 @@ def add_fill(obj, data, result):
         for f, tri in enumerate(new_faces.tolist()):
             source = source_faces[f]
             face = bm_faces.new([row_vert[row] for row in tri])
-            face.copy_from(source)
-            face.hide = False
+            _copy_layers(face, source, face_layers)
+            face.material_index, face.smooth = source.material_index, source.smooth
             face.select = True
             source_loop = source.loops[0]
             for c, loop in enumerate(face.loops):
                 row = tri[c]
-                loop.copy_from(boundary_loops[row][0] if row in boundary_loops else source_loop)
+                _copy_layers(loop, boundary_loops[row][0] if row in boundary_loops else source_loop, loop_layers)
                 for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
                     _set_loop_value(loop, kind, layer, tuple(values[f, c]))
         if obj.data.has_custom_normals:
-            written.notes.append("custom split normals of the new faces are copied from the faces around the hole")
+            written.notes.append("custom split normals are not carried over to the new faces")
         bm.select_flush(True)
         written.triangles_added = len(new_faces)
         written.vertices_added = k

@@ -278,7 +278,9 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
         return fairing.FairingOptions(**option_values(self), keep_unconverged=self.keep_unconverged)
 
     def make_run(self, obj, options):
-        return fairing.FairingRun(obj, options)
+        run = fairing.FairingRun(obj, options)
+        run.remesh_hint = fairing.REMESH_HINT
+        return run
 
     def status_text(self, run):
         return f"{int(run.region.free.sum())} vertices"
