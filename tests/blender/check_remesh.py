@@ -21,6 +21,7 @@ splits and fans), for working on the add-on before the library has them; the geo
 
 import collections
 import sys
+import types
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
@@ -199,6 +200,110 @@ def check_remesh_suzanne(addon, mode):
     bpy.data.objects.remove(obj)
 
 
+class CorruptingModule:
+    """Stands in for the loaded ``geofair`` module: ``fair`` and ``fill_holes`` are the given module's, their
+    results changed by ``corrupt(result)`` (a copy with the fields the add-on reads)."""
+
+    def __init__(self, real, corrupt):
+        self.real, self.corrupt = real, corrupt
+
+    def fair(self, *args, **kwargs):
+        return self.corrupt(_copy(self.real.fair(*args, **kwargs)))
+
+    def fill_holes(self, *args, **kwargs):
+        return self.corrupt(_copy(self.real.fill_holes(*args, **kwargs)))
+
+    def __getattr__(self, name):
+        return getattr(self.real, name)
+
+
+FIELDS = (
+    "vertices faces free remeshed unreferenced origin_face origin_barycentric converged iterations residual "
+    "iterations_per_level vertices_per_level iteration folds new_folds message stop_reason"
+).split()
+
+
+def _copy(result):
+    return types.SimpleNamespace(
+        **{name: np.array(getattr(result, name)) if name in FIELDS[:7] else getattr(result, name) for name in FIELDS}
+    )
+
+
+def nan_at_new_vertex(result):
+    result.vertices[np.flatnonzero(result.free)[-1]] = np.nan
+    return result
+
+
+def origin_out_of_range(result):
+    result.origin_face[np.flatnonzero(result.free)[-1]] = 10**7
+    return result
+
+
+def lost_outside_triangle(result):
+    result.faces = result.faces[1:]
+    return result
+
+
+def fill_with_nan(result):
+    result.vertices[-1] = np.nan
+    return result
+
+
+def check_bad_results(addon):
+    """Results that do not fit the mesh (NaN, a wrong origin, a lost triangle): CANCELLED, mesh untouched."""
+    obj = add_subdivided_suzanne()
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    co = np.array([v.co[:] for v in bm.verts])
+    ear = co[np.argmax(co[:, 0])] - [0.15, 0.0, 0.0]
+    select_face_mask(obj, [np.linalg.norm(np.array(f.calc_center_median()[:]) - ear) < 0.2 for f in bm.faces])
+    before = edit_state(obj)
+    real = addon.native.geofair
+    cases = (
+        (nan_at_new_vertex, "invalid positions"),
+        (origin_out_of_range, "without a valid origin"),
+        (lost_outside_triangle, "lost triangles outside the region"),
+    )
+    for corrupt, expected in cases:
+        addon.native.geofair = CorruptingModule(real, corrupt)
+        try:
+            result, error = run(bpy.ops.mesh.geometric_fairing, remesh="always", keep_unconverged=True)
+        finally:
+            addon.native.geofair = real
+        assert result == {"CANCELLED"} and expected in error and "mesh unchanged" in error, error
+        assert edit_state(obj) == before, f"{corrupt.__name__}: the mesh changed"
+        print(f"ok: a remeshed result with {corrupt.__name__.replace('_', ' ')}: {error}; mesh unchanged")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+    obj, _ = sphere_with_hole("Holed sphere (bad fill)", np.array([0.0, -1.0, 0.2]))
+    before = edit_state(obj)
+    addon.native.geofair = CorruptingModule(real, fill_with_nan)
+    try:
+        result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
+    finally:
+        addon.native.geofair = real
+    assert result == {"CANCELLED"} and "invalid positions" in error and edit_state(obj) == before, error
+    print(f"ok: a fill with NaN: {error}; mesh unchanged")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+
+def check_remesh_needs_no_shape_keys(addon):
+    obj = add_subdivided_suzanne()
+    obj.shape_key_add(name="Basis")
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    select_face_mask(obj, [f.calc_center_median()[0] > 1.0 for f in bm.faces])
+    before = edit_state(obj)
+    result, error = run(bpy.ops.mesh.geometric_fairing, remesh="if_needed")
+    assert result == {"CANCELLED"} and "Remesh needs a mesh without shape keys" in error, error
+    assert edit_state(obj) == before
+    print(f"ok: Remesh with shape keys: {error}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+
 def sphere_with_hole(name, direction):
     """Blender's UV sphere (r = 1, shaded smooth) with the faces within 0.45 of ``direction`` deleted."""
     bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=1.0)
@@ -344,6 +449,8 @@ def main():
         addon.native.geofair = RemeshingModule(addon.native.geofair)
     assert addon.operators.MESH_OT_geometric_fairing_fill_holes.bl_idname == "mesh.geometric_fairing_fill_holes"
     check_fill_errors(addon)
+    check_bad_results(addon)
+    check_remesh_needs_no_shape_keys(addon)
     check_remesh_suzanne(addon, "always")
     check_remesh_suzanne(addon, "if_needed")
     check_fill_sphere(addon)
