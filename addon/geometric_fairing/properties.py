@@ -432,6 +432,8 @@ RUN_FIGURES = (
     RunFigure("seconds", "Time", float, "Wall time of the solves, seconds", sum, "{:.2f} s".format),
     RunFigure("folds", "Folded edges", int, "Edges of the free region whose two triangles face apart after the run "
               "(triangles flipped over)", sum, shown=bool),
+    RunFigure("triangles_added", "New triangles", int, "Triangles the remesh or the fill created (the old region's "
+              "faces replaced, or the holes filled)", sum, shown=bool),
     RunFigure("iteration", "Solver", str, "The solver that produced the result: newton or paper (empty: none)",
               _solvers, str.title, bool),
 )

@@ -196,7 +196,18 @@ def check_remesh_suzanne(addon, mode):
     bpy.ops.ed.undo()
     assert edit_state(obj) == before_state, "undo did not restore the mesh"
     print(f"ok: Remesh {mode}: undo restored the mesh exactly")
+
+    # From a script, in Object Mode: the same faces outside the region.
     bpy.ops.object.mode_set(mode="OBJECT")
+    report = addon.fair_object(obj, inner_fairness="conformal", remesh=mode, keep_unconverged=STAND_IN)
+    assert report.converged or STAND_IN, report.summary()
+    assert report.remeshed or mode == "if_needed", report.summary()
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    assert face_records(bm, selected=False) == outside, "fair_object changed faces outside the region"
+    assert open_edges(bm) == open_before
+    bm.free()
+    print(f"ok: fair_object(remesh={mode!r}) in Object Mode: {report.summary()}")
     bpy.data.objects.remove(obj)
 
 
