@@ -26,18 +26,19 @@ class CarryError(ValueError):
     """The library's result does not fit the mesh it was computed for."""
 
 
-def edge_keys(triangles, n):
-    """``(3T,)`` int64 keys of the undirected edges of ``triangles`` (min * n + max), corner order 01, 12, 20."""
-    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    a = triangles.ravel()
-    b = triangles[:, [1, 2, 0]].ravel()
-    return np.minimum(a, b) * n + np.maximum(a, b)
+def face_keys(*triangle_arrays):
+    """Ids of triangles as vertex sets (the sorted rows), equal exactly for equal sets, across the arrays.
 
-
-def face_keys(triangles, n):
-    """``(T,)`` int64 keys of triangles as vertex sets (the sorted rows), for matching faces."""
-    s = np.sort(np.asarray(triangles, dtype=np.int64).reshape(-1, 3), axis=1)
-    return (s[:, 0] * n + s[:, 1]) * n + s[:, 2]
+    Returns one ``(T_i,)`` int64 array per argument (any number of vertices: no packing that could
+    overflow).
+    """
+    arrays = [np.sort(np.asarray(t, dtype=np.int64).reshape(-1, 3), axis=1) for t in triangle_arrays]
+    rows = np.concatenate(arrays) if arrays else np.zeros((0, 3), dtype=np.int64)
+    if len(rows) == 0:
+        return [np.zeros(0, dtype=np.int64) for _ in arrays]
+    _, inverse = np.unique(rows, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    return np.split(inverse, np.cumsum([len(a) for a in arrays])[:-1])
 
 
 def corner_faces(loop_start, loop_total, corners):
@@ -67,10 +68,8 @@ def new_region_faces(input_triangles, free, result_faces):
     input_triangles = np.asarray(input_triangles, dtype=np.int64).reshape(-1, 3)
     result_faces = np.asarray(result_faces, dtype=np.int64).reshape(-1, 3)
     free = np.asarray(free, dtype=bool)
-    n = int(max(len(free), result_faces.max(initial=-1) + 1, input_triangles.max(initial=-1) + 1))
     outside = input_triangles[~free[input_triangles].any(axis=1)]
-    outside_keys = face_keys(outside, n)
-    result_keys = face_keys(result_faces, n)
+    outside_keys, result_keys = face_keys(outside, result_faces)
     kept = np.isin(result_keys, outside_keys)
     if np.count_nonzero(kept) != len(outside) or not np.isin(outside_keys, result_keys).all():
         raise CarryError("the remeshed result lost triangles outside the region; mesh unchanged")

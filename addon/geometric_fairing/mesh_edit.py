@@ -230,12 +230,10 @@ def replace_region(obj, data, input_index, old_free, result):
     leftover = np.flatnonzero(touched_mask[data.triangle_face] & ~old_free[data.triangles].any(axis=1))
     # No new face may repeat a face that stays.
     staying_tris = ~touched_mask[data.triangle_face] & (data.loop_total[data.triangle_face] == 3)
-    size = len(vertices)
-    new_keys = carry.face_keys(np.concatenate([new_faces, data.triangles[leftover]]), size)
-    if (
-        len(np.unique(new_keys)) != len(new_keys)
-        or np.isin(new_keys, carry.face_keys(data.triangles[staying_tris], size)).any()
-    ):
+    new_keys, staying_keys = carry.face_keys(
+        np.concatenate([new_faces, data.triangles[leftover]]), data.triangles[staying_tris]
+    )
+    if len(np.unique(new_keys)) != len(new_keys) or np.isin(new_keys, staying_keys).any():
         raise carry.CarryError("the remeshed faces repeat a face of the mesh; mesh unchanged")
     free_rows = np.flatnonzero(new_free)
     used_free = free_rows[np.isin(free_rows, used)]
@@ -427,9 +425,9 @@ def add_fill(obj, data, result):
     if np.any(np.diff(np.sort(new_faces, axis=1), axis=1) == 0):
         raise carry.CarryError("the solver returned degenerate faces; mesh unchanged")
     size = len(vertices)
-    keys = carry.face_keys(new_faces, size)
     tri_polygons = data.loop_total[data.triangle_face] == 3
-    if len(np.unique(keys)) != len(keys) or np.isin(keys, carry.face_keys(data.triangles[tri_polygons], size)).any():
+    keys, existing = carry.face_keys(new_faces, data.triangles[tri_polygons])
+    if len(np.unique(keys)) != len(keys) or np.isin(keys, existing).any():
         raise carry.CarryError("the new faces repeat a face of the mesh; mesh unchanged")
     k = len(vertices) - n
     boundary_rows = np.unique(new_faces[new_faces < n])
