@@ -14,9 +14,10 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/bl
 - Fill Holes errors: a closed mesh ("has no hole"), selected boundary edges that close no hole, a
   selection without boundary edges: CANCELLED with the message, the mesh byte-identical.
 
-``--stand-in``: the library's remesh and fill replaced by geofair_dev.fake_library's (centroid
-splits and fans), for working on the add-on before the library has them; the geometric checks
-(sphere distance, convergence) are then only printed.
+``--fill`` / ``--remesh``: only those checks (default: both). ``--stand-in``: the library's
+remesh and fill replaced by geofair_dev.fake_library's (centroid splits and fans), for working
+on the add-on before the library has them; the geometric checks (sphere distance, convergence)
+are then only printed.
 """
 
 import collections
@@ -235,9 +236,11 @@ FIELDS = (
 
 
 def _copy(result):
-    return types.SimpleNamespace(
-        **{name: np.array(getattr(result, name)) if name in FIELDS[:7] else getattr(result, name) for name in FIELDS}
-    )
+    values = {name: getattr(result, name, None) for name in FIELDS}
+    for name in FIELDS[:7]:
+        if values[name] is not None:
+            values[name] = np.array(values[name])
+    return types.SimpleNamespace(**values)
 
 
 def nan_at_new_vertex(result):
@@ -287,6 +290,10 @@ def check_bad_results(addon):
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
 
+
+def check_bad_fill(addon):
+    """A fill that does not fit the mesh (NaN): CANCELLED, mesh untouched."""
+    real = addon.native.geofair
     obj, _ = sphere_with_hole("Holed sphere (bad fill)", np.array([0.0, -1.0, 0.2]))
     before = edit_state(obj)
     addon.native.geofair = CorruptingModule(real, fill_with_nan)
@@ -459,14 +466,19 @@ def main():
     if STAND_IN:
         addon.native.geofair = RemeshingModule(addon.native.geofair)
     assert addon.operators.MESH_OT_geometric_fairing_fill_holes.bl_idname == "mesh.geometric_fairing_fill_holes"
-    check_fill_errors(addon)
-    check_bad_results(addon)
-    check_remesh_needs_no_shape_keys(addon)
-    check_remesh_suzanne(addon, "always")
-    check_remesh_suzanne(addon, "if_needed")
-    check_fill_sphere(addon)
+    parts = {"--fill", "--remesh"} & flags or {"--fill", "--remesh"}
+    if "--fill" in parts:
+        check_fill_errors(addon)
+        check_fill_sphere(addon)
+        check_bad_fill(addon)
+    if "--remesh" in parts:
+        check_bad_results(addon)
+        check_remesh_needs_no_shape_keys(addon)
+        check_remesh_suzanne(addon, "always")
+        check_remesh_suzanne(addon, "if_needed")
     disable_addon()
-    print("check_remesh: all checks passed" + (" (stand-in library)" if STAND_IN else ""))
+    which = " and ".join(sorted(part.strip("-") for part in parts))
+    print(f"check_remesh ({which}): all checks passed" + (" (stand-in library)" if STAND_IN else ""))
 
 
 main()
