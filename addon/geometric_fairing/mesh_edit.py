@@ -281,7 +281,8 @@ def replace_region(obj, data, input_index, old_free, result):
             if split:
                 what = f"UV map '{name}'" if kind == "uv" else f"colour attribute '{name}'"
                 written.notes.append(
-                    f"{what} has a seam across the region ({split} vertices): the new faces interpolate across it"
+                    f"{what} has a seam across the region ({split} {'vertex' if split == 1 else 'vertices'}): "
+                    "the new faces interpolate across it"
                 )
             if kind == "uv" and name == active_uv_name:
                 written.metric_uvs = interpolated
@@ -491,7 +492,8 @@ def add_fill(obj, data, result):
             if jumps:
                 what = f"UV map '{name}'" if kind == "uv" else f"colour attribute '{name}'"
                 written.notes.append(
-                    f"{what} is not continuous around the hole ({jumps} boundary vertices on a seam): "
+                    f"{what} is not continuous around the hole ({jumps} boundary "
+                    f"{'vertex' if jumps == 1 else 'vertices'} on a seam): "
                     "the fill's values are interpolated from one side"
                 )
             if kind == "uv" and name == active_uv_name:

@@ -415,6 +415,23 @@ def check_fill_sphere(addon):
     print(f"ok: fill_holes from a script (Object Mode): {report.summary()}")
     bpy.data.objects.remove(obj)
 
+    # A cap around the pole: the UV map's seam meets the hole, and the report says so.
+    obj, deleted = sphere_with_hole("Sphere without its cap", np.array([0.0, 0.0, 1.0]))
+    bm = bmesh.from_edit_mesh(obj.data)
+    n0 = len(bm.verts)
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes)
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert result == {"FINISHED"} and last.status == "CONVERGED", (error, last.message)
+    bm = bmesh.from_edit_mesh(obj.data)
+    new_verts = [v for v in bm.verts if v.link_faces and all(f.select for f in v.link_faces)]
+    distance = max(abs(v.co.length - 1.0) for v in new_verts)
+    assert STAND_IN or distance < 2e-3, distance
+    assert open_edges(bm) == 0 and len(bm.verts) == n0 + len(new_verts)
+    assert "UV map 'UVMap' is not continuous around the hole" in last.message, last.message
+    print(f"ok: the polar cap ({deleted} faces) filled, max |‖p‖ − r|/r {distance:.2e}; the seam named: {last.message}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
 
 def check_fill_errors(addon):
     bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, location=(4, 0, 0))
