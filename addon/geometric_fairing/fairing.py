@@ -461,7 +461,7 @@ class FairingRun(_WorkerThread):
             self.timings["uv"] += time.perf_counter() - clock
         return FairingReport(
             object_name=self.object_name,
-            free_vertices=int(np.count_nonzero(self.region.free)),
+            free_vertices=int(np.count_nonzero(result.free if remeshed else self.region.free)),
             pinned_vertices=int(np.count_nonzero(self.region.pinned)),
             border_fixed_vertices=int(np.count_nonzero(self.region.border_fixed)),
             hidden_fixed_vertices=int(np.count_nonzero(self.region.hidden_fixed)),

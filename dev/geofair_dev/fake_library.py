@@ -101,9 +101,39 @@ def fan_fill(vertices, faces, loops):
     )
 
 
+def remesh_then_fair(real, vertices, faces, free, boundary_normals=None, **options):
+    """``fair(remesh=True)`` composed of the library's own steps: ``remesh_region``, then ``fair`` on its
+    triangles (boundary normals carried to the new rows, polygon ids dropped)."""
+    options.pop("polygon_ids", None)
+    region = real.remesh_region(vertices, faces, free)
+    normals = None
+    if boundary_normals is not None:
+        normals = np.zeros((len(region.vertices), 3))
+        normals[: len(boundary_normals)] = boundary_normals
+        normals[np.asarray(region.free)] = 0.0
+    result = real.fair(region.vertices, region.faces, region.free, boundary_normals=normals, **options)
+    fields = {
+        name: getattr(result, name)
+        for name in (
+            "converged iterations residual iterations_per_level vertices_per_level iteration folds new_folds "
+            "message stop_reason"
+        ).split()
+    }
+    return _result(
+        result.vertices,
+        region.faces,
+        region.free,
+        unreferenced=np.asarray(region.unreferenced),
+        origin_face=np.asarray(region.origin_face),
+        origin_barycentric=np.asarray(region.origin_barycentric),
+        **fields,
+    )
+
+
 class RemeshingModule:
-    """Stands in for the loaded ``geofair`` module: ``fair`` with ``remesh`` True or "if_needed" fairs with the
-    real one and splits the region as :func:`centroid_remesh`; ``fill_holes`` is :func:`fan_fill`."""
+    """Stands in for the loaded ``geofair`` module: ``fair`` with ``remesh`` True or "if_needed" remeshes
+    with the library's ``remesh_region`` where it has one (:func:`remesh_then_fair`), else fairs with the real
+    one and splits the region as :func:`centroid_remesh`; ``fill_holes`` is :func:`fan_fill`."""
 
     def __init__(self, real):
         self.real = real
@@ -111,11 +141,16 @@ class RemeshingModule:
 
     def fair(self, vertices, faces, free, *, remesh=False, **options):
         self.calls.append(("fair", remesh))
-        result = self.real.fair(vertices, faces, free, **options)
-        if remesh is False:
-            return result
-        faired = np.asarray(result.vertices)
-        return centroid_remesh(vertices, faces, free, faired)
+        if remesh is False or not hasattr(self.real, "remesh_region"):
+            result = self.real.fair(vertices, faces, free, **options)
+            if remesh is False or (remesh == "if_needed" and result.converged and not result.new_folds):
+                return result
+            return centroid_remesh(vertices, faces, free, np.asarray(result.vertices))
+        if remesh == "if_needed":
+            result = self.real.fair(vertices, faces, free, **options)
+            if result.converged and not result.new_folds:
+                return result
+        return remesh_then_fair(self.real, vertices, faces, free, **options)
 
     def fill_holes(self, vertices, faces, loops=None, **options):
         self.calls.append(("fill_holes", loops))

@@ -136,7 +136,7 @@ def select_face_mask(obj, mask):
     bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
 
 
-def check_remesh_suzanne(addon, mode):
+def check_remesh_suzanne(addon, mode, inner_fairness):
     """Remesh on Suzanne's ear: converged, no UV flip in the region, everything outside it byte-identical."""
     obj = add_subdivided_suzanne()
     decorate(obj)
@@ -148,10 +148,10 @@ def check_remesh_suzanne(addon, mode):
     co = np.array([v.co[:] for v in bm.verts])
     ear = co[np.argmax(co[:, 0])] - [0.15, 0.0, 0.0]
     centres = np.array([f.calc_center_median()[:] for f in bm.faces])
-    near = np.linalg.norm(centres - ear, axis=1) < 0.3
+    near = np.linalg.norm(centres - ear, axis=1) < 0.2
     clear_of_seams = np.array([not any(v.index in seam for v in f.verts) for f in bm.faces])
     region = near & clear_of_seams
-    assert region.sum() > 100, region.sum()
+    assert region.sum() > 200, region.sum()
     select_face_mask(obj, region)
     bpy.ops.ed.undo_push(message=f"selected the ear ({mode})")
     bm = bmesh.from_edit_mesh(obj.data)
@@ -164,7 +164,7 @@ def check_remesh_suzanne(addon, mode):
     assert len(set(around_signs.tolist())) == 1, "the faces around the region have UV areas of both signs"
     faces_before = len(bm.faces)
 
-    result, error = run(bpy.ops.mesh.geometric_fairing, inner_fairness="conformal", remesh=mode)
+    result, error = run(bpy.ops.mesh.geometric_fairing, inner_fairness=inner_fairness, remesh=mode)
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert result == {"FINISHED"}, error
     assert last.status == "CONVERGED" or STAND_IN, (last.status, last.message)
@@ -190,7 +190,8 @@ def check_remesh_suzanne(addon, mode):
     assert np.isfinite(values).all() and np.isfinite([v.co[:] for f in new for v in f.verts]).all()
     assert 0.0 < min(weights) and max(weights) <= 1.0, (min(weights), max(weights))
     print(
-        f"ok: Remesh {mode}: {'remeshed' if remeshed else 'kept the triangles'}, {faces_before} -> {len(bm.faces)} "
+        f"ok: Remesh {mode} ({inner_fairness}): {'remeshed' if remeshed else 'kept the triangles'}, "
+        f"{faces_before} -> {len(bm.faces)} "
         f"faces, {len(new)} in the region, 0 flipped in the UV map (of {len(around)} faces around, all one sign); "
         f"{sum(outside.values())} faces outside byte-identical: {last.message}"
     )
@@ -200,7 +201,7 @@ def check_remesh_suzanne(addon, mode):
 
     # From a script, in Object Mode: the same faces outside the region.
     bpy.ops.object.mode_set(mode="OBJECT")
-    report = addon.fair_object(obj, inner_fairness="conformal", remesh=mode, keep_unconverged=STAND_IN)
+    report = addon.fair_object(obj, inner_fairness=inner_fairness, remesh=mode, keep_unconverged=STAND_IN)
     assert report.converged or STAND_IN, report.summary()
     assert report.remeshed or mode == "if_needed", report.summary()
     bm = bmesh.new()
@@ -491,8 +492,9 @@ def main():
     if "--remesh" in parts:
         check_bad_results(addon)
         check_remesh_needs_no_shape_keys(addon)
-        check_remesh_suzanne(addon, "always")
-        check_remesh_suzanne(addon, "if_needed")
+        check_remesh_suzanne(addon, "always", "conformal")
+        # Uniform inner fairness folds a few triangles of the ear with its own triangles: If Needed remeshes.
+        check_remesh_suzanne(addon, "if_needed", "uniform")
     disable_addon()
     which = " and ".join(sorted(part.strip("-") for part in parts))
     print(f"check_remesh ({which}): all checks passed" + (" (stand-in library)" if STAND_IN else ""))
