@@ -308,6 +308,47 @@ def check_bad_fill(addon):
     bpy.data.objects.remove(obj)
 
 
+def check_remesh_names_what_it_cannot_carry(addon):
+    """A UV seam across the remeshed region and custom split normals are named in the report (a warning)."""
+    obj = add_subdivided_suzanne()
+    mesh = obj.data
+    if bpy.app.version < (4, 1, 0):
+        mesh.use_auto_smooth = True
+    mesh.polygons.foreach_set("use_smooth", np.ones(len(mesh.polygons), dtype=bool))
+    mesh.normals_split_custom_set([(0.0, 0.0, 1.0)] * len(mesh.loops))
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    seam = uv_seam_vertices(bm, bm.loops.layers.uv.active)
+    bm.verts.ensure_lookup_table()
+    # Faces around a vertex on the UV map's seam, behind the ear.
+    co = np.array([v.co[:] for v in bm.verts])
+    tip = co[np.argmax(co[:, 0])]
+    on_seam = min(seam, key=lambda v: np.linalg.norm(co[v] - tip + [0.3, 0.0, 0.0]))
+    select_face_mask(obj, [np.linalg.norm(np.array(f.calc_center_median()[:]) - co[on_seam]) < 0.15 for f in bm.faces])
+    result, error = run(
+        bpy.ops.mesh.geometric_fairing, inner_fairness="conformal", remesh="always", keep_unconverged=True
+    )
+    message = bpy.context.window_manager.geometric_fairing.last_run.message
+    assert result == {"FINISHED"}, error
+    assert "UV map 'UVMap' has a seam across the region" in message, message
+    assert "custom split normals are not carried over to the new faces" in message, message
+    print(f"ok: what Remesh cannot carry is named: {message}")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+
+def check_options():
+    """The Remesh option (operator, panel) and the Fill Holes operator's options."""
+    rna = bpy.ops.mesh.geometric_fairing.get_rna_type().properties["remesh"]
+    assert [item.identifier for item in rna.enum_items] == ["off", "if_needed", "always"] and rna.default == "off"
+    assert [item.name for item in rna.enum_items] == ["Off", "If Needed", "Always"]
+    assert bpy.context.scene.geometric_fairing.remesh == "off"
+    fill = bpy.ops.mesh.geometric_fairing_fill_holes.get_rna_type().properties
+    for name in ("inner_fairness", "boundary", "tolerance", "time_limit", "all_holes", "keep_unconverged"):
+        assert name in fill, name
+    print("ok: Remesh (Off, If Needed, Always; default Off) and Fill Holes' options are registered")
+
+
 def check_remesh_needs_no_shape_keys(addon):
     obj = add_subdivided_suzanne()
     obj.shape_key_add(name="Basis")
@@ -485,6 +526,7 @@ def main():
         addon.native.geofair = RemeshingModule(addon.native.geofair)
     assert addon.operators.MESH_OT_geometric_fairing_fill_holes.bl_idname == "mesh.geometric_fairing_fill_holes"
     parts = {"--fill", "--remesh"} & flags or {"--fill", "--remesh"}
+    check_options()
     if "--fill" in parts:
         check_fill_errors(addon)
         check_fill_sphere(addon)
@@ -492,6 +534,7 @@ def main():
     if "--remesh" in parts:
         check_bad_results(addon)
         check_remesh_needs_no_shape_keys(addon)
+        check_remesh_names_what_it_cannot_carry(addon)
         check_remesh_suzanne(addon, "always", "conformal")
         # Uniform inner fairness folds a few triangles of the ear with its own triangles: If Needed remeshes.
         check_remesh_suzanne(addon, "if_needed", "uniform")
