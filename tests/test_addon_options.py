@@ -56,16 +56,11 @@ def test_option_names_are_the_librarys():
     assert "time_limit" in names and geofair.defaults()["time_limit"] is None  # the property's 0
 
 
-def _library_has(keyword):
-    return keyword in geofair.fair.__doc__.splitlines()[0]
-
-
 def test_remesh_items_are_off_if_needed_always():
     assert [identifier for identifier, _, _ in literal("REMESH_ITEMS")] == ["off", "if_needed", "always"]
     assert literal("REMESH_VALUES") == {"off": False, "if_needed": "if_needed", "always": True}
 
 
-@pytest.mark.skipif(not _library_has("remesh"), reason="geofair.fair has no remesh option yet (issue 37 API)")
 def test_remesh_values_are_taken_by_the_library():
     # A fan of 6 triangles around a free centre: every Remesh value solves.
     angles = np.linspace(0.0, 2.0 * np.pi, 7)[:-1]

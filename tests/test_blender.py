@@ -30,7 +30,6 @@ import sys
 
 import pytest
 
-import geofair
 from geofair_dev import paths
 from geofair_dev.paths import BUILD, REPO
 
@@ -102,11 +101,6 @@ def test_fill_holes(variant):
     assert "check_remesh (fill): all checks passed" in output, output
 
 
-# While the branch's library lacks fair's remesh option (issue 37 API), the Remesh checks cannot run.
-@pytest.mark.skipif(
-    "remesh" not in (geofair.fair.__doc__ or "").splitlines()[0],
-    reason="the library lacks geofair.fair(remesh=...) (issue 37 API)",
-)
 @pytest.mark.parametrize("variant", COMMANDS)
 def test_remesh(variant):
     output = _run([*COMMANDS[variant](CHECKS / "check_remesh.py"), "--", str(_built_addon()), "--remesh"])
