@@ -635,7 +635,11 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             ``iteration`` ("auto", "newton" or "paper": the solver), ``time_limit``
             (seconds, or None: automatic); the upper-case values of earlier versions
             ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
-            ``use_hidden`` (False: hidden faces take no part, their vertices never move).
+            ``use_hidden`` (False: hidden faces take no part, their vertices never move),
+            ``remesh`` ("off", the default: only positions change; "if_needed" or "always":
+            the region's triangles may be replaced, with UVs, colours and vertex groups
+            interpolated onto the new ones, see :class:`FairingReport` ``remeshed`` and
+            ``notes``; ``geofair.fair``'s False and True work too).
             Not given: the Fairing panel's settings, which follow the add-on
             preferences. ``keep_unconverged`` (default False): write the result
             even if the solve stops unconverged.

@@ -457,6 +457,37 @@ def check_fill_sphere(addon):
     print(f"ok: fill_holes from a script (Object Mode): {report.summary()}")
     bpy.data.objects.remove(obj)
 
+    # Several objects in Edit Mode, each with a hole: both filled, one undo step; a finer Edge Length.
+    first, _ = sphere_with_hole("Holed sphere A", direction)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    second, _ = sphere_with_hole("Holed sphere B", direction)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    second.location.x += 3
+    for each in (first, second):
+        each.select_set(True)
+    bpy.context.view_layer.objects.active = first
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.ed.undo_push(message="two holed spheres")
+    faces = [len(each.data.polygons) for each in (first, second)]
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.05)
+    assert result == {"FINISHED"}, error
+    filled = []
+    for each in (first, second):
+        each.update_from_editmode()
+        filled.append(len(each.data.polygons))
+    assert all(after > before for after, before in zip(filled, faces, strict=True)), (faces, filled)
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert STAND_IN or filled[0] - faces[0] > 2 * len(new_faces), (filled, faces, len(new_faces))
+    print(f"ok: two objects in Edit Mode filled with Edge Length 0.05: {last.message}")
+    bpy.ops.ed.undo()
+    for each in (first, second):
+        each.update_from_editmode()
+    assert [len(each.data.polygons) for each in (first, second)] == faces, "undo did not restore both holes"
+    print("ok: one undo restored both holes")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    for each in (first, second):
+        bpy.data.objects.remove(each)
+
     # A cap around the pole: the UV map's seam meets the hole, and the report says so.
     obj, deleted = sphere_with_hole("Sphere without its cap", np.array([0.0, 0.0, 1.0]))
     bm = bmesh.from_edit_mesh(obj.data)
