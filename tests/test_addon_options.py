@@ -54,3 +54,20 @@ def test_option_names_are_the_librarys():
     assert set(names) <= set(keywords), set(names) - set(keywords)
     assert set(names) <= set(geofair.defaults()), set(names) - set(geofair.defaults())
     assert "time_limit" in names and geofair.defaults()["time_limit"] is None  # the property's 0
+
+
+def test_remesh_items_are_off_if_needed_always():
+    assert [identifier for identifier, _, _ in literal("REMESH_ITEMS")] == ["off", "if_needed", "always"]
+    assert literal("REMESH_VALUES") == {"off": False, "if_needed": "if_needed", "always": True}
+
+
+def test_remesh_values_are_taken_by_the_library():
+    # A fan of 6 triangles around a free centre: every Remesh value solves.
+    angles = np.linspace(0.0, 2.0 * np.pi, 7)[:-1]
+    vertices = np.vstack([[0.0, 0.0, 0.1], np.stack([np.cos(angles), np.sin(angles), np.zeros(6)], axis=1)])
+    faces = np.array([[0, 1 + i, 1 + (i + 1) % 6] for i in range(6)])
+    free = np.zeros(7, dtype=bool)
+    free[0] = True
+    for value in literal("REMESH_VALUES").values():
+        result = geofair.fair(vertices, faces, free, boundary="g0", remesh=value)
+        assert result.faces.shape[1] == 3 and len(result.free) == len(result.vertices)

@@ -14,6 +14,8 @@ but fails when the environment variable CI is set.
 - check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion,
   Blender's UV sphere with its cap flattened (quads split at random) faired back onto the sphere.
+- check_remesh.py: Remesh Always / If Needed on Suzanne's ear (no UV flip, the rest byte-identical),
+  Fill Holes on a UV sphere's hole (back onto the sphere, manifold, UVs), its errors, undo.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+; the
   portable build's legacy add-on in Blender 3.4, without SuiteSparse or BLAS.
 - examples/fair_object.py: the documented script runs.
@@ -91,6 +93,18 @@ def _run(command, env=None, timeout=300):
 def test_in_blender(check, variant):
     output = _run([*COMMANDS[variant](CHECKS / f"{check}.py"), "--", str(_built_addon())])
     assert f"{check}: all checks passed" in output, output
+
+
+@pytest.mark.parametrize("variant", COMMANDS)
+def test_fill_holes(variant):
+    output = _run([*COMMANDS[variant](CHECKS / "check_remesh.py"), "--", str(_built_addon()), "--fill"])
+    assert "check_remesh (fill): all checks passed" in output, output
+
+
+@pytest.mark.parametrize("variant", COMMANDS)
+def test_remesh(variant):
+    output = _run([*COMMANDS[variant](CHECKS / "check_remesh.py"), "--", str(_built_addon()), "--remesh"])
+    assert "check_remesh (remesh): all checks passed" in output, output
 
 
 @pytest.mark.parametrize("variant", COMMANDS)

@@ -5,7 +5,7 @@ A legacy add-on (``bl_info``, Blender 3.4 to 4.1) and an extension
 imports, and the compiled module ``geofair`` is found inside the package (legacy zip)
 or installed from the extension's wheel (see ``native.py``).
 
-For scripts: :func:`fair_object` (see ``examples/fair_object.py``).
+For scripts: :func:`fair_object` (see ``examples/fair_object.py``) and :func:`fill_holes`.
 """
 
 bl_info = {
@@ -22,8 +22,17 @@ import bpy  # noqa: E402
 
 from . import operators, overlays, properties, ui  # noqa: E402
 from .fairing import FairingOptions, FairingReport, NotConvergedError, fair_object  # noqa: E402
+from .holes import fill_holes  # noqa: E402
 
-__all__ = ["FairingOptions", "FairingReport", "NotConvergedError", "fair_object", "register", "unregister"]
+__all__ = [
+    "FairingOptions",
+    "FairingReport",
+    "NotConvergedError",
+    "fair_object",
+    "fill_holes",
+    "register",
+    "unregister",
+]
 
 
 def register():

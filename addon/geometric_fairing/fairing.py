@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import bpy
 import numpy as np
 
-from . import mesh_io, metrics, native, overlays, properties, region
+from . import carry, mesh_edit, mesh_io, metrics, native, overlays, properties, region
 
 
 @dataclass
@@ -53,19 +53,30 @@ class FairingOptions:
     levels: int = properties.DEFAULTS["levels"]
     iteration: str = properties.DEFAULTS["iteration"]
     time_limit: float | None = properties.DEFAULTS["time_limit"]
+    remesh: str = "off"
     region_group: str = ""
     pin_group: str = ""
     use_hidden: bool = False
     keep_unconverged: bool = False
 
     def __post_init__(self):
-        for name in ("inner_fairness", "outer_fairness", "boundary", "iteration"):
+        for name in ("inner_fairness", "outer_fairness", "boundary", "iteration", "remesh"):
             if isinstance(getattr(self, name), str):
                 setattr(self, name, getattr(self, name).lower())
+        if isinstance(self.remesh, bool):  # geofair.fair's own values
+            self.remesh = "always" if self.remesh else "off"
+        if self.remesh not in properties.REMESH_VALUES:
+            raise ValueError(
+                f"remesh must be one of {', '.join(repr(v) for v in properties.REMESH_VALUES)}, got {self.remesh!r}"
+            )
 
     def library_options(self):
-        """The keyword arguments of ``geofair.fair`` these options give."""
-        return {name: getattr(self, name) for name in properties.LIBRARY_OPTION_NAMES}
+        """The keyword arguments of ``geofair.fair`` these options give (``remesh`` only when it is not off,
+        so that the default run is the library's default call)."""
+        options = {name: getattr(self, name) for name in properties.LIBRARY_OPTION_NAMES}
+        if self.remesh != "off":
+            options["remesh"] = properties.REMESH_VALUES[self.remesh]
+        return options
 
 
 @dataclass(frozen=True)
@@ -105,6 +116,14 @@ class FairingReport:
         stop_reason: why the solve ended, as a value (``geofair.FairingResult.stop_reason``:
             "converged", "max_iterations", "time_limit", "no_progress", "cancelled", "diverged").
         boundary: the boundary condition of the run, "g1" or "g0".
+        remesh: the Remesh option of the run ("off", "if_needed", "always").
+        remeshed: the region's triangles were replaced (``geofair.FairingResult.remeshed``);
+            in the mesh too when ``changed``.
+        triangles_added, faces_removed: new faces written and old faces deleted (remeshed).
+        uv_flips: new triangles whose active-UV orientation is opposite to the old region's.
+        notes: what could not be carried over to new faces (UV seams, custom normals), one
+            sentence each.
+        holes: holes filled (Fill Holes; ``free_vertices`` are then the new vertices).
     """
 
     object_name: str
@@ -130,6 +149,13 @@ class FairingReport:
     message: str = ""
     stop_reason: str = ""
     boundary: str = "g1"
+    remesh: str = "off"
+    remeshed: bool = False
+    triangles_added: int = 0
+    faces_removed: int = 0
+    uv_flips: int = 0
+    notes: tuple = ()
+    holes: int = 0
 
     @property
     def stopped_at_time_limit(self):
@@ -146,7 +172,12 @@ class FairingReport:
 
     def summary(self):
         """One line for reports and logs."""
-        text = f"{self.free_vertices} vertices"
+        if self.holes:
+            text = f"{self.holes} hole{'s' if self.holes > 1 else ''}, {self.free_vertices} new vertices"
+            if self.changed:
+                text += f", {self.triangles_added} new triangles"
+        else:
+            text = f"{self.free_vertices} vertices"
         if self.pinned_vertices:
             text += f" ({self.pinned_vertices} pinned)"
         text += f", {self.iterations} iterations, residual {self.residual:.3g}, {self.seconds:.2f} s"
@@ -167,6 +198,12 @@ class FairingReport:
         if self.folds:
             but = ", but " if self.converged else ", "
             text += f"{but}{self.folds} edge{'s' if self.folds > 1 else ''} folded over (triangles flipped)"
+        if self.remeshed and self.changed and not self.holes:
+            text += f"; remeshed: {self.faces_removed} faces replaced by {self.triangles_added} triangles"
+            if self.uv_flips:
+                text += f", {self.uv_flips} flipped in the UV map"
+        for note in self.notes:
+            text += f"; {note}"
         return text
 
 
@@ -181,12 +218,22 @@ def short_number(x):
 
 CONFORMAL_HINT = "Conformal inner fairness converges on more meshes."
 KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
+REMESH_HINT = "Remesh 'If Needed' may help (it changes the triangles)."
+REMESH_SCRIPT_HINT = "Passing remesh='if_needed' may help (it changes the triangles)."
 
 
-def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT):
+def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT, remesh="off", remesh_hint=REMESH_SCRIPT_HINT):
     """What to try after an unconverged run that was not kept: Conformal after Uniform (uniform inner
-    fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), then ``keep_hint``."""
-    return (CONFORMAL_HINT + " " if inner_fairness == "uniform" else "") + keep_hint
+    fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), remeshing if it was
+    off, then ``keep_hint``."""
+    hints = [CONFORMAL_HINT] if inner_fairness == "uniform" else []
+    if remesh == "off":
+        hints.append(remesh_hint)
+    return " ".join([*hints, keep_hint])
+
+
+class SolverFailedError(RuntimeError):
+    """The solver failed (a RuntimeError from ``geofair.fair``) with Remesh off: its message and the hint to remesh."""
 
 
 class NotConvergedError(RuntimeError):
@@ -250,6 +297,8 @@ class FairingRun(_WorkerThread):
         RuntimeError: the compiled module cannot be loaded.
     """
 
+    remesh_hint = REMESH_SCRIPT_HINT  # added to a solver failure with Remesh off (the operator's: REMESH_HINT)
+
     def __init__(self, obj, options, faces=None, progress=None):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
@@ -286,6 +335,11 @@ class FairingRun(_WorkerThread):
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles
         )
+        if options.remesh != "off" and mesh_edit.has_shape_keys(obj):
+            raise ValueError(
+                f"Remesh needs a mesh without shape keys ('{obj.name}' has some: the new vertices would have no "
+                "shape-key positions): use Remesh Off"
+            )
         self.boundary_normals = None  # G0: positions only, the library reads no normals
         if options.boundary != "g0":
             self.boundary_normals = region.boundary_normals(
@@ -363,6 +417,8 @@ class FairingRun(_WorkerThread):
             raise RuntimeError("finish: the run is still going")
         cancelled = self._cancel.is_set()  # even if it converged meanwhile: the user asked for the mesh as it was
         if self.error is not None and not cancelled:
+            if type(self.error) is RuntimeError and self.options.remesh == "off":
+                raise SolverFailedError(f"{self.error} {self.remesh_hint}") from self.error
             raise self.error
         result = self.result
         uv_after = None
@@ -370,26 +426,42 @@ class FairingRun(_WorkerThread):
             cancelled = True
             result = _NOT_SOLVED
         discarded = not cancelled and not result.converged and not self.options.keep_unconverged
+        remeshed = bool(getattr(result, "remeshed", False))
+        written = mesh_edit.Written()
         if not cancelled and not discarded:
             positions = np.asarray(result.vertices, dtype=np.float64)
             free = np.flatnonzero(self.region.free)
-            if positions.shape != self.mesh.vertices.shape or not np.isfinite(positions[free]).all():
+            if not remeshed and (positions.shape != self.mesh.vertices.shape or not np.isfinite(positions[free]).all()):
                 raise RuntimeError("the solver returned invalid positions; mesh unchanged")
             try:
-                unchanged = self.obj.mode == self.mode and mesh_io.vertex_count(self.obj) == len(positions)
+                unchanged = self.obj.mode == self.mode and mesh_io.vertex_count(self.obj) == len(self.mesh.vertices)
             except ReferenceError:  # the object was deleted
                 unchanged = False
             if not unchanged:
                 raise RuntimeError("the mesh changed during the run; result discarded")
             clock = time.perf_counter()
-            mesh_io.write_positions(self.obj, positions, free)
+            if remeshed:  # the region's triangles were replaced: carry the layers over (mesh_edit)
+                try:
+                    written = mesh_edit.replace_region(
+                        self.obj, self.mesh, np.flatnonzero(self.present_triangles), self.region.free, result
+                    )
+                except carry.CarryError as error:
+                    raise RuntimeError(str(error)) from error
+            else:
+                mesh_io.write_positions(self.obj, positions, free)
             self.timings["write"] = time.perf_counter() - clock
             clock = time.perf_counter()
-            uv_after = self._uv_distortion(positions)
+            if remeshed:
+                if written.metric_uvs is not None:
+                    uv_after = metrics.uv_distortion(
+                        written.metric_vertices, written.metric_triangles, written.metric_uvs
+                    )
+            else:
+                uv_after = self._uv_distortion(positions)
             self.timings["uv"] += time.perf_counter() - clock
         return FairingReport(
             object_name=self.object_name,
-            free_vertices=int(np.count_nonzero(self.region.free)),
+            free_vertices=int(np.count_nonzero(result.free if remeshed else self.region.free)),
             pinned_vertices=int(np.count_nonzero(self.region.pinned)),
             border_fixed_vertices=int(np.count_nonzero(self.region.border_fixed)),
             hidden_fixed_vertices=int(np.count_nonzero(self.region.hidden_fixed)),
@@ -411,6 +483,12 @@ class FairingRun(_WorkerThread):
             message=str(getattr(result, "message", "")),
             stop_reason=str(getattr(result, "stop_reason", "")),
             boundary=self.options.boundary,
+            remesh=self.options.remesh,
+            remeshed=remeshed,
+            triangles_added=written.triangles_added,
+            faces_removed=written.faces_removed,
+            uv_flips=written.uv_flips,
+            notes=tuple(written.notes),
         )
 
     def _uv_distortion(self, positions):
@@ -557,7 +635,11 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             ``iteration`` ("auto", "newton" or "paper": the solver), ``time_limit``
             (seconds, or None: automatic); the upper-case values of earlier versions
             ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
-            ``use_hidden`` (False: hidden faces take no part, their vertices never move).
+            ``use_hidden`` (False: hidden faces take no part, their vertices never move),
+            ``remesh`` ("off", the default: only positions change; "if_needed" or "always":
+            the region's triangles may be replaced, with UVs, colours and vertex groups
+            interpolated onto the new ones, see :class:`FairingReport` ``remeshed`` and
+            ``notes``; ``geofair.fair``'s False and True work too).
             Not given: the Fairing panel's settings, which follow the add-on
             preferences. ``keep_unconverged`` (default False): write the result
             even if the solve stops unconverged.
@@ -592,7 +674,7 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run.solve()
         report = run.finish()
         if report.discarded:
-            raise NotConvergedError(report, unconverged_hint(run_options.inner_fairness))
+            raise NotConvergedError(report, unconverged_hint(run_options.inner_fairness, remesh=run_options.remesh))
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise

@@ -120,6 +120,16 @@ def read_uvs(obj, data):
         obj.to_mesh_clear()
 
 
+def edge_selection(obj):
+    """``(E, 2)`` int64 vertex pairs of the selected edges of ``obj``'s mesh as :func:`read` left it.
+
+    Call after :func:`read` (which copied the edit mesh into the mesh in Edit Mode).
+    """
+    mesh = obj.data
+    selected = _get(mesh.edges, "select", bool)
+    return _get(mesh.edges, "vertices", np.int32, 2).reshape(-1, 2)[selected].astype(np.int64)
+
+
 def vertex_group_weights(obj, name):
     """``(n,)`` float64 weights of vertex group ``name`` (0 where a vertex is not in it).
 

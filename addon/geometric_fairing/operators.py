@@ -23,9 +23,9 @@ a warning.
 """
 
 import bpy
-from bpy.props import EnumProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty
 
-from . import fairing, overlays
+from . import fairing, holes, overlays, properties
 from .properties import OPTION_NAMES, FairingProperties, option_values
 from .region import NothingSelectedError
 
@@ -87,33 +87,19 @@ def edit_mode_meshes(context):
     return objects
 
 
-class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
-    """Fair the selected faces: a smooth surface meeting the unselected faces with G1 continuity, or G0 (Boundary)"""
+class _SolvingOperator:
+    """What the Fair and Fill Holes operators share: runs on the meshes in Edit Mode solved in a worker
+    thread with progress (Esc cancels) or in place, then written, reported and kept for the panel.
 
-    bl_idname = "mesh.geometric_fairing"
-    bl_label = "Geometric Fairing"
-    bl_options = {"REGISTER", "UNDO"}
+    A subclass gives ``label`` (the reports' prefix), :meth:`resolve_options`, :meth:`make_run`,
+    :meth:`status_text` and :meth:`unconverged_hint`.
+    """
 
+    label = "Geometric Fairing"
     _batch = None
     _timer = None
     _failed = ()  # (object name, error) of the objects that could not be prepared
     _several = False  # several objects in Edit Mode: reports name the objects
-
-    @classmethod
-    def poll(cls, context):
-        obj = context.active_object
-        if obj is not None and obj.type == "MESH" and obj.mode == "EDIT":
-            return True
-        cls.poll_message_set("Needs a mesh object in Edit Mode")
-        return False
-
-    def resolve_options(self, context):
-        """Options given to the operator; the others from the panel (which follows the preferences)."""
-        settings = context.scene.geometric_fairing
-        for name in OPTION_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
-        return fairing.FairingOptions(**option_values(self), keep_unconverged=self.keep_unconverged)
 
     def prepare(self, context):
         """Read each mesh in Edit Mode and find its region; the batch, or None (after a report) if none can run."""
@@ -123,13 +109,13 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         runs, failed = [], []
         for obj in objects:
             try:
-                runs.append(fairing.FairingRun(obj, options))  # RuntimeError without the compiled module
+                runs.append(self.make_run(obj, options))  # RuntimeError without the compiled module
             except Exception as error:  # noqa: BLE001 (reported by object name; the mesh was not touched)
                 failed.append((obj.name, error))
         if not runs:
             message = self.failure_text(failed)
             fairing.store_last_runs(context.window_manager, options, [], failed, message)
-            self.report({"ERROR"}, f"Geometric Fairing: {message}")
+            self.report({"ERROR"}, f"{self.label}: {message}")
             return None
         # Beside an object that has something to fair, one with nothing selected is simply skipped.
         self._failed = [(name, error) for name, error in failed if not isinstance(error, NothingSelectedError)]
@@ -139,6 +125,14 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         if not self._several:
             return fairing.error_text(failed[0][1])
         return "; ".join(f"{name}: {fairing.error_text(error)}" for name, error in failed)
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        if obj is not None and obj.type == "MESH" and obj.mode == "EDIT":
+            return True
+        cls.poll_message_set("Needs a mesh object in Edit Mode")
+        return False
 
     def execute(self, context):
         batch = self._batch = self.prepare(context)
@@ -207,12 +201,12 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
     def show_status(self, context):
         batch = self._batch
         if batch.cancel_requested:
-            text = "Geometric Fairing: cancelling…"
+            text = f"{self.label}: cancelling…"
         else:
             run = batch.current
             which = f"{run.object_name} ({batch.index + 1}/{len(batch.runs)}): " if len(batch.runs) > 1 else ""
             text = (
-                f"Geometric Fairing: {which}{int(run.region.free.sum())} vertices, iteration {run.iteration}, "
+                f"{self.label}: {which}{self.status_text(run)}, iteration {run.iteration}, "
                 f"residual {run.residual:.3g} (tolerance {self.tolerance:g}) — Esc to cancel"
             )
         context.workspace.status_text_set(text)
@@ -222,7 +216,7 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         reports, errors = batch.finish()
         options = batch.runs[0].options
         # An unconverged result that was not kept: that object is not faired, like one that failed.
-        hint = fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT)
+        hint = self.unconverged_hint(options)
         not_kept = [(report.object_name, fairing.NotConvergedError(report, hint)) for report in reports]
         not_kept = [(name, error) for name, error in not_kept if error.report.discarded]
         reports = [report for report in reports if not report.discarded]
@@ -231,37 +225,123 @@ class MESH_OT_geometric_fairing(FairingProperties, bpy.types.Operator):
         if not reports:
             message = self.failure_text(errors)
             fairing.store_last_runs(wm, options, [], errors, message)
-            self.report({"ERROR"}, f"Geometric Fairing: {message}")
+            self.report({"ERROR"}, f"{self.label}: {message}")
             return {"CANCELLED"}
         if self._several:
             parts = [f"{report.object_name}: {report.summary()}" for report in reports]
-            parts += [f"{name} not faired: {fairing.error_text(error)}" for name, error in errors]
+            parts += [f"{name} {self.not_done}: {fairing.error_text(error)}" for name, error in errors]
             message = "; ".join(parts)
         else:
             message = reports[0].summary()
         fairing.store_last_runs(wm, options, reports, errors, message)
         if any(report.cancelled for report in reports):
-            self.report({"INFO"}, f"Geometric Fairing: {message}")
+            self.report({"INFO"}, f"{self.label}: {message}")
             return {"CANCELLED"}
         for run in batch.written:
             try:
                 overlays.refresh_curvature(run.obj, context)
             except RuntimeError as error:
-                self.report({"WARNING"}, f"Geometric Fairing: curvature of {run.object_name} not updated: {error}")
+                self.report({"WARNING"}, f"{self.label}: curvature of {run.object_name} not updated: {error}")
         if errors:
-            self.report({"WARNING"}, f"Geometric Fairing: {message}")
+            self.report({"WARNING"}, f"{self.label}: {message}")
         elif all(report.converged for report in reports):
-            # A converged result that flips triangles over is written, with a warning (Ctrl+Z undoes it).
-            folded = any(report.folds for report in reports)
-            self.report({"WARNING" if folded else "INFO"}, f"Geometric Fairing: {message}")
+            # A converged result that flips triangles over is written, with a warning (Ctrl+Z undoes it);
+            # so is one with notes on what could not be carried over to new faces.
+            warn = any(report.folds or report.notes for report in reports)
+            self.report({"WARNING" if warn else "INFO"}, f"{self.label}: {message}")
         else:
             residual = max(report.residual for report in reports if not report.converged)
             self.report(
                 {"WARNING"},
-                f"Geometric Fairing: did not converge (residual {fairing.short_number(residual)}, tolerance "
+                f"{self.label}: did not converge (residual {fairing.short_number(residual)}, tolerance "
                 f"{fairing.short_number(options.tolerance)}), unconverged result kept: {message}",
             )
         return {"FINISHED"}
+
+
+class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.Operator):
+    """Fair the selected faces: a smooth surface meeting the unselected faces with G1 continuity, or G0 (Boundary)"""
+
+    bl_idname = "mesh.geometric_fairing"
+    bl_label = "Geometric Fairing"
+    bl_options = {"REGISTER", "UNDO"}
+
+    label = "Geometric Fairing"
+    not_done = "not faired"
+
+    def resolve_options(self, context):
+        """Options given to the operator; the others from the panel (which follows the preferences)."""
+        settings = context.scene.geometric_fairing
+        for name in OPTION_NAMES:
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
+        return fairing.FairingOptions(**option_values(self), keep_unconverged=self.keep_unconverged)
+
+    def make_run(self, obj, options):
+        run = fairing.FairingRun(obj, options)
+        run.remesh_hint = fairing.REMESH_HINT
+        return run
+
+    def status_text(self, run):
+        return f"{int(run.region.free.sum())} vertices"
+
+    def unconverged_hint(self, options):
+        return fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT, options.remesh, fairing.REMESH_HINT)
+
+
+class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator):
+    """Fill the holes whose whole boundary loop is selected (nothing selected: every hole) with a faired surface
+    meeting the faces around with G1 continuity, or G0 (Boundary); UVs interpolated from around each hole"""
+
+    bl_idname = "mesh.geometric_fairing_fill_holes"
+    bl_label = "Fill Holes (Geometric Fairing)"
+    bl_options = {"REGISTER", "UNDO"}
+
+    label = "Fill Holes"
+    not_done = "not filled"
+
+    inner_fairness: properties._inner_fairness(options={"SKIP_SAVE"})
+    outer_fairness: properties._outer_fairness(options={"SKIP_SAVE"})
+    boundary: properties._boundary(options={"SKIP_SAVE"})
+    tolerance: properties._tolerance(options={"SKIP_SAVE"})
+    max_iterations: properties._max_iterations(options={"SKIP_SAVE"})
+    levels: properties._levels(options={"SKIP_SAVE"})
+    iteration: properties._iteration(options={"SKIP_SAVE"})
+    time_limit: properties._time_limit(options={"SKIP_SAVE"})
+    all_holes: BoolProperty(
+        name="All Holes",
+        description="Fill every hole of the mesh, whatever is selected (with nothing selected: every hole too)",
+        default=False,
+        options={"SKIP_SAVE"},
+    )
+    edge_length: FloatProperty(
+        name="Edge Length",
+        description="Edge length of the fill's triangles; 0: the mean length of each hole's boundary edges",
+        default=0.0,
+        min=0.0,
+        subtype="DISTANCE",
+        options={"SKIP_SAVE"},
+    )
+    keep_unconverged: properties._keep_unconverged(options={"SKIP_SAVE"})
+
+    def resolve_options(self, context):
+        """Options given to the operator; the others from the panel (which follows the preferences)."""
+        settings = context.scene.geometric_fairing
+        for name in holes.FILL_OPTION_NAMES:
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
+        values = {name: getattr(self, name) for name in holes.FILL_OPTION_NAMES}
+        values["time_limit"] = values["time_limit"] or None
+        return fairing.FairingOptions(**values, keep_unconverged=self.keep_unconverged)
+
+    def make_run(self, obj, options):
+        return holes.FillRun(obj, options, all_holes=self.all_holes, target_edge_length=self.edge_length)
+
+    def status_text(self, run):
+        return f"{run.holes} hole{'s' if run.holes > 1 else ''}"
+
+    def unconverged_hint(self, options):
+        return fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT, remesh="always")
 
 
 class VIEW3D_OT_geometric_fairing_zebra(bpy.types.Operator):
@@ -324,4 +404,9 @@ class MESH_OT_geometric_fairing_curvature(bpy.types.Operator):
         return {"FINISHED"}
 
 
-CLASSES = (MESH_OT_geometric_fairing, VIEW3D_OT_geometric_fairing_zebra, MESH_OT_geometric_fairing_curvature)
+CLASSES = (
+    MESH_OT_geometric_fairing,
+    MESH_OT_geometric_fairing_fill_holes,
+    VIEW3D_OT_geometric_fairing_zebra,
+    MESH_OT_geometric_fairing_curvature,
+)

@@ -92,6 +92,29 @@ ITERATION_ITEMS = (
     ),
 )
 
+REMESH_ITEMS = (
+    (
+        "off",
+        "Off",
+        "Keep the triangles: only vertex positions change, UV maps and every other layer stay exactly as they were",
+    ),
+    (
+        "if_needed",
+        "If Needed",
+        "Keep the triangles if the solve converges without new folds; otherwise replace the region's triangles by "
+        "an even remesh and solve again. Changes the triangles then: UVs, colours and vertex groups are "
+        "interpolated onto the new ones",
+    ),
+    (
+        "always",
+        "Always",
+        "Replace the region's triangles by an even (isotropic) remesh at the boundary's edge length before fairing. "
+        "Changes the triangles: UVs, colours and vertex groups are interpolated onto the new ones",
+    ),
+)
+# The value geofair.fair takes for each Remesh item.
+REMESH_VALUES = {"off": False, "if_needed": "if_needed", "always": True}
+
 # The library's defaults (geofair.defaults()), by its names and values. Without the compiled
 # module nothing can be faired and the panel shows why; the properties then start at their first
 # item or lower bound.
@@ -117,7 +140,7 @@ LIBRARY_OPTION_NAMES = (
     "iteration",
     "time_limit",
 )
-OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "region_group", "pin_group", "use_hidden")
+OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "remesh", "region_group", "pin_group", "use_hidden")
 
 
 def property_value(name, value):
@@ -234,6 +257,16 @@ def _time_limit(**options):
     )
 
 
+def _remesh(**options):
+    return EnumProperty(
+        name="Remesh",
+        description="Whether the region's triangles may be replaced (opt-in: Off keeps every layer as it was)",
+        items=REMESH_ITEMS,
+        default="off",
+        **options,
+    )
+
+
 def _region_group(**options):
     return StringProperty(
         name="Region Group",
@@ -336,6 +369,7 @@ class FairingProperties:
     levels: _levels(options={"SKIP_SAVE"})
     iteration: _iteration(options={"SKIP_SAVE"})
     time_limit: _time_limit(options={"SKIP_SAVE"})
+    remesh: _remesh(options={"SKIP_SAVE"})
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})
     use_hidden: _use_hidden(options={"SKIP_SAVE"})
@@ -353,6 +387,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     levels: _levels(**_follows_preference("levels"))
     iteration: _iteration()
     time_limit: _time_limit(**_follows_preference("time_limit"))
+    remesh: _remesh()
     region_group: _region_group()
     pin_group: _pin_group()
     use_hidden: _use_hidden()
@@ -397,6 +432,8 @@ RUN_FIGURES = (
     RunFigure("seconds", "Time", float, "Wall time of the solves, seconds", sum, "{:.2f} s".format),
     RunFigure("folds", "Folded edges", int, "Edges of the free region whose two triangles face apart after the run "
               "(triangles flipped over)", sum, shown=bool),
+    RunFigure("triangles_added", "New triangles", int, "Triangles the remesh or the fill created (the old region's "
+              "faces replaced, or the holes filled)", sum, shown=bool),
     RunFigure("iteration", "Solver", str, "The solver that produced the result: newton or paper (empty: none)",
               _solvers, str.title, bool),
 )

@@ -343,6 +343,57 @@ def boundary_loops(triangles, free):
     return loops
 
 
+NO_HOLE = "'{name}' has no hole: every edge has two faces"
+NO_HOLE_SELECTED = (
+    "No hole is selected: select the whole boundary loop of each hole to fill (Alt+click one of its edges), "
+    "or deselect everything to fill every hole"
+)
+OPEN_LOOP_SELECTED = (
+    "The selected boundary edges close no hole: select the whole boundary loop of a hole (Alt+click one of its edges)"
+)
+
+
+def mesh_holes(triangles, n):
+    """The mesh's boundary loops (its holes, open borders included), each along its triangles' edges."""
+    return boundary_loops(triangles, np.ones(n, dtype=bool))
+
+
+def choose_holes(loops, n, selected_edges, any_selected, all_holes=False, name="the mesh"):
+    """The holes to fill among the mesh's boundary ``loops``: those whose every edge is selected; every one
+    with ``all_holes`` or when nothing at all is selected.
+
+    Args:
+        loops: the mesh's boundary loops (:func:`mesh_holes`).
+        n: number of vertices.
+        selected_edges: ``(E, 2)`` vertex pairs of the selected edges.
+        any_selected: whether anything at all is selected in the mesh.
+        all_holes: every hole, whatever is selected.
+        name: the object's name, for the message.
+
+    Raises:
+        NothingSelectedError: the mesh has no hole, or no hole is selected.
+        RegionError: selected boundary edges that close no loop.
+    """
+    if not loops:
+        raise NothingSelectedError(NO_HOLE.format(name=name))
+    if all_holes or not any_selected:
+        return list(loops)
+    edges = np.asarray(selected_edges, dtype=np.int64).reshape(-1, 2)
+    selected = np.minimum(edges[:, 0], edges[:, 1]) * n + np.maximum(edges[:, 0], edges[:, 1])
+    chosen, on_boundary = [], []
+    for loop in loops:
+        following = np.roll(loop, -1)
+        keys = np.minimum(loop, following) * n + np.maximum(loop, following)
+        on_boundary.append(keys)
+        if np.isin(keys, selected).all():
+            chosen.append(loop)
+    if chosen:
+        return chosen
+    if np.isin(selected, np.concatenate(on_boundary)).any():
+        raise RegionError(OPEN_LOOP_SELECTED)
+    raise NothingSelectedError(NO_HOLE_SELECTED)
+
+
 def _pop_successor(successors, vertex):
     following = successors[vertex]
     tail = following.pop()

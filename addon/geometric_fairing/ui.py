@@ -6,14 +6,16 @@ from . import native, overlays, properties
 from .operators import (
     MESH_OT_geometric_fairing,
     MESH_OT_geometric_fairing_curvature,
+    MESH_OT_geometric_fairing_fill_holes,
     VIEW3D_OT_geometric_fairing_zebra,
 )
 
 
 def draw_menu_entry(self, context):
-    """Append the operator to a menu."""
+    """Append the operators to a menu: Fair, and Fill Holes next to it."""
     self.layout.separator()
     self.layout.operator(MESH_OT_geometric_fairing.bl_idname)
+    self.layout.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname)
 
 
 class FairingPanel:
@@ -44,6 +46,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         column.prop(settings, "levels")
         column.prop(settings, "iteration")
         column.prop(settings, "time_limit")
+        column.prop(settings, "remesh")
         column = layout.column()
         column.prop_search(settings, "region_group", obj, "vertex_groups", text="Region", icon="GROUP_VERTEX")
         if not settings.region_group:
@@ -60,6 +63,8 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         row = layout.row()
         row.scale_y = 1.4
         row.operator(MESH_OT_geometric_fairing.bl_idname, text="Fair", icon="MOD_SMOOTH")
+        row = layout.row()
+        row.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname, text="Fill Holes", icon="MOD_TRIANGULATE")
         layout.label(text="Esc cancels: mesh unchanged")
 
 

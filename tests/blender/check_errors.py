@@ -198,7 +198,8 @@ def check_solver_failure(addon, obj, error, expected):
 
 UNCONVERGED = re.compile(
     r"Error: Geometric Fairing: Fairing did not converge \(residual (\d(\.\d)?(e-?\d+)?), tolerance 1e-4\): the mesh "
-    r"is unchanged\. Tick 'Keep Unconverged Result' to apply it anyway\."
+    r"is unchanged\. Remesh 'If Needed' may help \(it changes the triangles\)\. Tick 'Keep Unconverged Result' to "
+    r"apply it anyway\."
 )
 
 
@@ -258,8 +259,8 @@ def check_unconverged(addon, obj):
     result, report = run_fairing(inner_fairness="uniform", max_iterations=1)
     assert result == {"CANCELLED"} and edit_state(obj) == before, (result, report)
     assert report.endswith(
-        "the mesh is unchanged. Conformal inner fairness converges on more meshes. Tick 'Keep Unconverged Result' "
-        "to apply it anyway."
+        "the mesh is unchanged. Conformal inner fairness converges on more meshes. Remesh 'If Needed' may help (it "
+        "changes the triangles). Tick 'Keep Unconverged Result' to apply it anyway."
     ), report
 
     # Keep Unconverged Result: written, with a warning that gives the residual.
@@ -347,7 +348,8 @@ def check_fair_object_unconverged(addon, obj):
     except addon.NotConvergedError as error:
         assert isinstance(error, RuntimeError) and error.report.discarded and not error.report.changed
         assert str(error).startswith("Fairing did not converge (residual ") and str(error).endswith(
-            "tolerance 1e-4): the mesh is unchanged. Pass keep_unconverged=True to apply it anyway."
+            "tolerance 1e-4): the mesh is unchanged. Passing remesh='if_needed' may help (it changes the triangles). "
+            "Pass keep_unconverged=True to apply it anyway."
         ), error
     else:
         raise AssertionError("fair_object did not raise NotConvergedError")
@@ -355,8 +357,8 @@ def check_fair_object_unconverged(addon, obj):
         addon.fair_object(obj, inner_fairness="uniform", max_iterations=1)
     except addon.NotConvergedError as error:
         assert str(error).endswith(
-            "the mesh is unchanged. Conformal inner fairness converges on more meshes. Pass keep_unconverged=True to "
-            "apply it anyway."
+            "the mesh is unchanged. Conformal inner fairness converges on more meshes. Passing remesh='if_needed' may "
+            "help (it changes the triangles). Pass keep_unconverged=True to apply it anyway."
         ), error
     else:
         raise AssertionError("fair_object did not raise NotConvergedError")
@@ -413,7 +415,8 @@ def check_fair_object_failure(addon, obj):
     try:
         addon.fair_object(obj)
     except RuntimeError as error:
-        assert str(error) == "fair: simulated failure", error
+        hint = "Passing remesh='if_needed' may help (it changes the triangles)."
+        assert str(error) == f"fair: simulated failure {hint}", error
     else:
         raise AssertionError("fair_object did not raise")
     finally:
@@ -439,7 +442,10 @@ def main():
     check_unconverged(addon, obj)
     check_converged_with_folds(addon, obj)
     check_solver_failure(
-        addon, obj, RuntimeError("fair: diverged (simulated)"), "Error: Geometric Fairing: fair: diverged (simulated)"
+        addon,
+        obj,
+        RuntimeError("fair: diverged (simulated)"),
+        "Error: Geometric Fairing: fair: diverged (simulated) Remesh 'If Needed' may help (it changes the triangles).",
     )
     check_solver_failure(
         addon, obj, ValueError("fair: rejected (simulated)"), "Error: Geometric Fairing: fair: rejected (simulated)"

@@ -134,7 +134,8 @@ def checks(addon, obj):
         yield from wait_until(lambda: operators.running() is None, "the failing run to end")
     finally:
         addon.native.geofair = real
-    assert last.status == "ERROR" and last.message == "fair: the iteration diverged (simulated)", last.message
+    expected = "fair: the iteration diverged (simulated) Remesh 'If Needed' may help (it changes the triangles)."
+    assert last.status == "ERROR" and last.message == expected, last.message
     assert np.array_equal(positions(obj), before), "a failed modal run changed the mesh"
     assert obj.mode == "EDIT"
     print(f"ok: a solver error in the modal run -> {last.status}: {last.message}; mesh unchanged")
@@ -145,6 +146,36 @@ def checks(addon, obj):
         bpy.ops.ed.undo()
     assert np.array_equal(positions(obj), before), "undo after the error did not restore the mesh"
     print("ok: the next modal run works, and undo restores the mesh exactly")
+
+    # Fill Holes runs the same way: Suzanne's holes (around the eyes) filled in the worker thread;
+    # Esc cancels a long one, a run to the end adds one undo step.
+    obj.update_from_editmode()
+    faces = len(obj.data.polygons)
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        result = bpy.ops.mesh.geometric_fairing_fill_holes(
+            "INVOKE_DEFAULT", all_holes=True, tolerance=1e-15, max_iterations=10**7, iteration="paper"
+        )
+    assert result == {"RUNNING_MODAL"}, result
+    run = operators.running()
+    yield from wait_until(lambda: run.iteration > 0, "the fill's first iterations")
+    press("ESC")
+    yield from wait_until(lambda: operators.running() is None, "the fill to stop after Esc")
+    obj.update_from_editmode()
+    assert last.status == "CANCELLED" and len(obj.data.polygons) == faces, (last.status, last.message)
+    assert np.array_equal(positions(obj), before), "Esc left the fill in the mesh"
+    print(f"ok: Esc cancelled Fill Holes; mesh unchanged ({last.message})")
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        assert bpy.ops.mesh.geometric_fairing_fill_holes("INVOKE_DEFAULT", all_holes=True) == {"RUNNING_MODAL"}
+    yield from wait_until(lambda: operators.running() is None, "the fill to finish")
+    assert last.status == "CONVERGED", (last.status, last.message)
+    obj.update_from_editmode()
+    assert len(obj.data.polygons) > faces, "Fill Holes added no face"
+    print(f"ok: modal Fill Holes: {last.message}")
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.ed.undo()
+    obj.update_from_editmode()
+    assert len(obj.data.polygons) == faces and np.array_equal(positions(obj), before), "undo did not remove the fill"
+    print("ok: undo removed the fill")
     print("check_modal: all checks passed")
 
 

@@ -1,0 +1,203 @@
+"""Filling holes of a Blender mesh with ``geofair.fill_holes``: which holes, the run, the write.
+
+A hole is a boundary loop of the mesh (a closed chain of edges with one face each). The
+holes filled are those whose whole boundary loop is selected; with nothing selected in
+the mesh (a script), or with ``all_holes``, every hole. A :class:`FillRun` reads the mesh
+when it is made, solves (in the calling thread or a worker thread, like
+:class:`fairing.FairingRun`, whose progress and cancelling it shares) and writes only in
+:meth:`FillRun.finish`: the new vertices and faces, with UVs, colours and vertex groups
+interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). An
+unconverged result is written only with ``keep_unconverged``, as for fairing.
+"""
+
+import threading
+import time
+import types
+
+import numpy as np
+
+from . import carry, fairing, mesh_edit, mesh_io, native, properties, region
+
+# The panel's options Fill Holes uses (geofair.fill_holes takes fair's options but the region's).
+FILL_OPTION_NAMES = properties.LIBRARY_OPTION_NAMES
+
+
+class FillRun(fairing.FairingRun):
+    """Filling the holes of the mesh of ``obj`` (Edit Mode or Object Mode).
+
+    Args:
+        obj: a mesh object.
+        options: :class:`fairing.FairingOptions` (its library options are used; region,
+            pins, hidden faces and remesh are not).
+        all_holes: fill every hole whatever is selected.
+        target_edge_length: the fill's edge length; 0: that of each hole's boundary.
+        progress: optional ``callable(iteration, residual)``; returning False cancels.
+
+    Raises:
+        ValueError: no hole to fill (:class:`region.RegionError`).
+        RuntimeError: the compiled module cannot be loaded, or has no ``fill_holes``.
+    """
+
+    def __init__(self, obj, options, all_holes=False, target_edge_length=0.0, progress=None):
+        if native.geofair is None:
+            raise RuntimeError(native.IMPORT_ERROR)
+        if not hasattr(native.geofair, "fill_holes"):
+            raise RuntimeError("this build of the compiled module 'geofair' has no fill_holes: update the add-on")
+        if obj is None or obj.type != "MESH":
+            raise ValueError("filling holes needs a mesh object")
+        if mesh_edit.has_shape_keys(obj):
+            raise ValueError(
+                f"Fill Holes needs a mesh without shape keys ('{obj.name}' has some: the new vertices would have no "
+                "shape-key positions)"
+            )
+        self.obj = obj
+        self.object_name = obj.name
+        self.mode = obj.mode
+        self.options = options
+        self.target_edge_length = float(target_edge_length)
+        self.user_progress = progress
+        self.timings = {}
+        clock = time.perf_counter()
+        self.mesh = mesh = mesh_io.read(obj, uvs=False)
+        self.timings["read"] = time.perf_counter() - clock
+        n = len(mesh.vertices)
+        edges = mesh_io.edge_selection(obj)
+        loops = region.mesh_holes(mesh.triangles, n)
+        self.loops = region.choose_holes(loops, n, edges, bool(mesh.vertex_selected.any()), all_holes, obj.name)
+        # What the shared progress and status read: the boundary vertices stand for the region.
+        self.region = types.SimpleNamespace(free=np.zeros(sum(len(loop) for loop in self.loops), dtype=bool))
+        self.iteration = 0
+        self.residual = float("nan")
+        self.first_residual = float("nan")
+        self.seconds = 0.0
+        self.result = None
+        self.error = None
+        self._cancel = threading.Event()
+        self._thread = None
+
+    @property
+    def holes(self):
+        return len(self.loops)
+
+    def solve(self):
+        """Solve in this thread; the result or the error is kept for :meth:`finish`."""
+        options = self.options.library_options()
+        options.pop("remesh", None)
+        if self.target_edge_length > 0.0:
+            options["target_edge_length"] = self.target_edge_length
+        start = time.perf_counter()
+        try:
+            self.result = native.geofair.fill_holes(
+                self.mesh.vertices,
+                self.mesh.triangles,
+                [loop.tolist() for loop in self.loops],
+                progress=self._progress,
+                **options,
+            )
+        except Exception as error:  # kept for finish(), which runs in Blender's thread
+            self.error = error
+        self.seconds = time.perf_counter() - start
+        self.timings["solve"] = self.seconds
+
+    def finish(self):
+        """Write the fill unless cancelled or discarded; return the :class:`fairing.FairingReport`.
+
+        Raises:
+            ValueError, RuntimeError: the solver failed (the mesh is unchanged), or the
+                mesh changed under the run.
+        """
+        if not self.done:
+            raise RuntimeError("finish: the run is still going")
+        cancelled = self._cancel.is_set()
+        if self.error is not None and not cancelled:
+            raise self.error
+        result = self.result
+        if result is None:
+            cancelled = True
+            result = fairing._NOT_SOLVED
+        discarded = not cancelled and not result.converged and not self.options.keep_unconverged
+        written = mesh_edit.Written()
+        uv_after = None
+        if not cancelled and not discarded:
+            try:
+                unchanged = self.obj.mode == self.mode and mesh_io.vertex_count(self.obj) == len(self.mesh.vertices)
+            except ReferenceError:
+                unchanged = False
+            if not unchanged:
+                raise RuntimeError("the mesh changed during the run; result discarded")
+            clock = time.perf_counter()
+            try:
+                written = mesh_edit.add_fill(self.obj, self.mesh, result)
+            except carry.CarryError as error:
+                raise RuntimeError(str(error)) from error
+            self.timings["write"] = time.perf_counter() - clock
+            if written.metric_uvs is not None:
+                uv_after = fairing.metrics.uv_distortion(
+                    written.metric_vertices, written.metric_triangles, written.metric_uvs
+                )
+        new_vertices = int(np.count_nonzero(np.asarray(getattr(result, "free", []), dtype=bool)))
+        return fairing.FairingReport(
+            object_name=self.object_name,
+            free_vertices=new_vertices,
+            pinned_vertices=0,
+            border_fixed_vertices=0,
+            converged=bool(result.converged),
+            cancelled=cancelled,
+            iterations=int(result.iterations),
+            residual=float(result.residual),
+            seconds=self.seconds,
+            uv_after=uv_after,
+            iterations_per_level=list(result.iterations_per_level),
+            vertices_per_level=list(result.vertices_per_level),
+            iteration=str(result.iteration),
+            timings=dict(self.timings),
+            discarded=discarded,
+            tolerance=float(self.options.tolerance),
+            folds=int(getattr(result, "folds", 0)),
+            new_folds=int(getattr(result, "new_folds", 0)),
+            message=str(getattr(result, "message", "")),
+            stop_reason=str(getattr(result, "stop_reason", "")),
+            boundary=self.options.boundary,
+            remeshed=written.triangles_added > 0,
+            triangles_added=written.triangles_added,
+            notes=tuple(written.notes),
+            holes=self.holes,
+        )
+
+
+def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, context=None, **options):
+    """Fill holes of a mesh object from a script (Object or Edit Mode): the selected ones, or every hole.
+
+    Args:
+        obj: a mesh object.
+        all_holes: every hole, whatever is selected (with nothing selected: every hole too).
+        target_edge_length: the fill's edge length; 0: that of each hole's boundary.
+        progress: optional ``callable(iteration, residual)``; returning False cancels.
+        context: ``bpy.context`` by default (its scene's panel settings are the defaults).
+        **options: ``geofair.fill_holes``'s fairing options (``inner_fairness``, ``boundary``,
+            ``tolerance``, ``time_limit``, ...), and ``keep_unconverged``.
+
+    Returns:
+        :class:`fairing.FairingReport` (``holes``, ``free_vertices`` the new vertices,
+        ``triangles_added``, ``notes``).
+
+    Raises:
+        TypeError: an unknown option.
+        ValueError: no hole to fill, bad input.
+        fairing.NotConvergedError: the solve stopped unconverged (mesh unchanged) and
+            ``keep_unconverged`` is not set.
+        RuntimeError: the solver failed, or the compiled module is missing.
+    """
+    import bpy
+
+    context = context or bpy.context
+    unknown = set(options) - {*FILL_OPTION_NAMES, "keep_unconverged"}
+    if unknown:
+        raise TypeError(f"fill_holes: unknown options {', '.join(sorted(unknown))}")
+    run_options = fairing.default_options(context, **options)
+    run = FillRun(obj, run_options, all_holes=all_holes, target_edge_length=target_edge_length, progress=progress)
+    run.solve()
+    report = run.finish()
+    if report.discarded:
+        raise fairing.NotConvergedError(report, fairing.KEEP_UNCONVERGED_HINT)
+    return report

@@ -1,0 +1,567 @@
+"""Writing new triangles into a Blender mesh (BMesh), with the layers carried over.
+
+Used where the library changed the triangles: a remeshed fairing region
+(:func:`replace_region`) and filled holes (:func:`add_fill`). Everything is
+computed and checked (numpy, :mod:`carry`) before the mesh is touched, so a result
+that does not fit raises and leaves the mesh as it was.
+
+A remeshed region: the old region's faces (every polygon with a triangle that has a
+free vertex) and its free vertices are deleted, the new vertices and faces created;
+the fixed vertices are the same BMVerts, so everything outside the region keeps its
+data. A polygon only partly in the region (a quad whose other triangle has no free
+vertex) comes back as its triangles outside the region, with their own corner data.
+New elements first copy every attribute from the nearest old element (the vertex of
+the origin triangle with the largest barycentric weight, the origin polygon, that
+polygon's corner), then UV maps, colour attributes (point and corner, byte and float)
+and vertex groups are interpolated through the origin triangle (:mod:`carry`).
+
+Filled holes: the new vertices and faces are added; UV maps, colours and vertex groups
+of the new elements are the harmonic interpolation of the values around each hole;
+material, smooth shading and other face attributes come from the face across the
+nearest boundary edge.
+
+In Edit Mode the edit BMesh is changed; in Object Mode a BMesh is read from the mesh
+and written back (``to_mesh``).
+"""
+
+import contextlib
+from dataclasses import dataclass, field
+
+import bmesh
+import numpy as np
+
+from . import carry
+
+
+@dataclass
+class Written:
+    """What a write did, for the report.
+
+    Attributes:
+        faces_removed: faces (polygons) deleted.
+        triangles_added: new faces created (region or fill).
+        vertices_added, vertices_removed: vertices created and deleted.
+        notes: what could not be carried over, one sentence each.
+        metric_vertices, metric_triangles, metric_uvs: the new triangles, with their
+            positions and active-UV corners, for the UV distortion after (None without UVs).
+    """
+
+    faces_removed: int = 0
+    triangles_added: int = 0
+    vertices_added: int = 0
+    vertices_removed: int = 0
+    notes: list = field(default_factory=list)
+    metric_vertices: np.ndarray | None = None
+    metric_triangles: np.ndarray | None = None
+    metric_uvs: np.ndarray | None = None
+    uv_flips: int = 0
+
+
+@contextlib.contextmanager
+def editable_bmesh(obj):
+    """The BMesh of ``obj``'s mesh to change: the edit mesh in Edit Mode, else a copy written back on success.
+
+    Everything is checked before the first change, but should writing still fail, the edit
+    mesh is restored from a copy taken before (never a half-written mesh).
+    """
+    mesh = obj.data
+    if obj.mode == "EDIT":
+        bm = bmesh.from_edit_mesh(mesh)
+        snapshot = bm.copy()
+        try:
+            yield bm
+        except BaseException:
+            _restore(bm, snapshot)
+            bmesh.update_edit_mesh(mesh, loop_triangles=True, destructive=True)
+            raise
+        finally:
+            snapshot.free()
+        bm.normal_update()
+        bmesh.update_edit_mesh(mesh, loop_triangles=True, destructive=True)
+        return
+    bm = bmesh.new()
+    try:
+        bm.from_mesh(mesh)
+        yield bm
+        bm.normal_update()
+        bm.to_mesh(mesh)
+        mesh.update()
+    finally:
+        bm.free()
+
+
+# The attribute layers copied from the nearest old element (by name on BMesh's layer access; the ones a
+# Blender version lacks are skipped). Not BMElem.copy_from: in Blender 4.x it also copies the element's
+# Python reference and leaves the new element's Python object invalid.
+VERTEX_KINDS = ("bevel_weight", "crease", "paint_mask", "skin", "float", "int", "bool", "float_vector", "string")
+FACE_KINDS = ("face_map", "float", "int", "bool", "float_vector", "string", "color", "float_color")
+LOOP_KINDS = ("float", "int", "bool", "float_vector", "string", "color", "float_color")
+
+
+def _layers(access, kinds):
+    layers = []
+    for kind in kinds:
+        collection = getattr(access, kind, None)
+        if collection is not None:
+            layers += collection.values()
+    return layers
+
+
+def _copy_layers(destination, source, layers):
+    """Copy the values of ``layers`` from element ``source`` to ``destination`` (skipping any that refuse)."""
+    for layer in layers:
+        try:
+            destination[layer] = source[layer]
+        except (TypeError, ValueError, AttributeError):
+            pass
+
+
+def _restore(bm, snapshot):
+    """Put the contents of ``snapshot`` back into ``bm`` (through a temporary mesh data-block)."""
+    import bpy
+
+    temporary = bpy.data.meshes.new("geometric_fairing_restore")
+    try:
+        snapshot.to_mesh(temporary)
+        bm.clear()
+        bm.from_mesh(temporary)
+    finally:
+        bpy.data.meshes.remove(temporary)
+
+
+def _lookup(bm):
+    bm.verts.ensure_lookup_table()
+    bm.faces.ensure_lookup_table()
+    bm.edges.ensure_lookup_table()
+
+
+def _corner_layers(bm):
+    """``(kind, name, layer, width)`` of the corner layers that are interpolated: UV maps, corner colours."""
+    layers = [("uv", name, layer, 2) for name, layer in bm.loops.layers.uv.items()]
+    layers += [("colour", name, layer, 4) for name, layer in bm.loops.layers.color.items()]
+    layers += [("colour", name, layer, 4) for name, layer in bm.loops.layers.float_color.items()]
+    return layers
+
+
+def _point_colour_layers(bm):
+    return [*bm.verts.layers.color.values(), *bm.verts.layers.float_color.values()]
+
+
+def _loop_value(loop, kind, layer):
+    return loop[layer].uv[:] if kind == "uv" else loop[layer][:]
+
+
+def _set_loop_value(loop, kind, layer, value):
+    if kind == "uv":
+        loop[layer].uv = value
+    else:
+        loop[layer] = value
+
+
+def _deform(vertex, layer):
+    return dict(vertex[layer].items()) if layer is not None else {}
+
+
+def _set_deform(vertex, layer, weights):
+    data = vertex[layer]
+    data.clear()
+    for group, weight in weights.items():
+        if weight > 0.0:
+            data[group] = min(float(weight), 1.0)
+
+
+def _blend_weights(dicts, factors):
+    out = {}
+    for weights, factor in zip(dicts, factors, strict=True):
+        for group, weight in weights.items():
+            out[group] = out.get(group, 0.0) + factor * weight
+    return out
+
+
+def has_shape_keys(obj):
+    return obj.data.shape_keys is not None
+
+
+def replace_region(obj, data, input_index, old_free, result):
+    """Replace the region's faces of ``obj``'s mesh by a remeshed result (``result.remeshed``).
+
+    Args:
+        obj: the mesh object the run read.
+        data: its :class:`mesh_io.MeshData` as read for the run.
+        input_index: ``(T,)`` loop-triangle index of each triangle given to the library.
+        old_free: ``(n,)`` bool, the free mask given to the library.
+        result: the library's result (``vertices``, ``faces``, ``free``, ``origin_face``,
+            ``origin_barycentric``).
+
+    Returns:
+        :class:`Written`.
+
+    Raises:
+        carry.CarryError: the result does not fit the mesh (nothing written).
+        RuntimeError: the mesh changed under the run (nothing written).
+    """
+    input_index = np.asarray(input_index, dtype=np.int64)
+    triangles_in = data.triangles[input_index].astype(np.int64)
+    n = len(data.vertices)
+    vertices = np.asarray(result.vertices, dtype=np.float64)
+    faces = np.asarray(result.faces, dtype=np.int64).reshape(-1, 3)
+    new_free = np.asarray(result.free, dtype=bool).reshape(-1)
+    origin_face = np.asarray(result.origin_face, dtype=np.int64).reshape(-1)
+    origin_bary = np.asarray(result.origin_barycentric, dtype=np.float64).reshape(-1, 3)
+    old_free = np.asarray(old_free, dtype=bool)
+    carry.check_remeshed(vertices, faces, new_free, origin_face, origin_bary, len(triangles_in))
+    if len(vertices) < n:
+        raise carry.CarryError("the remeshed result has fewer vertex rows than the mesh; mesh unchanged")
+    fixed_rows = np.flatnonzero(~old_free[:n])
+    if np.any(new_free[fixed_rows]):
+        raise carry.CarryError("the remeshed result frees a fixed vertex; mesh unchanged")
+    new_rows_index = carry.new_region_faces(triangles_in, old_free, faces)
+    new_faces = faces[new_rows_index]
+    used = np.unique(new_faces)
+    bad = used[(used < n) & old_free[np.minimum(used, n - 1)] & ~new_free[used]]
+    if len(bad) or np.any(~new_free[used[used >= n]]):
+        raise carry.CarryError("the remeshed faces use vertices that are neither fixed nor new; mesh unchanged")
+    in_region = old_free[triangles_in].any(axis=1)
+    region_loop_tris = input_index[in_region]
+    touched = np.unique(data.triangle_face[region_loop_tris])
+    # Triangles of touched polygons outside the region come back as triangles of their own.
+    touched_mask = np.zeros(len(data.loop_start), dtype=bool)
+    touched_mask[touched] = True
+    leftover = np.flatnonzero(touched_mask[data.triangle_face] & ~old_free[data.triangles].any(axis=1))
+    # No new face may repeat a face that stays.
+    staying_tris = ~touched_mask[data.triangle_face] & (data.loop_total[data.triangle_face] == 3)
+    new_keys, staying_keys = carry.face_keys(
+        np.concatenate([new_faces, data.triangles[leftover]]), data.triangles[staying_tris]
+    )
+    if len(np.unique(new_keys)) != len(new_keys) or np.isin(new_keys, staying_keys).any():
+        raise carry.CarryError("the remeshed faces repeat a face of the mesh; mesh unchanged")
+    free_rows = np.flatnonzero(new_free)
+    used_free = free_rows[np.isin(free_rows, used)]
+
+    written = Written()
+    with editable_bmesh(obj) as bm:
+        _lookup(bm)
+        if len(bm.verts) != n or len(bm.faces) != len(data.loop_start):
+            raise RuntimeError("the mesh changed during the run; result discarded")
+        verts, bm_faces = bm.verts, bm.faces
+        loop_start = data.loop_start
+        corner_face = carry.corner_faces(data.loop_start, data.loop_total, len(data.corner_verts))
+
+        def loop_at(corner):
+            polygon = int(corner_face[corner])
+            return bm_faces[polygon].loops[int(corner - loop_start[polygon])]
+
+        # -- read what is carried, before anything changes ------------------------------------
+        region_input = np.flatnonzero(in_region)  # rows of triangles_in
+        needed = np.unique(np.concatenate([region_input, origin_face[used_free]]))
+        corner_loops = {int(t): [loop_at(c) for c in data.triangle_corners[input_index[t]]] for t in needed}
+        corner_layers = _corner_layers(bm)
+        active_uv = bm.loops.layers.uv.active
+        active_uv_name = active_uv.name if active_uv is not None else None
+        deform = bm.verts.layers.deform.active
+        point_colours = _point_colour_layers(bm)
+        fixed_in_new = np.setdiff1d(used, free_rows)
+        corner_values = []
+        for kind, name, layer, width in corner_layers:
+            values = np.zeros((len(triangles_in), 3, width))
+            for t, loops in corner_loops.items():
+                values[t] = [_loop_value(loop, kind, layer) for loop in loops]
+            candidates = carry.corner_candidates(triangles_in[region_input], values[region_input], fixed_in_new)
+            fallback = {
+                int(v): np.array(_loop_value(verts[int(v)].link_loops[0], kind, layer))
+                for v in fixed_in_new
+                if int(v) not in candidates and verts[int(v)].link_loops
+            }
+            interpolated = carry.interpolate_corners(
+                new_faces, new_free, triangles_in, values, origin_face, origin_bary, candidates, fallback
+            )
+            corner_values.append(interpolated)
+            old_free_rows = np.flatnonzero(old_free)
+            split = carry.split_vertices(triangles_in[region_input], values[region_input], old_free_rows)
+            if split:
+                what = f"UV map '{name}'" if kind == "uv" else f"colour attribute '{name}'"
+                written.notes.append(
+                    f"{what} has a seam across the region ({split} {'vertex' if split == 1 else 'vertices'}): "
+                    "the new faces interpolate across it"
+                )
+            if kind == "uv" and name == active_uv_name:
+                written.metric_uvs = interpolated
+                written.uv_flips = carry.flipped_uv_triangles(interpolated, values[region_input])
+        # Nearest old element of each new vertex: its origin triangle's corner with the largest weight.
+        nearest_corner = {}
+        for row in used_free.tolist():
+            t = int(origin_face[row])
+            nearest_corner[row] = corner_loops[t][int(np.argmax(origin_bary[row]))]
+        fixed_loop = {}
+        for t in region_input.tolist():
+            for loop in corner_loops[t]:
+                fixed_loop.setdefault(loop.vert.index, loop)
+        point_values = {}
+        if point_colours or deform is not None:
+            for row in used_free.tolist():
+                corners = corner_loops[int(origin_face[row])]
+                point_values[row] = (
+                    [np.array(corner.vert[layer][:]) for layer in point_colours for corner in corners],
+                    [_deform(corner.vert, deform) for corner in corners] if deform is not None else None,
+                )
+        origin_polygon = {}
+        for f, tri in enumerate(new_faces.tolist()):
+            at = [row for row in tri if new_free[row]]
+            if at:
+                origin_polygon[f] = int(data.triangle_face[input_index[origin_face[at[0]]]])
+            else:  # all three fixed: the polygon of a region triangle at its first vertex
+                origin_polygon[f] = fixed_loop[tri[0]].face.index if tri[0] in fixed_loop else int(touched[0])
+        if obj.data.has_custom_normals:
+            written.notes.append("custom split normals are not carried over to the new faces")
+        old_seams = sum(
+            1
+            for polygon in touched.tolist()
+            for edge in bm_faces[polygon].edges
+            if edge.seam and any(old_free[v.index] for v in edge.verts)
+        )
+        if old_seams:
+            written.notes.append(f"{old_seams} seam edges inside the region are gone (new edges have no seam)")
+
+        # Every element the write reads or removes, before the first change (the index tables go stale).
+        row_vert = {int(row): verts[int(row)] for row in fixed_in_new}
+        source_faces = [bm_faces[origin_polygon[f]] for f in range(len(new_faces))]
+        leftover_sources = [
+            (bm_faces[int(data.triangle_face[lt])], [loop_at(c) for c in data.triangle_corners[lt]])
+            for lt in leftover.tolist()
+        ]
+        touched_faces = [bm_faces[int(p)] for p in touched]
+        removed = [verts[int(row)] for row in np.flatnonzero(old_free[:n])]
+        old_edges = {edge for face in touched_faces for edge in face.edges}
+
+        # -- write ------------------------------------------------------------------------------
+        vertex_layers = _layers(bm.verts.layers, VERTEX_KINDS)
+        face_layers = _layers(bm.faces.layers, FACE_KINDS)
+        loop_layers = _layers(bm.loops.layers, LOOP_KINDS)
+        for row in used_free.tolist():
+            vertex = verts.new(vertices[row].tolist())
+            source = nearest_corner[row].vert
+            _copy_layers(vertex, source, vertex_layers)
+            vertex.select = source.select
+            row_vert[row] = vertex
+            if row in point_values:
+                colours, weights = point_values[row]
+                bary = origin_bary[row]
+                for i, layer in enumerate(point_colours):
+                    vertex[layer] = tuple(sum(bary[k] * colours[i * 3 + k] for k in range(3)))
+                if weights is not None:
+                    _set_deform(vertex, deform, _blend_weights(weights, bary))
+        created = []
+        for f, tri in enumerate(new_faces.tolist()):
+            source = source_faces[f]
+            face = bm_faces.new([row_vert[row] for row in tri])
+            _copy_layers(face, source, face_layers)
+            face.material_index, face.smooth = source.material_index, source.smooth
+            face.select = source.select
+            for k, loop in enumerate(face.loops):
+                row = tri[k]
+                old = nearest_corner.get(row) if new_free[row] else fixed_loop.get(row)
+                if old is not None:
+                    _copy_layers(loop, old, loop_layers)
+                for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
+                    _set_loop_value(loop, kind, layer, tuple(values[f, k]))
+            created.append(face)
+        for polygon, corners in leftover_sources:
+            face = bm_faces.new([loop.vert for loop in corners])
+            _copy_layers(face, polygon, face_layers)
+            face.material_index, face.smooth = polygon.material_index, polygon.smooth
+            face.select = polygon.select
+            for loop, old in zip(face.loops, corners, strict=True):
+                _copy_layers(loop, old, loop_layers)
+                for kind, _, layer, _ in corner_layers:
+                    _set_loop_value(loop, kind, layer, _loop_value(old, kind, layer))
+            created.append(face)
+        for polygon in touched_faces:
+            bm_faces.remove(polygon)
+        for vertex in removed:
+            verts.remove(vertex)
+        for edge in old_edges:
+            if edge.is_valid and not edge.link_faces:
+                bm.edges.remove(edge)
+        bm.select_flush_mode()
+        written.faces_removed = len(touched)
+        written.triangles_added = len(created)
+        written.vertices_added = len(used_free)
+        written.vertices_removed = len(removed)
+
+    if written.metric_uvs is not None:
+        written.metric_vertices = vertices
+        written.metric_triangles = new_faces
+    return written
+
+
+def add_fill(obj, data, result):
+    """Add the new vertices and faces of ``geofair.fill_holes``'s result to ``obj``'s mesh.
+
+    Args:
+        obj: the mesh object the run read.
+        data: its :class:`mesh_io.MeshData` (all its loop triangles were given to the library).
+        result: the library's result: ``vertices`` (n + k rows), ``faces`` (T + l rows).
+
+    Returns:
+        :class:`Written`.
+
+    Raises:
+        carry.CarryError: the result does not fit the mesh (nothing written).
+        RuntimeError: the mesh changed under the run (nothing written).
+    """
+    n, t = len(data.vertices), len(data.triangles)
+    vertices = np.asarray(result.vertices, dtype=np.float64)
+    faces = np.asarray(result.faces, dtype=np.int64).reshape(-1, 3)
+    if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) < n or len(faces) < t:
+        raise carry.CarryError("the solver returned a result of the wrong shape; mesh unchanged")
+    if not np.array_equal(faces[:t], data.triangles):
+        raise carry.CarryError("the solver changed the mesh's faces; mesh unchanged")
+    if not np.isfinite(vertices[n:]).all():
+        raise carry.CarryError("the solver returned invalid positions; mesh unchanged")
+    new_faces = faces[t:]
+    if len(new_faces) == 0:
+        raise carry.CarryError("the solver added no face; mesh unchanged")
+    if new_faces.min() < 0 or new_faces.max() >= len(vertices):
+        raise carry.CarryError("the solver returned faces with invalid vertex rows; mesh unchanged")
+    if np.any(np.diff(np.sort(new_faces, axis=1), axis=1) == 0):
+        raise carry.CarryError("the solver returned degenerate faces; mesh unchanged")
+    size = len(vertices)
+    tri_polygons = data.loop_total[data.triangle_face] == 3
+    keys, existing = carry.face_keys(new_faces, data.triangles[tri_polygons])
+    if len(np.unique(keys)) != len(keys) or np.isin(keys, existing).any():
+        raise carry.CarryError("the new faces repeat a face of the mesh; mesh unchanged")
+    k = len(vertices) - n
+    boundary_rows = np.unique(new_faces[new_faces < n])
+    # Each boundary edge of the fill (an edge of a new face between two old vertices) and the
+    # triangle across it: its corner data at the boundary vertices.
+    heads = data.triangles.ravel().astype(np.int64)
+    tails = data.triangles[:, [1, 2, 0]].ravel().astype(np.int64)
+    directed = {}
+    for index, key in enumerate((heads * size + tails).tolist()):
+        directed.setdefault(key, index)
+    boundary_half = []  # (a, b, half-edge of the triangle across)
+    for tri in new_faces.tolist():
+        for i in range(3):
+            a, b = tri[i], tri[(i + 1) % 3]
+            if a < n and b < n:
+                half = directed.get(b * size + a, directed.get(a * size + b))
+                if half is not None:
+                    boundary_half.append((a, b, half))
+    if not boundary_half:
+        raise carry.CarryError("the new faces do not meet the mesh at a hole; mesh unchanged")
+
+    written = Written()
+    with editable_bmesh(obj) as bm:
+        _lookup(bm)
+        if len(bm.verts) != n or len(bm.faces) != len(data.loop_start):
+            raise RuntimeError("the mesh changed during the run; result discarded")
+        verts, bm_faces = bm.verts, bm.faces
+        corner_face = carry.corner_faces(data.loop_start, data.loop_total, len(data.corner_verts))
+
+        def loop_at(corner):
+            polygon = int(corner_face[corner])
+            return bm_faces[polygon].loops[int(corner - data.loop_start[polygon])]
+
+        # Corner loops of the boundary vertices in the faces across the boundary edges.
+        boundary_loops = {}  # vertex -> list of BMLoop (one per boundary edge at it)
+        across_face = []  # (midpoint, polygon index) per boundary edge
+        for a, b, half in boundary_half:
+            tri, corner = divmod(half, 3)
+            corners = data.triangle_corners[tri]
+            rows = data.triangles[tri].tolist()
+            for v in (a, b):
+                boundary_loops.setdefault(v, []).append(loop_at(corners[rows.index(v)]))
+            across_face.append(((vertices[a] + vertices[b]) / 2, int(data.triangle_face[tri])))
+        midpoints = np.array([m for m, _ in across_face])
+        known = np.zeros(size, dtype=bool)
+        known[boundary_rows] = True
+        corner_layers = _corner_layers(bm)
+        active_uv = bm.loops.layers.uv.active
+        active_uv_name = active_uv.name if active_uv is not None else None
+        corner_values = []
+        for kind, name, layer, width in corner_layers:
+            values = np.zeros((size, width))
+            jumps = 0
+            for v, loops in boundary_loops.items():
+                seen = [np.array(_loop_value(loop, kind, layer)) for loop in loops]
+                values[v] = seen[0]
+                if any(np.abs(other - seen[0]).max() > carry.SAME_VALUE for other in seen[1:]):
+                    jumps += 1
+            filled = carry.harmonic_fill(vertices, new_faces, known, values)
+            corner_values.append(filled[new_faces])
+            if jumps:
+                what = f"UV map '{name}'" if kind == "uv" else f"colour attribute '{name}'"
+                written.notes.append(
+                    f"{what} is not continuous around the hole ({jumps} boundary "
+                    f"{'vertex' if jumps == 1 else 'vertices'} on a seam): "
+                    "the fill's values are interpolated from one side"
+                )
+            if kind == "uv" and name == active_uv_name:
+                written.metric_uvs = filled[new_faces]
+        point_colours = _point_colour_layers(bm)
+        deform = bm.verts.layers.deform.active
+        point_filled = []
+        for layer in point_colours:
+            values = np.zeros((size, 4))
+            for v in boundary_rows.tolist():
+                values[v] = verts[v][layer][:]
+            point_filled.append(carry.harmonic_fill(vertices, new_faces, known, values))
+        weights_filled = None
+        if deform is not None:
+            groups = sorted({g for v in boundary_rows.tolist() for g in verts[v][deform].keys()})
+            if groups:
+                values = np.zeros((size, len(groups)))
+                for v in boundary_rows.tolist():
+                    for g, w in verts[v][deform].items():
+                        values[v, groups.index(g)] = w
+                weights_filled = (groups, carry.harmonic_fill(vertices, new_faces, known, values))
+        # Nearest boundary vertex of each new vertex, nearest boundary edge of each new face.
+        new_rows = np.arange(n, size)
+        nearest_vertex = (
+            boundary_rows[
+                np.argmin(np.linalg.norm(vertices[new_rows, None] - vertices[None, boundary_rows], axis=2), axis=1)
+            ]
+            if k
+            else np.zeros(0, dtype=np.int64)
+        )
+        centres = vertices[new_faces].mean(axis=1)
+        nearest_edge = np.argmin(np.linalg.norm(centres[:, None] - midpoints[None], axis=2), axis=1)
+
+        # Every element the write reads, before the first change (the index tables go stale).
+        vertex_layers = _layers(bm.verts.layers, VERTEX_KINDS)
+        face_layers = _layers(bm.faces.layers, FACE_KINDS)
+        loop_layers = _layers(bm.loops.layers, LOOP_KINDS)
+        row_vert = {int(v): verts[int(v)] for v in boundary_rows}
+        nearest_verts = [verts[int(v)] for v in nearest_vertex]
+        source_faces = [bm_faces[across_face[int(e)][1]] for e in nearest_edge]
+        for i, row in enumerate(new_rows.tolist()):
+            vertex = verts.new(vertices[row].tolist())
+            _copy_layers(vertex, nearest_verts[i], vertex_layers)
+            vertex.select = True
+            for j, layer in enumerate(point_colours):
+                vertex[layer] = tuple(point_filled[j][row])
+            if weights_filled is not None:
+                groups, values = weights_filled
+                _set_deform(vertex, deform, dict(zip(groups, values[row].tolist(), strict=True)))
+            row_vert[row] = vertex
+        for f, tri in enumerate(new_faces.tolist()):
+            source = source_faces[f]
+            face = bm_faces.new([row_vert[row] for row in tri])
+            _copy_layers(face, source, face_layers)
+            face.material_index, face.smooth = source.material_index, source.smooth
+            face.select = True
+            source_loop = source.loops[0]
+            for c, loop in enumerate(face.loops):
+                row = tri[c]
+                _copy_layers(loop, boundary_loops[row][0] if row in boundary_loops else source_loop, loop_layers)
+                for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
+                    _set_loop_value(loop, kind, layer, tuple(values[f, c]))
+        if obj.data.has_custom_normals:
+            written.notes.append("custom split normals are not carried over to the new faces")
+        bm.select_flush(True)
+        written.triangles_added = len(new_faces)
+        written.vertices_added = k
+    if written.metric_uvs is not None:
+        written.metric_vertices = vertices
+        written.metric_triangles = new_faces
+    return written
