@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace geofair {
@@ -307,20 +309,94 @@ void append_rows(Matrix& M, const Matrix& rows) {
   M.bottomRows(rows.rows()) = rows;
 }
 
-// Drops the rows from #V on that no triangle uses (left by a remesh), renumbering the rest.
-void drop_unreferenced(Positions& V, Triangles& F, int n_input) {
-  std::vector<int> index(V.rows(), -1);
-  for (int v = 0; v < n_input; ++v) index[v] = v;
-  int next = n_input;
+// One hole's fill: the new vertices (to be appended after `base` rows) and the new
+// triangles, in the caller's indices.
+struct Fill {
+  Positions vertices;
+  Triangles faces;
+};
+
+// Triangulates, splits and remeshes one hole at edge length L. The remesh sees only the
+// patch and the mesh's triangles at the loop (the valences there), not the whole mesh.
+Fill fill_one(const Positions& V, const Triangles& F, const std::vector<std::vector<int>>& at,
+              const std::vector<int>& loop, const DirectedEdges& mesh_edges, double L, int base) {
+  // Local rows: the vertices of the triangles at the loop, then the split's midpoints.
+  std::vector<int> global;
+  std::unordered_map<int, int> local;
+  auto add = [&](int v) {
+    if (local.emplace(v, int(global.size())).second) global.push_back(v);
+    return local.at(v);
+  };
+  std::vector<int> around;  // the mesh's triangles at the loop vertices
+  for (int v : loop)
+    for (int f : at[v]) around.push_back(f);
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  Triangles T(Eigen::Index(around.size()), 3);
+  for (size_t k = 0; k < around.size(); ++k)
+    for (int c = 0; c < 3; ++c) T(Eigen::Index(k), c) = add(F(around[k], c));
+  std::vector<int> local_loop;
+  for (int v : loop) local_loop.push_back(add(v));
+  Positions X(Eigen::Index(global.size()), 3);
+  for (size_t k = 0; k < global.size(); ++k) X.row(Eigen::Index(k)) = V.row(global[k]);
+  const Triangles patch = hole_filling::triangulate_loop(V, loop, mesh_edges);
+  Triangles local_patch(patch.rows(), 3);
+  for (int t = 0; t < patch.rows(); ++t)
+    for (int c = 0; c < 3; ++c) local_patch(t, c) = local.at(patch(t, c));
+  const auto split = hole_filling::split_inner_edges(X, local_patch, local_loop);
+  const int n_fixed = int(X.rows());
+  append_rows(X, split.new_vertices);
+  append_rows(T, split.faces);
+  std::vector<bool> free(X.rows(), false);
+  for (int v = n_fixed; v < int(X.rows()); ++v) free[v] = true;
+  RemeshOptions remesh;
+  remesh.target_edge_length = L;
+  const RemeshedRegion r = remesh_region(X, T, free, remesh);
+  // Its new vertices: the free rows (the unreferenced ones are not free); the fixed rows
+  // are the mesh's.
+  std::vector<int> to_caller(r.vertices.rows(), -1);
+  for (int v = 0; v < n_fixed; ++v) to_caller[v] = global[v];
+  Fill fill;
+  std::vector<int> rows;
+  for (int v = n_fixed; v < int(r.vertices.rows()); ++v)
+    if (r.free[v]) {
+      to_caller[v] = base + int(rows.size());
+      rows.push_back(v);
+    }
+  fill.vertices.resize(Eigen::Index(rows.size()), 3);
+  for (size_t k = 0; k < rows.size(); ++k) fill.vertices.row(Eigen::Index(k)) = r.vertices.row(rows[k]);
+  const Eigen::Index kept = Eigen::Index(around.size());  // remesh_region keeps them first
+  fill.faces.resize(r.faces.rows() - kept, 3);
+  for (Eigen::Index t = kept; t < r.faces.rows(); ++t)
+    for (int c = 0; c < 3; ++c) fill.faces(t - kept, c) = to_caller[r.faces(t, c)];
+  return fill;
+}
+
+// All holes filled at `scale` times their edge lengths, then faired together.
+FairingResult fill_and_fair(const Positions& V, const Triangles& F,
+                            const std::vector<std::vector<int>>& holes,
+                            const std::vector<double>& lengths, double scale,
+                            const FairingOptions& options) {
+  const DirectedEdges mesh_edges(F);
+  std::vector<std::vector<int>> at(V.rows());  // each vertex's triangles
   for (int f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (index[F(f, c)] < 0) index[F(f, c)] = next++;
-  Positions kept(next, 3);
-  for (int v = 0; v < int(V.rows()); ++v)
-    if (index[v] >= 0) kept.row(index[v]) = V.row(v);
-  for (int f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) F(f, c) = index[F(f, c)];
-  V = std::move(kept);
+    for (int c = 0; c < 3; ++c) at[F(f, c)].push_back(f);
+  Positions X = V;
+  Triangles T = F;
+  for (size_t h = 0; h < holes.size(); ++h) {
+    const Fill fill = fill_one(V, F, at, holes[h], mesh_edges, scale * lengths[h], int(X.rows()));
+    append_rows(X, fill.vertices);
+    append_rows(T, fill.faces);
+  }
+  std::vector<bool> free(X.rows(), false);
+  for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
+  FairingOptions fairing = options;
+  fairing.remesh = Remesh::Off;  // the patches are remeshed already
+  FairingResult result = fair(X, T, free, nullptr, fairing);
+  result.faces = std::move(T);
+  result.free = std::move(free);
+  result.remeshed = true;
+  return result;
 }
 
 }  // namespace
@@ -331,34 +407,30 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
   if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
     throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
   const auto holes = hole_filling::holes_to_fill(V, F, loops);
-  const DirectedEdges mesh_edges(F);
-  Positions X = V;
-  Triangles T = F;
-  for (const auto& loop : holes) {
-    // Each hole on its own: triangulated, split, remeshed with only its vertices free.
-    const Triangles patch = hole_filling::triangulate_loop(V, loop, mesh_edges);
-    const auto split = hole_filling::split_inner_edges(X, patch, loop);
-    const int first_new = int(X.rows());
-    append_rows(X, split.new_vertices);
-    append_rows(T, split.faces);
-    std::vector<bool> free(X.rows(), false);
-    for (int v = first_new; v < int(X.rows()); ++v) free[v] = true;
-    RemeshOptions remesh;
-    remesh.target_edge_length =
-        target_edge_length > 0.0 ? target_edge_length : mean_loop_edge_length(V, loop);
-    RemeshedRegion r = remesh_region(X, T, free, remesh);
-    X = std::move(r.vertices);
-    T = std::move(r.faces);
-    drop_unreferenced(X, T, first_new);
+  std::vector<double> lengths;
+  for (const auto& loop : holes)
+    lengths.push_back(target_edge_length > 0.0 ? target_edge_length
+                                               : mean_loop_edge_length(V, loop));
+  const auto start = std::chrono::steady_clock::now();
+  FairingResult result = fill_and_fair(V, F, holes, lengths, 1.0, options);
+  const bool failed = !result.converged || result.new_folds > 0;
+  const double spent =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
+  if (!failed || target_edge_length > 0.0 || !time_left ||
+      result.stop_reason == StopReason::Cancelled)
+    return result;
+  // A ragged loop asks for a finer fill next to it: once more at half the edge length.
+  FairingOptions rest = options;
+  if (options.time_limit >= 0.0) rest.time_limit = options.time_limit - spent;
+  FairingResult finer = fill_and_fair(V, F, holes, lengths, 0.5, rest);
+  const bool finer_ok = finer.converged && finer.new_folds == 0;
+  if (finer_ok || (finer.converged && !result.converged)) {
+    finer.message += "; filled at half the loops' edge length (at their own it did not " +
+                     std::string(result.converged ? "stay free of folds)" : "converge)");
+    return finer;
   }
-  std::vector<bool> free(X.rows(), false);
-  for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
-  FairingOptions fairing = options;
-  fairing.remesh = Remesh::Off;  // the patches are remeshed already
-  FairingResult result = fair(X, T, free, nullptr, fairing);
-  result.faces = std::move(T);
-  result.free = std::move(free);
-  result.remeshed = true;
+  result.message += "; at half the loops' edge length neither (" + finer.message + ")";
   return result;
 }
 
