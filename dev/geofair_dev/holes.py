@@ -296,8 +296,9 @@ def cut_disc(vertices, faces, seed, count=None, radius=None, distance=None):
 
 
 def neighbourhood(hole: Hole, rings: int):
-    """The hole's surroundings: the triangles within ``rings`` rings of the loop, reindexed:
-    a Hole on a smaller mesh (same loop, cut-away surface and figures). rings <= 0: the hole."""
+    """The hole's surroundings: the triangles within ``rings`` rings of the loop (and all
+    triangles of a vertex where they would meet in a bowtie), reindexed: a Hole on a
+    smaller manifold mesh (same loop, cut-away surface and figures). rings <= 0: the hole."""
     if rings <= 0:
         return hole
     f = hole.faces
@@ -308,6 +309,11 @@ def neighbourhood(hole: Hole, rings: int):
     for _ in range(rings):
         sel = near[f].any(axis=1)
         near[f[sel].ravel()] = True
+    for _ in range(MAX_CLEANUPS):  # no bowtie vertex on the surroundings' outer border: add its triangles
+        bowtie = _fan_count(f[sel], n) > 1
+        if not bowtie.any():
+            break
+        sel |= bowtie[f].any(axis=1)
     used = np.unique(f[sel])
     local = np.full(n, -1, np.int64)
     local[used] = np.arange(len(used))
@@ -413,3 +419,52 @@ def fill_distance(vertices_out, faces_out, n_faces_in, reference, per_edge=4):
     pts = fill_samples(vertices_out, fo, per_edge)
     d = np.abs(reference(pts)) if callable(reference) else distance_to_mesh(pts, *reference)
     return float(d.mean()), float(d.max())
+
+
+# --------------------------------------------------------------------------------------
+# Finer meshes
+
+
+def loop_subdivide(vertices, faces):
+    """One step of Loop's subdivision (Loop 1987; Warren's β = 3/(8k) for valence k > 3,
+    3/16 for k = 3; border edges and vertices by the cubic B-spline rules): (vertices,
+    faces) with each triangle split in four, the input's vertices first (moved), the edge
+    points after. A smooth finer mesh of a corpus mesh, for holes of more vertices than
+    the mesh has to spare."""
+    v = np.asarray(vertices, float)
+    f = np.asarray(faces, np.int64)
+    n = len(v)
+    d = _directed_edges(f)
+    und = np.sort(d, axis=1)
+    key = und[:, 0] * n + und[:, 1]
+    uniq, edge_of, count = np.unique(key, return_inverse=True, return_counts=True)
+    ne = len(uniq)
+    a, b = uniq // n, uniq % n
+    opposite = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])  # the third vertex of each directed edge
+    opp_sum = np.zeros((ne, 3))
+    np.add.at(opp_sum, edge_of, v[opposite])
+    on_border = count == 1
+    edge_point = np.where(on_border[:, None], 0.5 * (v[a] + v[b]), 0.375 * (v[a] + v[b]) + 0.125 * opp_sum)
+    # Vertices: interior by Warren's weights, border by 3/4 and 1/8 of the two border neighbours.
+    valence = np.bincount(np.r_[a, b], minlength=n)
+    nb_sum = np.zeros((n, 3))
+    np.add.at(nb_sum, a, v[b])
+    np.add.at(nb_sum, b, v[a])
+    border_sum = np.zeros((n, 3))
+    np.add.at(border_sum, a[on_border], v[b[on_border]])
+    np.add.at(border_sum, b[on_border], v[a[on_border]])
+    border_vertex = np.bincount(np.r_[a[on_border], b[on_border]], minlength=n) > 0
+    k = np.maximum(valence, 1).astype(float)
+    beta = np.where(valence == 3, 3.0 / 16.0, 3.0 / (8.0 * k))
+    moved = (1 - k * beta)[:, None] * v + beta[:, None] * nb_sum
+    moved = np.where(border_vertex[:, None], 0.75 * v + 0.125 * border_sum, moved)
+    moved[valence == 0] = v[valence == 0]
+    m = len(f)
+    e01, e12, e20 = (n + edge_of[i * m : (i + 1) * m] for i in range(3))
+    out = np.concatenate([
+        np.column_stack([f[:, 0], e01, e20]),
+        np.column_stack([e01, f[:, 1], e12]),
+        np.column_stack([e20, e12, f[:, 2]]),
+        np.column_stack([e01, e12, e20]),
+    ])  # fmt: skip
+    return np.concatenate([moved, edge_point]), out
