@@ -266,7 +266,7 @@ def _fmt(x, spec, width):
 
 
 HEADER = (
-    f"{'case':<30} {'removed':>7} {'loop':>5} {'method':<7} {'ok':<4} {'conv':<5} {'folds':>5} {'new V':>6} "
+    f"{'case':<34} {'removed':>7} {'loop':>5} {'method':<7} {'ok':<4} {'conv':<5} {'folds':>5} {'new V':>6} "
     f"{'min°':>5} {'time [s]':>8} {'mean':>8} {'max':>8}  note"
 )
 
@@ -276,7 +276,7 @@ def format_row(row):
     ok = "yes" if row.get("ok") else ("no" if row["status"] == "done" else row["status"])
     note = "; ".join(row.get("problems", []) + ([row["message"]] if row.get("message") else []))
     return (
-        f"{row['case']:<30} {row['removed']:>7} {row['loop']:>5} {row['method']:<7} {ok:<4} {flag:<5} "
+        f"{row['case']:<34} {row['removed']:>7} {row['loop']:>5} {row['method']:<7} {ok:<4} {flag:<5} "
         f"{_fmt(row.get('folds'), 'd', 5)} {_fmt(row.get('new_vertices'), 'd', 6)} "
         f"{_fmt(row.get('min_angle'), '.1f', 5)} {_fmt(row.get('seconds'), '.3f', 8)} "
         f"{_fmt(row.get('mean'), '.1e', 8)} {_fmt(row.get('max'), '.1e', 8)}  {note}"
