@@ -89,6 +89,18 @@ def test_cut_disc_in_a_grid_adds_one_loop_and_rejects_the_border():
     assert hole is None and "border" in why
 
 
+def test_bfs_rings_cut_a_hexagon_out_of_a_grid():
+    v, f = grid(11)
+    seed = centre_vertex(v)
+    hops = holes.hop_distance(f, seed)
+    assert hops[seed] == 0 and hops[seed + 1] == 1 and hops[seed + 11 + 1] == 1  # the diagonal is an edge
+    assert hops[seed - 11 - 1] == 1 and hops[seed + 11 - 1] == 2  # the other diagonal is not
+    hole, why = holes.cut_disc(v, f, seed, radius=1, distance=hops)
+    assert why is None and hole.removed == 7  # the seed and its six neighbours
+    assert len(hole.loop) == 12  # the second ring
+    assert len(holes.boundary_loops(hole.faces)) == 2
+
+
 def test_neighbourhood_keeps_the_loop_and_is_manifold():
     s = scenes.sphere(n_vertices=2562, irregular=True, seed=2)
     hole, _ = holes.cut_disc(s.vertices, s.faces, 5, count=60)

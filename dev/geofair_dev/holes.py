@@ -7,7 +7,8 @@
   twice in one direction (inconsistent orientation), a vertex whose triangles are not one
   fan (a "bowtie" vertex).
 - ``cut_disc(vertices, faces, seed, count=... | radius=...)``: a hole: the geodesic disc
-  around a seed vertex (Dijkstra distance along the edges) removed with its triangles,
+  around a seed vertex (Dijkstra distance along the edges; or BFS rings, ``distance=``
+  ``hop_distance(faces, seed)``) removed with its triangles,
   cleaned up until it leaves exactly one new boundary loop on a manifold mesh; a ``Hole``
   with the cut mesh, its loop and the cut-away triangles (None when the seed gives no
   clean hole: the disc reaches the mesh border, cuts off a part larger than a pocket, or
@@ -198,6 +199,19 @@ def geodesic_distance(vertices, faces, seed):
     from scipy.sparse.csgraph import dijkstra
 
     return dijkstra(edge_graph(vertices, faces), directed=False, indices=int(seed))
+
+
+def hop_distance(faces, seed, n=None):
+    """(n,) edge-graph (BFS ring) distance from vertex ``seed``, in edges (inf: unreachable):
+    the rings of ``cut_disc(..., distance=hop_distance(faces, seed))``."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import shortest_path
+
+    f = np.asarray(faces, np.int64)
+    n = int(f.max()) + 1 if n is None else n
+    d = _directed_edges(f)
+    graph = coo_matrix((np.ones(len(d)), (d[:, 0], d[:, 1])), shape=(n, n)).tocsr()
+    return shortest_path(graph, directed=False, unweighted=True, indices=int(seed))
 
 
 def loop_diameter(vertices, loop):
