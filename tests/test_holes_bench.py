@@ -223,3 +223,58 @@ def test_cgal_fill_rejects_a_loop_that_is_not_a_boundary(needs_cgal):
     v, f = grid(11)
     with pytest.raises(RuntimeError, match="not a border edge"):
         cgal_fill_hole.cgal_fill_hole(v, f, [60, 61, 72])  # interior vertices
+
+
+# --------------------------------------------------------------------------------------
+# The benchmarks' summaries
+
+
+def _bench(name):
+    from geofair_dev import paths
+
+    return paths.source_module(paths.REPO / "bench" / f"{name}.py", f"bench_{name}")
+
+
+def test_holes_summary_counts_closer_fills_and_the_time_ratio():
+    bench = _bench("holes")
+
+    def row(case, method, mean, seconds, ok=True, kind="corpus"):
+        return {"case": case, "kind": kind, "method": method, "status": "done", "ok": ok, "mean": mean,
+                "max": 2 * mean, "seconds": seconds}  # fmt: skip
+
+    rows = [row("a", "geofair", 1.0, 2.0), row("a", "cgal", 2.0, 1.0),  # ours closer, twice the time
+            row("b", "geofair", 3.0, 3.0, ok=False), row("b", "cgal", 2.0, 1.0),  # CGAL closer
+            row("c", "geofair", 1.0, 8.0), row("c", "cgal", 4.0, 1.0),  # ours closer
+            {"case": "d", "kind": "corpus", "method": "geofair", "status": "timeout", "seconds": 120.0},
+            row("d", "cgal", 1.0, 1.0)]  # fmt: skip
+    text = "\n".join(bench.summary(rows, ["geofair", "cgal"]))
+    assert "geofair: corpus holes filled (ok) 2 of 4 (timeout 1)" in text
+    assert "cgal: corpus holes filled (ok) 4 of 4" in text
+    assert "corpus holes filled by both: 3; geofair closer than cgal: mean distance 2 (67 %)" in text
+    assert "of those filled ok by both (2): geofair closer (mean) on 2" in text
+    assert "time ratio geofair/cgal over 3 holes: median 3.0, max 8.0" in text
+
+
+def test_realmesh_summary_lists_cases_lost_and_gained_by_remeshing():
+    bench = _bench("realmesh")
+
+    def row(case, remesh, status, folds=0, remeshed=False):
+        return {"case": case, "inner": "uniform", "remesh": remesh, "status": status, "new_folds": folds,
+                "free": 100, "topology": "disc", "seconds": 1.0, "remeshed": remeshed}  # fmt: skip
+
+    rows = [row("kept", "off", "yes"), row("kept", "if_needed", "yes"),
+            row("lost", "off", "yes"), row("lost", "if_needed", "no", remeshed=True),
+            row("gained", "off", "yes", folds=3), row("gained", "if_needed", "yes", remeshed=True)]  # fmt: skip
+    for r in rows:
+        if r["remesh"] == "off":
+            del r["remeshed"]
+    text = "\n".join(bench.summary(rows, ["uniform"], 60.0, ("off", "if_needed")))
+    assert "uniform, remesh off: 3 cases, converged without new folds 2 (67 %)" in text
+    assert "uniform, remesh if_needed: 3 cases, converged without new folds 2 (67 %)" in text
+    assert "remeshed: 2 of 3 cases (3 finished)" in text
+    assert "(lost): 1 (lost)" in text
+    assert "(gained): 1 (gained)" in text
+    # Remesh off alone: the summary as it always was (no remesh lines, the bare inner fairness).
+    plain = bench.summary([r for r in rows if r["remesh"] == "off"], ["uniform"], 60.0)
+    assert plain[0].startswith("uniform: 3 cases, converged without new folds 2 (67 %)")
+    assert not any("remesh" in line for line in plain)
