@@ -2,6 +2,7 @@
 // content (indices, finiteness, topology) happen in the C++ library.
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
+#include "geofair/hole_filling.h"
 #include "geofair/tuning.h"
 #include "geofair/types.h"
 
@@ -11,7 +12,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <cstdlib>
 #include <string>
@@ -96,6 +99,21 @@ std::vector<bool> to_mask(const py::handle& obj, py::ssize_t n) {
     throw InvalidInputError("free must have dtype bool, got " + dtype_of(a));
   const auto c = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(a);
   return std::vector<bool>(c.data(), c.data() + n);
+}
+
+// A std::vector as a new 1-D numpy array (bool or int32). The bool one is returned as a
+// plain array: pybind11-stubgen cannot name numpy's bool type (scripts/make_stubs.py).
+py::array bool_array(const std::vector<bool>& v) {
+  py::array_t<bool> a(py::ssize_t(v.size()));
+  bool* p = a.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i) p[i] = v[i];
+  return std::move(a);
+}
+
+py::array_t<int> int_array(const std::vector<int>& v) {
+  py::array_t<int> a(py::ssize_t(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
 }
 
 // The Python names of the options' values, one table per enum: parse() reads them, name()
@@ -231,28 +249,16 @@ std::string fair_doc(std::string doc) {
   return doc;
 }
 
-FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
-                      const std::string& boundary, const py::object& boundary_normals,
-                      const py::object& polygon_ids,
-                      const std::string& inner_fairness,
-                      const std::string& outer_fairness, const std::string& normal_weighting,
-                      double tolerance, int max_iterations, double damping, int cg_iterations,
-                      int levels, const std::string& iteration, const py::object& progress,
-                      const py::object& time_limit, const py::object& tuning) {
-  const Positions V = to_positions(vertices, "vertices");
-  const Triangles F = to_triangles(faces);
-  const std::vector<bool> mask = to_mask(free, V.rows());
-  std::optional<std::vector<int>> polygons;
-  if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
+// The fairing keywords that fair and fill_holes share, as FairingOptions.
+FairingOptions fairing_options(const std::string& boundary, const std::string& inner_fairness,
+                               const std::string& outer_fairness,
+                               const std::string& normal_weighting, double tolerance,
+                               int max_iterations, double damping, int cg_iterations,
+                               int levels, const std::string& iteration,
+                               const py::object& time_limit, const py::object& tuning,
+                               const char* caller) {
   FairingOptions options;
   options.boundary = parse(boundary, "boundary", kBoundaryNames);
-  std::optional<Positions> normals;  // not read with G0
-  if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
-    normals = to_positions(boundary_normals, "boundary_normals");
-    if (normals->rows() != V.rows())
-      throw InvalidInputError("boundary_normals must have the shape of vertices " +
-                              std::to_string(V.rows()) + "×3");
-  }
   options.inner_fairness = parse_inner_fairness(inner_fairness);
   options.outer_fairness = parse(outer_fairness, "outer_fairness", kOuterFairnessNames);
   options.normal_weighting = parse_weighting(normal_weighting);
@@ -265,13 +271,19 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   if (!time_limit.is_none()) {
     options.time_limit = time_limit.cast<double>();
     if (!(options.time_limit >= 0.0))
-      throw InvalidInputError("fair: time_limit must be None or a number >= 0 (seconds), got " +
+      throw InvalidInputError(std::string(caller) +
+                              ": time_limit must be None or a number >= 0 (seconds), got " +
                               std::string(py::str(time_limit)));
   }
   if (!tuning.is_none()) set_tuning(tuning, options.tuning);
+  return options;
+}
 
-  // Progress: re-take the GIL at most every 0.1 s; an exception in the callback (e.g.
-  // KeyboardInterrupt) stops the run and is re-raised.
+// Runs solve() without the GIL with options.progress calling `progress` (re-taking the GIL
+// at most every 0.1 s); an exception in the callback (e.g. KeyboardInterrupt) stops the run
+// and is re-raised.
+template <class Solve>
+FairingResult with_progress(FairingOptions& options, const py::object& progress, Solve solve) {
   std::optional<py::error_already_set> callback_error;
   if (!progress.is_none()) {
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -292,11 +304,79 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
   FairingResult result;
   {
     py::gil_scoped_release release;
-    result = fair(V, F, mask, normals ? &*normals : nullptr, options,
-                  polygons ? &*polygons : nullptr);
+    result = solve();
   }
   if (callback_error) throw *callback_error;
   return result;
+}
+
+FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
+                      const std::string& boundary, const py::object& boundary_normals,
+                      const py::object& polygon_ids,
+                      const std::string& inner_fairness,
+                      const std::string& outer_fairness, const std::string& normal_weighting,
+                      double tolerance, int max_iterations, double damping, int cg_iterations,
+                      int levels, const std::string& iteration, const py::object& progress,
+                      const py::object& time_limit, const py::object& tuning) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  const std::vector<bool> mask = to_mask(free, V.rows());
+  std::optional<std::vector<int>> polygons;
+  if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
+  FairingOptions options = fairing_options(boundary, inner_fairness, outer_fairness,
+                                           normal_weighting, tolerance, max_iterations, damping,
+                                           cg_iterations, levels, iteration, time_limit, tuning,
+                                           "fair");
+  std::optional<Positions> normals;  // not read with G0
+  if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
+    normals = to_positions(boundary_normals, "boundary_normals");
+    if (normals->rows() != V.rows())
+      throw InvalidInputError("boundary_normals must have the shape of vertices " +
+                              std::to_string(V.rows()) + "×3");
+  }
+  return with_progress(options, progress, [&] {
+    return fair(V, F, mask, normals ? &*normals : nullptr, options,
+                polygons ? &*polygons : nullptr);
+  });
+}
+
+// A list of vertex loops (sequences of integers) from Python; None: empty.
+std::vector<std::vector<int>> to_loops(const py::object& loops) {
+  std::vector<std::vector<int>> out;
+  if (loops.is_none()) return out;
+  for (const py::handle loop : loops) {
+    std::vector<int> indices;
+    for (const py::handle v : loop) indices.push_back(v.cast<int>());
+    out.push_back(std::move(indices));
+  }
+  if (out.empty()) throw InvalidInputError("fill_holes: loops is empty (None fills every hole)");
+  return out;
+}
+
+FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
+                            const py::object& loops, const py::object& target_edge_length,
+                            const std::string& boundary, const std::string& inner_fairness,
+                            const std::string& outer_fairness,
+                            const std::string& normal_weighting, double tolerance,
+                            int max_iterations, double damping, int cg_iterations, int levels,
+                            const std::string& iteration, const py::object& progress,
+                            const py::object& time_limit, const py::object& tuning) {
+  const Positions V = to_positions(vertices, "vertices");
+  const Triangles F = to_triangles(faces);
+  const std::vector<std::vector<int>> holes = to_loops(loops);
+  double length = 0.0;
+  if (!target_edge_length.is_none()) {
+    length = target_edge_length.cast<double>();
+    if (!(length > 0.0) || !std::isfinite(length))
+      throw InvalidInputError(
+          "fill_holes: target_edge_length must be None or a positive finite number, got " +
+          std::string(py::str(target_edge_length)));
+  }
+  FairingOptions options = fairing_options(boundary, inner_fairness, outer_fairness,
+                                           normal_weighting, tolerance, max_iterations, damping,
+                                           cg_iterations, levels, iteration, time_limit, tuning,
+                                           "fill_holes");
+  return with_progress(options, progress, [&] { return fill_holes(V, F, holes, options, length); });
 }
 
 Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
@@ -383,6 +463,14 @@ void bind_result(py::module_& m) {
                     "polishes\", for the paper's iteration \"level l iterations\" (an "
                     "abandoned attempt's phases included). They do not overlap: their sum "
                     "stays below the call's wall time.")
+      .def_readonly("faces", &FairingResult::faces,
+                    "(m', 3) int32 triangles of the result: fill_holes' filled mesh, the "
+                    "input's faces first and unchanged, then the new ones.")
+      .def_property_readonly(
+          "free", [](const FairingResult& r) { return bool_array(r.free); },
+          "(n',) bool: the result's free vertices (fill_holes: exactly the new ones).")
+      .def_readonly("remeshed", &FairingResult::remeshed,
+                    "True where the result's triangles are not the input's (fill_holes).")
       .def("__repr__", [](const FairingResult& r) {
         return "FairingResult(converged=" + std::string(r.converged ? "True" : "False") +
                ", iterations=" + std::to_string(r.iterations) +
@@ -787,6 +875,179 @@ Raises
 ValueError for invalid input.)doc");
 }
 
+// geofair.fill_holes and geofair.boundary_loops.
+void bind_holes(py::module_& m) {
+  const FairingOptions d;
+  m.def("fill_holes", &fill_holes_py, py::arg("vertices"), py::arg("faces"),
+        py::arg("loops") = py::none(), py::kw_only(), py::arg("target_edge_length") = py::none(),
+        py::arg("boundary") = name(d.boundary, kBoundaryNames),
+        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
+        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
+        py::arg("tuning") = py::none(),
+        R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
+loop keeps its positions and takes its unit normals from the faces around it (the G1
+boundary of Schneider & Kobbelt 2001, section 4; estimated as geofair.boundary_normals
+does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
+or catenoid is filled with that surface (beyond the paper: the triangulation and refinement).
+
+Each hole's loop is triangulated (Liepa 2003, "Filling holes in meshes": the triangulation
+with the smallest largest dihedral angle, the faces around the loop included, then the
+smallest area; loops of more than 500 vertices get a fan around their centroid), the edges
+across the hole are split, the patch is remeshed isotropically at target_edge_length
+(geofair.remesh_region), and all patches are faired together by geofair.fair with the new
+vertices free.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, triangles, consistently oriented, manifold.
+loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops);
+    or a list of loops, each a sequence of vertex indices along one boundary loop (any start
+    vertex, either direction).
+target_edge_length : edge length of the fill in mesh units, or None (default): the mean
+    length of the hole's loop edges.
+boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
+damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
+    geofair.fair; boundary="g0" fills with the minimal surface spanned by the loop.
+
+Returns
+-------
+FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
+vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
+after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
+new vertices; .remeshed True; .converged, .residual, .message, .stop_reason, .folds and
+.new_folds as for fair.
+
+Raises
+------
+ValueError when a loop is not a boundary loop of the mesh (the offending pair of vertices is
+named), a vertex is on two given loops, the mesh has no hole, or for the input fair refuses
+(the message names the problem and the vertex or face); RuntimeError as fair.)doc");
+  m.def(
+      "boundary_loops",
+      [](const py::object& vertices, const py::object& faces) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        std::vector<std::vector<int>> loops;
+        {
+          py::gil_scoped_release release;
+          loops = boundary_loops(V, F);
+        }
+        py::list out;
+        for (const auto& loop : loops) out.append(int_array(loop));
+        return out;
+      },
+      py::arg("vertices"), py::arg("faces"),
+      R"doc(The boundary loops (holes) of a triangle mesh.
+
+Parameters
+----------
+vertices : (n, 3) float64 array; faces : (m, 3) integer array, consistently oriented, manifold.
+
+Returns
+-------
+list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
+(a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
+added into the hole is oriented like its neighbours; empty for a closed mesh.
+
+Raises
+------
+ValueError for invalid triangles or a vertex on two loops (holes that touch).)doc");
+}
+
+// geofair.remesh_region and its result, geofair.RemeshedRegion.
+void bind_remesh(py::module_& m) {
+  py::class_<RemeshedRegion>(m, "RemeshedRegion", "Result of geofair.remesh_region.")
+      .def_readonly("vertices", &RemeshedRegion::vertices,
+                    "(n', 3) float64 positions, mesh units; rows of fixed vertices are "
+                    "bit-identical to the input, n' = max(n, #fixed + #new free).")
+      .def_readonly("faces", &RemeshedRegion::faces,
+                    "(m', 3) int32 triangles: the input faces without a free vertex "
+                    "(unchanged, in input order), then the region's new triangles.")
+      .def_property_readonly(
+          "free", [](const RemeshedRegion& r) { return bool_array(r.free); },
+          "(n',) bool: True exactly at the new region's free vertices.")
+      .def_property_readonly(
+          "unreferenced", [](const RemeshedRegion& r) { return int_array(r.unreferenced); },
+          "(k,) int32: input free rows that no new vertex reuses (in no face, not free).")
+      .def_property_readonly(
+          "origin_face", [](const RemeshedRegion& r) { return int_array(r.origin_face); },
+          "(n',) int32: for each free vertex the input face (row of the input faces) its "
+          "position lies on; -1 for fixed vertices and unreferenced rows.")
+      .def_readonly("origin_barycentric", &RemeshedRegion::origin_barycentric,
+                    "(n', 3) float64 barycentric coordinates in origin_face (rows sum to 1; "
+                    "vertices[i] = Σ_k b[i, k] * input_vertices[input_faces[f, k]] to "
+                    "round-off); zeros where origin_face is -1.")
+      .def("__repr__", [](const RemeshedRegion& r) {
+        return "RemeshedRegion(vertices=" + std::to_string(r.vertices.rows()) +
+               ", faces=" + std::to_string(r.faces.rows()) +
+               ", free=" + std::to_string(std::count(r.free.begin(), r.free.end(), true)) + ")";
+      });
+
+  m.def(
+      "remesh_region",
+      [](const py::object& vertices, const py::object& faces, const py::object& free,
+         const py::object& target_edge_length, int iterations) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces);
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        RemeshOptions options;
+        options.iterations = iterations;
+        if (!target_edge_length.is_none()) {
+          options.target_edge_length = target_edge_length.cast<double>();
+          if (!(options.target_edge_length > 0.0) || !std::isfinite(options.target_edge_length))
+            throw InvalidInputError(
+                "remesh_region: target_edge_length must be None or a positive finite number, "
+                "got " + std::string(py::str(target_edge_length)));
+        }
+        py::gil_scoped_release release;
+        return remesh_region(V, F, mask, options);
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+      py::arg("target_edge_length") = py::none(), py::arg("iterations") = RemeshOptions{}.iterations,
+      R"doc(Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
+remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
+runs before fairing: the region's triangles (those with a free vertex) are replaced, the
+fixed vertices and the region's border edges are kept.
+
+Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
+vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
+degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
+counting the edges outside the region), and moves each free vertex to the area-weighted
+centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
+the closest point of the input region's triangles.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, triangles; those with a free vertex must form a consistently
+    oriented 2-manifold.
+free : (n,) bool array, True where a vertex may move (not on the mesh border).
+target_edge_length : float > 0 in mesh units, or None (default): the mean length of the
+    region's border edges (of all its edges where it has no border).
+iterations : int >= 0, rounds of split, collapse, flip and relaxation (0: the input).
+
+Returns
+-------
+RemeshedRegion with .vertices (n', 3) float64, .faces (m', 3) int32 (the faces without a
+free vertex unchanged and first, then the new ones), .free (n',) bool, .unreferenced (k,)
+int32, .origin_face (n',) int32 and .origin_barycentric (n', 3) float64 (where each free
+vertex lies on the input surface). Rows of fixed vertices keep their index and position
+bit-identically; a surviving input free vertex keeps its row, the other new free vertices
+take the remaining input free rows in increasing order, then rows appended after n, so
+n' = max(n, #fixed + #new free); free rows left over are listed in .unreferenced.
+
+Raises
+------
+ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+border, a region that is not a consistently oriented 2-manifold, invalid options).)doc");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(geofair, m) {
@@ -803,4 +1064,6 @@ PYBIND11_MODULE(geofair, m) {
   bind_laplacians(m);
   bind_solver_steps(m);
   bind_geometry(m);
+  bind_remesh(m);
+  bind_holes(m);
 }

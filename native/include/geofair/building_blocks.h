@@ -1,6 +1,7 @@
 // The building blocks of fair() that the library exports on their own (the Python module's
 // geofair.cotangent_laplacian, intrinsic_delaunay, mean_curvature, boundary_normals,
-// relax_inner_fairness and progressive_mesh): Schneider & Kobbelt 2001, sections 5–7.
+// relax_inner_fairness and progressive_mesh): Schneider & Kobbelt 2001, sections 5–7; and
+// remesh_region, the isotropic remesh of fair()'s remesh mode (beyond the paper).
 #pragma once
 
 #include "geofair/types.h"
@@ -143,5 +144,60 @@ std::pair<Positions, double> relax_inner_fairness(const Positions& V, const Tria
 std::vector<Triangles> progressive_mesh_levels(const Positions& V, const Triangles& F,
                                                const std::vector<bool>& free, int levels,
                                                bool coarsen_boundary);
+
+/// Options of remesh_region.
+struct RemeshOptions {
+  /// Target edge length L in mesh units; <= 0: the mean length of the region's border edges
+  /// (the edges of the region's triangles that have one of them on one side only), or of all
+  /// its edges where it has no border.
+  double target_edge_length = 0.0;
+  int iterations = 5;  ///< rounds of split, collapse, flip, tangential relaxation; >= 0
+};
+
+/// The remeshed region (remesh_region) in the caller's rows.
+///
+/// Rows: the input's fixed vertices keep their index and position (bit-identical); an input
+/// free vertex that survives keeps its row, the other new free vertices take the input's
+/// remaining free rows in increasing order, then rows appended after #V, so `vertices` has
+/// max(#V, #fixed + #new free) rows. Input free rows left over are listed in `unreferenced`
+/// (in no face, not free, their input position kept).
+struct RemeshedRegion {
+  Positions vertices;      ///< #V'×3, mesh units
+  /// #F'×3: the input faces without a free vertex (unchanged, in input order), then the
+  /// region's new triangles, oriented like the input's; each has a free vertex.
+  Triangles faces;
+  std::vector<bool> free;  ///< #V': true exactly at the new region's free vertices
+  std::vector<int> unreferenced;
+  /// #V': for a free vertex, the input face (row of F) its position lies on; -1 elsewhere.
+  std::vector<int> origin_face;
+  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1, the position is
+  /// Σ_k b_k V[F(origin_face, k)] to round-off); zeros where origin_face is -1. Lets a caller
+  /// carry per-corner data (UVs) over from the input.
+  Positions origin_barycentric;
+};
+
+/// Replaces the triangles of a region (the faces with a free vertex) by an isotropic remesh
+/// at edge length L (Botsch & Kobbelt 2004, "A remeshing approach to multiresolution
+/// modeling", section 4; beyond Schneider & Kobbelt 2001, whose section 7.5 suggests it).
+/// Each iteration splits the edges longer than 4/3 L, collapses those shorter than 4/5 L,
+/// flips edges towards valence 6 (4 on the mesh border, counting the edges outside the
+/// region), and moves each free vertex to the area-weighted centroid of its one-ring in its
+/// tangent plane; every new or moved vertex is projected onto the closest point of the
+/// input region's triangles. Fixed vertices never move and are never removed; the region's
+/// border edges are never split, flipped or collapsed; a collapse that would create an edge
+/// longer than 4/3 L, and a collapse, flip or relaxation step that would flip a triangle
+/// over or degenerate it, is skipped; no triangle is left without a free vertex.
+///
+/// \param V  #V×3 positions, mesh units, finite in the region
+/// \param F  #F×3 triangles; those with a free vertex must form a consistently oriented
+///           2-manifold
+/// \param free  #V flags, true where a vertex may move; each free vertex surrounded by
+///           triangles (not on the mesh border)
+/// \throw InvalidInputError ("remesh_region: ...") for wrong sizes, an index out of range,
+///        no free vertex, a free vertex in no triangle or on the mesh border, a non-finite
+///        position in the region, a non-manifold or inconsistently oriented region, or
+///        invalid options (iterations < 0, a non-finite target length).
+RemeshedRegion remesh_region(const Positions& V, const Triangles& F,
+                             const std::vector<bool>& free, const RemeshOptions& options = {});
 
 }  // namespace geofair

@@ -53,6 +53,10 @@ struct FairingResult {
   /// iteration "level ℓ iterations". An attempt that was abandoned keeps its phases; the
   /// phases do not overlap, so their sum stays below the call's wall time.
   std::vector<std::pair<std::string, double>> phase_seconds;
+  /// #F'×3: the result's triangles; those of fill_holes' filled mesh (the input's first).
+  Triangles faces;
+  std::vector<bool> free;  ///< #V': the result's free vertices (fill_holes: the new ones)
+  bool remeshed = false;   ///< true where the triangles are not the input's
 };
 
 /// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,

@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'SolverError', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -25,9 +25,19 @@ class FairingResult:
         True if the residual reached the tolerance.
         """
     @property
+    def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
+        """
+        (m', 3) int32 triangles of the result: fill_holes' filled mesh, the input's faces first and unchanged, then the new ones.
+        """
+    @property
     def folds(self) -> int:
         """
         Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves, or keep them from a folded input; .message then says so.
+        """
+    @property
+    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+        """
+        (n',) bool: the result's free vertices (fill_holes: exactly the new ones).
         """
     @property
     def iteration(self) -> str:
@@ -65,6 +75,11 @@ class FairingResult:
         Wall-clock seconds of the solve's phases, a list of (name, seconds) in the order they ran: "hierarchy", then per level l (0 = coarsest) "level l initial mesh", "level l set-up" and, for Newton's method, "level l inner fairness", "level l Newton steps", "level l polishes", for the paper's iteration "level l iterations" (an abandoned attempt's phases included). They do not overlap: their sum stays below the call's wall time.
         """
     @property
+    def remeshed(self) -> bool:
+        """
+        True where the result's triangles are not the input's (fill_holes).
+        """
+    @property
     def residual(self) -> float:
         """
         Normalized residual of the returned mesh (dimensionless, see fair).
@@ -84,6 +99,60 @@ class FairingResult:
         """
         Region vertices (free and G1 boundary) on each level, coarsest first.
         """
+class RemeshedRegion:
+    """
+    Result of geofair.remesh_region.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
+        """
+        (m', 3) int32 triangles: the input faces without a free vertex (unchanged, in input order), then the region's new triangles.
+        """
+    @property
+    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+        """
+        (n',) bool: True exactly at the new region's free vertices.
+        """
+    @property
+    def origin_barycentric(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 barycentric coordinates in origin_face (rows sum to 1; vertices[i] = Σ_k b[i, k] * input_vertices[input_faces[f, k]] to round-off); zeros where origin_face is -1.
+        """
+    @property
+    def origin_face(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (n',) int32: for each free vertex the input face (row of the input faces) its position lies on; -1 for fixed vertices and unreferenced rows.
+        """
+    @property
+    def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (k,) int32: input free rows that no new vertex reuses (in no face, not free).
+        """
+    @property
+    def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
+        """
+def boundary_loops(vertices: typing.Any, faces: typing.Any) -> list:
+    """
+    The boundary loops (holes) of a triangle mesh.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array; faces : (m, 3) integer array, consistently oriented, manifold.
+    
+    Returns
+    -------
+    list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
+    (a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
+    added into the hole is oriented like its neighbours; empty for a closed mesh.
+    
+    Raises
+    ------
+    ValueError for invalid triangles or a vertex on two loops (holes that touch).
+    """
 def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, method: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
     The unit normals fair() prescribes at the G1 boundary when it is given no
@@ -290,6 +359,48 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
     ValueError for invalid input (the message names the problem and the vertex or face),
     RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
     """
+def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None, *, target_edge_length: typing.Any = None, boundary: str = 'g1', inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+    """
+    Fill holes of a triangle mesh with intrinsically faired patches: each hole's
+    loop keeps its positions and takes its unit normals from the faces around it (the G1
+    boundary of Schneider & Kobbelt 2001, section 4; estimated as geofair.boundary_normals
+    does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
+    or catenoid is filled with that surface (beyond the paper: the triangulation and refinement).
+    
+    Each hole's loop is triangulated (Liepa 2003, "Filling holes in meshes": the triangulation
+    with the smallest largest dihedral angle, the faces around the loop included, then the
+    smallest area; loops of more than 500 vertices get a fan around their centroid), the edges
+    across the hole are split, the patch is remeshed isotropically at target_edge_length
+    (geofair.remesh_region), and all patches are faired together by geofair.fair with the new
+    vertices free.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, triangles, consistently oriented, manifold.
+    loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops);
+        or a list of loops, each a sequence of vertex indices along one boundary loop (any start
+        vertex, either direction).
+    target_edge_length : edge length of the fill in mesh units, or None (default): the mean
+        length of the hole's loop edges.
+    boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
+    damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
+        geofair.fair; boundary="g0" fills with the minimal surface spanned by the loop.
+    
+    Returns
+    -------
+    FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
+    vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
+    after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
+    new vertices; .remeshed True; .converged, .residual, .message, .stop_reason, .folds and
+    .new_folds as for fair.
+    
+    Raises
+    ------
+    ValueError when a loop is not a boundary loop of the mesh (the offending pair of vertices is
+    named), a vertex is on two given loops, the mesh has no hole, or for the input fair refuses
+    (the message names the problem and the vertex or face); RuntimeError as fair.
+    """
 def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], int]:
     """
     Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
@@ -394,5 +505,44 @@ def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.A
     
     Raises ValueError for invalid input, RuntimeError (geofair.SolverError) if the system is
     singular.
+    """
+def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, target_edge_length: typing.Any = None, iterations: typing.SupportsInt | typing.SupportsIndex = 5) -> RemeshedRegion:
+    """
+    Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
+    remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
+    runs before fairing: the region's triangles (those with a free vertex) are replaced, the
+    fixed vertices and the region's border edges are kept.
+    
+    Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
+    vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
+    degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
+    counting the edges outside the region), and moves each free vertex to the area-weighted
+    centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
+    the closest point of the input region's triangles.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, triangles; those with a free vertex must form a consistently
+        oriented 2-manifold.
+    free : (n,) bool array, True where a vertex may move (not on the mesh border).
+    target_edge_length : float > 0 in mesh units, or None (default): the mean length of the
+        region's border edges (of all its edges where it has no border).
+    iterations : int >= 0, rounds of split, collapse, flip and relaxation (0: the input).
+    
+    Returns
+    -------
+    RemeshedRegion with .vertices (n', 3) float64, .faces (m', 3) int32 (the faces without a
+    free vertex unchanged and first, then the new ones), .free (n',) bool, .unreferenced (k,)
+    int32, .origin_face (n',) int32 and .origin_barycentric (n', 3) float64 (where each free
+    vertex lies on the input surface). Rows of fixed vertices keep their index and position
+    bit-identically; a surviving input free vertex keeps its row, the other new free vertices
+    take the remaining input free rows in increasing order, then rows appended after n, so
+    n' = max(n, #fixed + #new free); free rows left over are listed in .unreferenced.
+    
+    Raises
+    ------
+    ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+    border, a region that is not a consistently oriented 2-manifold, invalid options).
     """
 __version__: str

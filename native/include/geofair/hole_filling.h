@@ -1,0 +1,44 @@
+// Hole filling: a triangulated, refined and intrinsically faired patch per boundary loop
+// (beyond the paper; its fairing with the G1 boundary of section 4 and eq. (12)).
+#pragma once
+
+#include "geofair/fairing.h"
+#include "geofair/types.h"
+
+#include <vector>
+
+namespace geofair {
+
+/// The boundary loops (holes) of a triangle mesh, each a cyclic list of vertex indices in
+/// the direction of the missing face: loop vertex a followed by b means that the mesh has a
+/// triangle with the directed edge b -> a and none with a -> b, so a triangle (a, b, c) added
+/// to fill the hole is oriented like its neighbours.
+///
+/// \throw InvalidInputError for invalid triangles (see fair) or a vertex on more than one
+///        boundary loop (the holes touch there; pass their loops one at a time instead).
+std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F);
+
+/// Triangulates each hole's loop, refines the patch to the edge length of its surroundings
+/// and fairs it with fair(): Δ_B H = 0 on the new vertices, with the G1 boundary (or G0 with
+/// options.boundary) at the loop vertices, whose normals are estimated from the faces around
+/// the hole as fair() estimates them (geofair::estimate_boundary_normals).
+///
+/// Triangulation: Liepa 2003 ("Filling holes in meshes"): the triangulation of the loop that
+/// minimizes the largest dihedral angle between adjacent triangles (the mesh's faces at the
+/// loop included), then the area; the edges across the hole are split at their midpoints
+/// (the new, free vertices) and the patch is remeshed isotropically (remesh_region) at
+/// `target_edge_length` (<= 0: the mean length of the loop's edges).
+///
+/// \param loops  the holes, each a cyclic list of vertex indices along one boundary loop
+///               (any start vertex, either direction); empty: every boundary loop of F
+/// \return the result of fair() on the filled mesh: vertices (#V + k)×3 with the input's
+///         rows first and bit-identical, faces (#F + l)×3 with the input's first, free true
+///         exactly at the k new vertices, remeshed true.
+/// \throw InvalidInputError for invalid input (see fair), a loop that is not a boundary loop
+///        of F (the offending pair of vertices is named), a loop given twice, or a mesh
+///        without a hole; otherwise as fair().
+FairingResult fill_holes(const Positions& V, const Triangles& F,
+                         const std::vector<std::vector<int>>& loops,
+                         const FairingOptions& options, double target_edge_length = 0.0);
+
+}  // namespace geofair
