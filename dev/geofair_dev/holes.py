@@ -350,9 +350,12 @@ def point_triangle_distance(p, a, b, c):
 
 def fill_samples(vertices, faces, per_edge=4):
     """Sample points of a triangle set: its vertices and, on each triangle, the points of the
-    barycentric grid (i, j, k) / per_edge (i + j + k = per_edge) other than the corners."""
+    barycentric grid (i, j, k) / per_edge (i + j + k = per_edge) other than the corners
+    (per_edge <= 1: the vertices alone)."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
+    if per_edge <= 1:
+        return v[np.unique(f)]
     grid = np.array([(i, j, per_edge - i - j) for i in range(per_edge + 1) for j in range(per_edge + 1 - i)], float)
     grid = grid[(grid < per_edge).all(axis=1)] / per_edge
     tri = v[f]
@@ -426,7 +429,8 @@ def fill_distance(vertices_out, faces_out, n_faces_in, reference, per_edge=4):
     """(mean, max) distance of the new triangles (rows n_faces_in: of faces_out) from a
     reference: ``reference`` is a callable (k, 3) points -> (k,) distances (an analytic
     surface) or a (vertices, faces) mesh (the cut-away triangles). Sampled at the new
-    triangles' vertices and their barycentric grid points (fill_samples)."""
+    triangles' vertices and their barycentric grid points (fill_samples; per_edge=1: at the
+    vertices alone)."""
     fo = np.asarray(faces_out, np.int64)[n_faces_in:]
     if len(fo) == 0:
         return None, None
