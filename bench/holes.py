@@ -3,7 +3,8 @@
 Holes are cut into meshes (geofair_dev.holes.cut_disc: a geodesic disc of vertices, by
 Dijkstra distance along the edges, removed with its triangles; cleaned up until exactly
 one new boundary loop is left on a manifold mesh) and each is filled, in the same run, by
-``geofair.fill_holes(vertices, faces, loops=[loop])`` (defaults) and by CGAL 5.5's
+``geofair.fill_holes(vertices, faces, loops=[loop])`` (defaults; --inner sets its
+inner_fairness) and by CGAL 5.5's
 ``Polygon_mesh_processing::triangulate_refine_and_fair_hole`` (defaults: the linear
 bilaplacian fairing, geofair_dev.cgal_fill_hole, bench/cgal_fill_hole.cpp). Both get the
 same input: the hole's surroundings, the triangles within --rings rings of the loop
@@ -39,7 +40,7 @@ and the median ratio ours/CGAL.
 
     PYTHONPATH=build/python python3 bench/holes.py [--quick] [--only SUBSTRING[,SUBSTRING...]]
         [--seeds N] [--sizes 100,1000,10000] [--all] [--rings N] [--timeout SECONDS]
-        [--no-cgal] [--no-ours] [--cache DIR] [--json FILE]
+        [--inner uniform|conformal|...] [--no-cgal] [--no-ours] [--cache DIR] [--json FILE]
 
 Default: the analytic holes, all 12 meshes with holes of 100 and 1,000 vertices, seeds 0
 and 1, and holes of 10,000 vertices on bear, diplodocus and ChineseDragon-10kv (seed 0).
@@ -192,9 +193,10 @@ def child(args):
 
     with np.load(args.child) as d:
         v, f, loop = d["vertices"], d["faces"], d["loop"]
+    options = {"inner_fairness": args.inner} if args.inner else {}
     t = time.perf_counter()
     try:
-        r = geofair.fill_holes(v, f, loops=[loop])
+        r = geofair.fill_holes(v, f, loops=[loop], **options)
     except ValueError as error:
         out = {"status": "invalid", "message": str(error)}
     except Exception as error:  # geofair.SolverError (a RuntimeError) and anything else
@@ -217,6 +219,8 @@ def run_ours(hole, args):
     if os.path.exists(dst):
         os.remove(dst)
     cmd = [sys.executable, os.path.abspath(__file__), "--child", src, "--result", dst]
+    if args.inner:
+        cmd += ["--inner", args.inner]
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
@@ -365,6 +369,7 @@ def main():
     parser.add_argument("--all", action="store_true", help="every mesh with every size")
     parser.add_argument("--rings", type=int, default=4, help="rings of triangles around the hole given (0: all)")
     parser.add_argument("--timeout", type=float, default=120.0, help="per fill, seconds")
+    parser.add_argument("--inner", default=None, help="fill_holes' inner_fairness (default: its own default)")
     parser.add_argument("--no-cgal", action="store_true", help="skip CGAL's fill")
     parser.add_argument("--no-ours", action="store_true", help="skip geofair.fill_holes")
     parser.add_argument("--cache", default=DEFAULT_CACHE)
@@ -392,7 +397,8 @@ def main():
     if args.only:
         descs = [d for d in descs if any(part in d["name"] for part in args.only.split(","))]
     around = f"{args.rings} rings of triangles" if args.rings > 0 else "the whole mesh"
-    print(f"# {len(descs)} holes; methods: {', '.join(methods) or 'none'}; surroundings: {around}; "
+    inner = f" (inner fairness {args.inner})" if args.inner and "geofair" in methods else ""
+    print(f"# {len(descs)} holes; methods: {', '.join(methods) or 'none'}{inner}; surroundings: {around}; "
           f"timeout {args.timeout:.0f} s; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")  # fmt: skip
     for note in notes:
         print(f"# {note}", flush=True)

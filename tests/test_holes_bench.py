@@ -44,6 +44,23 @@ def test_boundary_loops_of_a_triangle_and_a_grid():
     assert holes.boundary_loops(scenes.sphere(n_vertices=642).faces) == []
 
 
+def test_boundary_loops_agree_with_the_library():
+    geofair = pytest.importorskip("geofair")
+    if not hasattr(geofair, "boundary_loops"):
+        pytest.skip("geofair.boundary_loops is not in this build")
+    v, f = grid(21, jitter=0.3)
+    hole, _ = holes.cut_disc(v, f, centre_vertex(v), radius=0.2)
+    ours = holes.boundary_loops(hole.faces)
+    theirs = geofair.boundary_loops(hole.vertices, hole.faces)
+    assert len(ours) == len(theirs) == 2
+    for loop in ours:  # the same cycle, run the other way (theirs: the missing face's direction)
+        match = [t for t in theirs if set(t.tolist()) == set(loop.tolist())]
+        assert len(match) == 1
+        t = np.asarray(match[0])[::-1]
+        k = int(np.flatnonzero(t == loop[0])[0])
+        assert np.array_equal(np.roll(t, -k), loop)
+
+
 def test_manifold_check_accepts_manifolds_and_rejects_the_rest():
     assert holes.manifold_problem(grid(6)[1]) is None
     assert holes.manifold_problem(scenes.sphere(n_vertices=642).faces) is None
