@@ -159,6 +159,23 @@ InnerFairness parse_inner_fairness(const std::string& s) {
   return parse(s, "inner_fairness", kInnerFairnessNames);
 }
 
+// fair's `remesh` argument: False/True or "off"/"always"/"if_needed".
+Remesh parse_remesh(const py::object& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? Remesh::Always : Remesh::Off;
+  if (py::isinstance<py::str>(value))
+    return parse(value.cast<std::string>(), "remesh",
+                 Choices<Remesh>{{"off", Remesh::Off}, {"always", Remesh::Always},
+                                 {"if_needed", Remesh::IfNeeded}});
+  throw InvalidInputError("remesh must be False, True, 'if_needed', 'off' or 'always', got " +
+                          std::string(py::str(py::repr(value))));
+}
+
+// The Python value of a Remesh: False, True or "if_needed".
+py::object remesh_value(Remesh remesh) {
+  if (remesh == Remesh::IfNeeded) return py::str("if_needed");
+  return py::bool_(remesh == Remesh::Always);
+}
+
 // fair's `tuning` argument: {"newton.patience": 30, ...} into `t`; unknown names and values
 // of the wrong type raise (the ranges are checked by fair, validate_tuning).
 void set_tuning(const py::object& tuning, SolverTuning& t) {
@@ -208,6 +225,7 @@ py::dict defaults_py() {
   d["levels"] = o.levels;
   d["iteration"] = name(o.iteration, kIterationNames);
   d["boundary"] = name(o.boundary, kBoundaryNames);
+  d["remesh"] = remesh_value(o.remesh);
   d["time_limit"] = py::none();
   d["time_limit_base"] = o.tuning.schedule.time_limit_base;
   d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free_vertex;
@@ -311,7 +329,8 @@ FairingResult with_progress(FairingOptions& options, const py::object& progress,
 }
 
 FairingResult fair_py(const py::object& vertices, const py::object& faces, const py::object& free,
-                      const std::string& boundary, const py::object& boundary_normals,
+                      const py::object& remesh, const std::string& boundary,
+                      const py::object& boundary_normals,
                       const py::object& polygon_ids,
                       const std::string& inner_fairness,
                       const std::string& outer_fairness, const std::string& normal_weighting,
@@ -327,6 +346,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                                            normal_weighting, tolerance, max_iterations, damping,
                                            cg_iterations, levels, iteration, time_limit, tuning,
                                            "fair");
+  options.remesh = parse_remesh(remesh);
   std::optional<Positions> normals;  // not read with G0
   if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
     normals = to_positions(boundary_normals, "boundary_normals");
@@ -406,7 +426,31 @@ auto on_mesh(Function f) {
 void bind_result(py::module_& m) {
   py::class_<FairingResult>(m, "FairingResult", "Result of geofair.fair.")
       .def_readonly("vertices", &FairingResult::vertices,
-                    "(n, 3) float64 positions; fixed rows are bit-identical to the input.")
+                    "(n', 3) float64 positions; fixed rows are bit-identical to the input. "
+                    "n' = n unless .remeshed (then max(n, #fixed + #new free)).")
+      .def_readonly("faces", &FairingResult::faces,
+                    "(m', 3) int32 triangles of the result: the input's unless .remeshed (then "
+                    "the input faces without a free vertex, unchanged and first, then the "
+                    "region's new ones; fill_holes: the input's faces, then the fill's).")
+      .def_property_readonly(
+          "free", [](const FairingResult& r) { return bool_array(r.free); },
+          "(n',) bool: the result's free vertices (the input's mask unless .remeshed; "
+          "fill_holes: exactly the new vertices).")
+      .def_readonly("remeshed", &FairingResult::remeshed,
+                    "True when the region's triangles were replaced (fair's remesh).")
+      .def_property_readonly(
+          "unreferenced", [](const FairingResult& r) { return int_array(r.unreferenced); },
+          "(k,) int32: rows of .vertices in no face (input free rows that the remesh did not "
+          "reuse, input positions kept); empty unless .remeshed.")
+      .def_property_readonly(
+          "origin_face", [](const FairingResult& r) { return int_array(r.origin_face); },
+          "(n',) int32: for each free vertex of a remeshed region the input face (row of the "
+          "input faces) it was created on, on the input surface before fairing; -1 for the "
+          "other rows and for every row unless .remeshed.")
+      .def_readonly("origin_barycentric", &FairingResult::origin_barycentric,
+                    "(n', 3) float64 barycentric coordinates in .origin_face (rows sum to 1); "
+                    "zero rows where .origin_face is -1. With .origin_face they carry "
+                    "per-corner data (UVs) over from the input.")
       .def_readonly("converged", &FairingResult::converged,
                     "True if the residual reached the tolerance.")
       .def_readonly("iterations", &FairingResult::iterations,
@@ -457,20 +501,13 @@ void bind_result(py::module_& m) {
                     "Those of .folds whose two triangles did not face apart in the input.")
       .def_readonly("phase_seconds", &FairingResult::phase_seconds,
                     "Wall-clock seconds of the solve's phases, a list of (name, seconds) in "
-                    "the order they ran: \"hierarchy\", then per level l (0 = coarsest) "
+                    "the order they ran: \"remesh\" where the region was remeshed, "
+                    "\"hierarchy\", then per level l (0 = coarsest) "
                     "\"level l initial mesh\", \"level l set-up\" and, for Newton's method, "
                     "\"level l inner fairness\", \"level l Newton steps\", \"level l "
                     "polishes\", for the paper's iteration \"level l iterations\" (an "
                     "abandoned attempt's phases included). They do not overlap: their sum "
                     "stays below the call's wall time.")
-      .def_readonly("faces", &FairingResult::faces,
-                    "(m', 3) int32 triangles of the result: fill_holes' filled mesh, the "
-                    "input's faces first and unchanged, then the new ones.")
-      .def_property_readonly(
-          "free", [](const FairingResult& r) { return bool_array(r.free); },
-          "(n',) bool: the result's free vertices (fill_holes: exactly the new ones).")
-      .def_readonly("remeshed", &FairingResult::remeshed,
-                    "True where the result's triangles are not the input's (fill_holes).")
       .def("__repr__", [](const FairingResult& r) {
         return "FairingResult(converged=" + std::string(r.converged ? "True" : "False") +
                ", iterations=" + std::to_string(r.iterations) +
@@ -487,8 +524,9 @@ Returns
 -------
 dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
 "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-"damping" (float), "time_limit" (None: automatic), the automatic time limit of
-iteration="auto" (time without a halving of the residual), "time_limit_base" (seconds) plus
+"damping" (float), "remesh" (False, True or "if_needed"), "time_limit" (None: automatic),
+the automatic time limit of iteration="auto" (time without a halving of the residual),
+"time_limit_base" (seconds) plus
 "time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
 "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
 dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).)doc");
@@ -507,6 +545,20 @@ faces : (m, 3) integer array, triangles, consistently oriented (counter-clockwis
 free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
     by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
     vertex form the boundary.
+remesh : False (default; also "off"), True (also "always") or "if_needed". False: the
+    connectivity is kept (the paper's setting). True: the region's triangles (those with a
+    free vertex) are first replaced by geofair.remesh_region's isotropic remesh at the mean
+    length of the region's border edges (fixed vertices and the region's border edges
+    kept; the G1 normals taken from the input), then faired. "if_needed": faired with the
+    connectivity kept first; where that does not converge or folds triangles over that
+    were not folded, remeshed and faired again: the remeshed result is returned if it
+    converged without new folds, else the better of the two (converged first, then fewer
+    new folds, then the smaller residual); .message says which. A remeshed result has
+    other vertices and faces: n' rows (fixed rows keep index and position, the input's free
+    rows are reused, extra rows appended; .unreferenced lists free rows left over), its
+    .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
+    the input surface (to carry UVs over). polygon_ids do not apply to the new triangles.
+    An explicit time_limit covers the whole call; the automatic one applies to each solve.
 boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
     normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
     surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
@@ -624,7 +676,10 @@ tuning : dict or None (default): overrides of the solvers' numerical choices bey
 
 Returns
 -------
-FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
+FairingResult with .vertices (n', 3) float64 (n' = n unless remeshed), .faces (m', 3)
+int32, .free (n',) bool, .remeshed, .unreferenced, .origin_face and .origin_barycentric
+(see remesh; the input's faces and mask, -1 and zeros when not remeshed), .converged,
+.iterations (all levels),
 .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
 .iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
 triangles the result flips over, and those not folded in the input) and .phase_seconds
@@ -635,6 +690,7 @@ Raises
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
   m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+        py::arg("remesh") = remesh_value(d.remesh),
         py::arg("boundary") = name(d.boundary, kBoundaryNames),
         py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
         py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),

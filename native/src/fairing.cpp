@@ -6,6 +6,7 @@
 #include "inner_fairness.h"
 #include "nested_iteration.h"
 #include "region.h"
+#include "remesh.h"
 #include "schedule.h"
 #include "sparse_lu.h"
 
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 
 namespace geofair {
@@ -244,12 +246,19 @@ void describe(FairingResult& result, const FairingOptions& options, const TimeLi
   if (!how.empty()) result.message += "; " + how;
 }
 
-}  // namespace
+// The result's connectivity members where the input's triangles are kept.
+void keep_connectivity(FairingResult& result, const Triangles& F, const std::vector<bool>& free) {
+  result.faces = F;
+  result.free = free;
+  result.origin_face.assign(free.size(), -1);
+  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+}
 
-FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const Positions* boundary_normals, const FairingOptions& options,
-                   const std::vector<int>* polygon_ids) {
-  check_options(options);
+// fair() with the connectivity kept (options.remesh not read): the schedule's solve under
+// the time limit, its message and folds.
+FairingResult fair_kept(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                        const Positions* boundary_normals, const FairingOptions& options,
+                        const std::vector<int>* polygon_ids) {
   TimeLimit limit(options, std::count(free.begin(), free.end(), true));
   const FairingOptions timed = limit.options();
   FairingResult result;
@@ -265,6 +274,7 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     result.message = std::string(error.what()) + "; the input is returned unchanged";
     result.stop_reason = StopReason::Diverged;
     count_result_folds(result, V, F, free);
+    keep_connectivity(result, F, free);
     return result;
   }
   describe(result, options, limit);
@@ -276,7 +286,105 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       options.outer_fairness == OuterFairness::Intrinsic)
     result.message += "; uniform inner fairness can degenerate the triangles of an irregular "
                       "region, conformal inner fairness converges on more meshes";
+  keep_connectivity(result, F, free);
   return result;
+}
+
+// The options of a solve that follows `spent` seconds of the call: an explicit time limit
+// less what is spent (the automatic one applies to each solve).
+FairingOptions after(const FairingOptions& options, double spent) {
+  FairingOptions rest = options;
+  if (options.time_limit >= 0.0) rest.time_limit = std::max(0.0, options.time_limit - spent);
+  return rest;
+}
+
+// fair() on remesh_region's remesh of the region, with the G1 normals of the input (the
+// given ones, or the estimate from the input's surrounding surface) at the kept rows.
+FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                            const Positions* boundary_normals, const FairingOptions& options,
+                            const std::vector<int>* polygon_ids) {
+  Laps laps;
+  // The input's region first: fair()'s checks and messages, and the input's G1 normals.
+  const FairingRegion region =
+      extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
+  RemeshedRegion mesh = remesh_region(V, F, free, RemeshOptions{});
+  std::optional<Positions> normals;  // not read with G0
+  if (options.boundary == BoundaryCondition::G1) {
+    normals = Positions::Zero(mesh.vertices.rows(), 3);
+    for (int b = 0; b < region.n - region.n_free; ++b)
+      normals->row(region.global[region.n_free + b]) = region.g1_normals.row(b);
+  }
+  const double seconds = laps.lap();
+  // The new triangles come from no polygon: polygon_ids no longer apply.
+  FairingResult result = fair_kept(mesh.vertices, mesh.faces, mesh.free,
+                                   normals ? &*normals : nullptr, after(options, seconds), nullptr);
+  result.remeshed = true;
+  result.unreferenced = std::move(mesh.unreferenced);
+  result.origin_face = std::move(mesh.origin_face);
+  result.origin_barycentric = std::move(mesh.origin_barycentric);
+  result.phase_seconds.insert(result.phase_seconds.begin(), {"remesh", seconds});
+  return result;
+}
+
+// Why a result of the connectivity kept asks for a remesh ("" where it does not).
+std::string remesh_reason(const FairingResult& kept) {
+  if (!kept.converged) return "with its connectivity the region did not converge";
+  if (kept.new_folds > 0)
+    return "with its connectivity the region folded " + std::to_string(kept.new_folds) +
+           (kept.new_folds == 1 ? " edge" : " edges");
+  return "";
+}
+
+// Whether result a is better than b: converged first, then fewer new folds, then the
+// smaller residual.
+bool better(const FairingResult& a, const FairingResult& b) {
+  if (a.converged != b.converged) return a.converged;
+  if (a.new_folds != b.new_folds) return a.new_folds < b.new_folds;
+  return a.residual < b.residual;
+}
+
+// Remesh::IfNeeded: the connectivity kept first; where it fails (remesh_reason) and time is
+// left, the remesh too, and the better of the two (the remesh where it converged without
+// new folds); the phases and Newton steps of both.
+FairingResult fair_if_needed(const Positions& V, const Triangles& F,
+                             const std::vector<bool>& free, const Positions* boundary_normals,
+                             const FairingOptions& options, const std::vector<int>* polygon_ids) {
+  Laps laps;
+  FairingResult kept = fair_kept(V, F, free, boundary_normals, options, polygon_ids);
+  const std::string reason = remesh_reason(kept);
+  const double spent = laps.lap();
+  if (reason.empty() || kept.stop_reason == StopReason::Cancelled ||
+      (options.time_limit >= 0.0 && spent >= options.time_limit))
+    return kept;
+  FairingResult remeshed =
+      fair_remeshed(V, F, free, boundary_normals, after(options, spent), polygon_ids);
+  const bool use_remesh = (remeshed.converged && remeshed.new_folds == 0) || better(remeshed, kept);
+  FairingResult& out = use_remesh ? remeshed : kept;
+  const FairingResult& other = use_remesh ? kept : remeshed;
+  out.message += use_remesh ? "; remeshed: " + reason
+                            : "; remeshing did not help (" + other.message + ")";
+  out.newton_iterations = kept.newton_iterations + remeshed.newton_iterations;
+  auto phases = std::move(kept.phase_seconds);
+  phases.insert(phases.end(), remeshed.phase_seconds.begin(), remeshed.phase_seconds.end());
+  out.phase_seconds = std::move(phases);
+  return std::move(out);
+}
+
+}  // namespace
+
+FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const Positions* boundary_normals, const FairingOptions& options,
+                   const std::vector<int>* polygon_ids) {
+  check_options(options);
+  switch (options.remesh) {
+    case Remesh::Always:
+      return fair_remeshed(V, F, free, boundary_normals, options, polygon_ids);
+    case Remesh::IfNeeded:
+      return fair_if_needed(V, F, free, boundary_normals, options, polygon_ids);
+    case Remesh::Off:
+      break;
+  }
+  return fair_kept(V, F, free, boundary_normals, options, polygon_ids);
 }
 
 }  // namespace geofair

@@ -353,7 +353,9 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
   }
   std::vector<bool> free(X.rows(), false);
   for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
-  FairingResult result = fair(X, T, free, nullptr, options);
+  FairingOptions fairing = options;
+  fairing.remesh = Remesh::Off;  // the patches are remeshed already
+  FairingResult result = fair(X, T, free, nullptr, fairing);
   result.faces = std::move(T);
   result.free = std::move(free);
   result.remeshed = true;

@@ -34,8 +34,16 @@ using FH = OpenMesh::FaceHandle;
 // Bounds of Botsch & Kobbelt 2004 relative to the target edge length L.
 constexpr double kSplitAbove = 4.0 / 3.0;
 constexpr double kCollapseBelow = 4.0 / 5.0;
-// A triangle whose doubled area is below this times L² counts as degenerate.
-constexpr double kDegenerateArea = 1e-10;
+// Shape of a triangle: twice its area over its longest edge squared (√3/2 equilateral, 0
+// degenerate). No operation may leave a triangle thinner than this, or thinner than the
+// triangle it replaces where that was thinner already; except that a split of a triangle's
+// longest edge may halve its shape (kLongestEdgeSplit): longest-edge bisection keeps the
+// smallest angle above half the input's (Rivara 1984), while splits of other edges would
+// ratchet shapes down without bound.
+constexpr double kMinShape = 0.05;
+// The fraction of the bound above that a split of a triangle's longest edge must keep: a
+// midpoint's children keep half the shape; the rest is room for the projection's offset.
+constexpr double kLongestEdgeSplit = 0.45;
 // Passes of split_long_edges per iteration.
 constexpr int kSplitPasses = 10;
 
@@ -43,6 +51,27 @@ std::string prefix() { return "remesh_region: "; }
 
 Vec3 eig(const Mesh::Point& p) { return Vec3(p[0], p[1], p[2]); }
 Mesh::Point om(const Vec3& p) { return Mesh::Point(p.x(), p.y(), p.z()); }
+
+double shape(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double longest =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return longest > 0.0 ? (b - a).cross(c - a).norm() / longest : 0.0;
+}
+
+// Whether triangle (a, b, c), replacing one of normal `before` (a cross product) and shape
+// `was`, faces the same way and keeps `fraction` of its shape bound (kMinShape).
+bool keeps_shape(const Vec3& before, double was, const Vec3& a, const Vec3& b, const Vec3& c,
+                 double fraction = 1.0) {
+  const double s = shape(a, b, c);
+  return (b - a).cross(c - a).dot(before) > 0.0 && s > 0.0 &&
+         s >= fraction * std::min(kMinShape, was);
+}
+
+// keeps_shape against the old triangle (p, q, r).
+bool keeps_shape(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& a, const Vec3& b,
+                 const Vec3& c, double fraction = 1.0) {
+  return keeps_shape((q - p).cross(r - p), shape(p, q, r), a, b, c, fraction);
+}
 
 // Closest point on triangle (a, b, c) to p, as barycentric coordinates (Ericson,
 // Real-Time Collision Detection, section 5.1.5).
@@ -83,6 +112,7 @@ struct SurfacePoint {
   int face = -1;
   Vec3 bary = Vec3::Zero();
   Vec3 position = Vec3::Zero();
+  bool on_border = false;  ///< on an edge or corner of the input region's border
 };
 
 // Closest points on a set of triangles of (V, F), through a uniform grid of cells: each
@@ -92,6 +122,7 @@ class SurfaceProjector {
  public:
   SurfaceProjector(const Positions& V, const Triangles& F, std::vector<int> faces, double cell)
       : V_(V), F_(F), faces_(std::move(faces)) {
+    mark_border_edges();
     lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());
     Vec3 hi = -lo_;
     for (int f : faces_)
@@ -163,16 +194,34 @@ class SurfaceProjector {
     const auto it = cells_.find(key);
     if (it == cells_.end()) return;
     for (int e = it->second.first; e < it->second.second; ++e) {
-      const int f = faces_[items_[e]];
+      const int t = items_[e], f = faces_[t];
       const Vec3 a = V_.row(F_(f, 0)), b = V_.row(F_(f, 1)), c = V_.row(F_(f, 2));
       const Vec3 w = closest_barycentric(p, a, b, c);
       const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
       const double d2 = (q - p).squaredNorm();
       if (d2 < best_d2) {
         best_d2 = d2;
-        best = {f, w, q};
+        // Edge k (corner k to k+1) holds the points whose coordinate k+2 is exactly 0.
+        bool on_border = false;
+        for (int k = 0; k < 3; ++k) on_border |= (border_[t] >> k & 1) && w[(k + 2) % 3] == 0.0;
+        best = {f, w, q, on_border};
       }
     }
+  }
+  // border_[t] bit k: edge k of faces_[t] (corner k to k+1) has no other region face.
+  void mark_border_edges() {
+    const std::int64_t n = V_.rows();
+    std::vector<std::int64_t> directed;
+    for (int f : faces_)
+      for (int k = 0; k < 3; ++k) directed.push_back(F_(f, k) * n + F_(f, (k + 1) % 3));
+    std::sort(directed.begin(), directed.end());
+    border_.assign(faces_.size(), 0);
+    for (std::size_t t = 0; t < faces_.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::int64_t opposite = F_(faces_[t], (k + 1) % 3) * n + F_(faces_[t], k);
+        if (!std::binary_search(directed.begin(), directed.end(), opposite))
+          border_[t] |= std::uint8_t(1 << k);
+      }
   }
   Cell cell_of(const Vec3& p) const {
     Cell c;
@@ -189,6 +238,7 @@ class SurfaceProjector {
   const Positions& V_;
   const Triangles& F_;
   std::vector<int> faces_;
+  std::vector<std::uint8_t> border_;
   Vec3 lo_;
   double h_ = 1.0;
   Cell dims_{1, 1, 1};
@@ -236,6 +286,7 @@ class Remesher {
   void build(const std::vector<int>& local_to_global);
   void set_valence_offsets(const std::vector<int>& global_to_local);
   void split_long_edges();
+  bool split_ok(EH e, const Vec3& p) const;
   void collapse_short_edges();
   bool collapse_ok(HH h);
   void equalize_valences();
@@ -382,9 +433,26 @@ void Remesher::set_valence_offsets(const std::vector<int>& global_to_local) {
   }
 }
 
-// Splits the edges longer than 4/3 L at their midpoints, projected onto the input, longest
-// first; the region's border edges are kept. Repeated on the edges the splits made, at most
-// kSplitPasses times (longest-edge bisection of a sliver fan can go on for long otherwise).
+// Whether splitting edge e at p keeps the four new triangles' orientation and shape (a
+// triangle whose longest edge e is: kLongestEdgeSplit of it).
+bool Remesher::split_ok(EH e, const Vec3& p) const {
+  for (int k = 0; k < 2; ++k) {
+    const HH h = mesh_.halfedge_handle(e, k);  // its triangle (a, b, c): (a, p, c), (p, b, c)
+    const Vec3 a = point(mesh_.from_vertex_handle(h)), b = point(mesh_.to_vertex_handle(h));
+    const Vec3 c = point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
+    const double ab = (b - a).squaredNorm();
+    const bool longest = ab >= (c - b).squaredNorm() && ab >= (a - c).squaredNorm();
+    const double fraction = longest ? kLongestEdgeSplit : 1.0;
+    if (!keeps_shape(a, b, c, a, p, c, fraction) || !keeps_shape(a, b, c, p, b, c, fraction))
+      return false;
+  }
+  return true;
+}
+
+// Splits the edges longer than 4/3 L at their midpoints projected onto the input, longest
+// first, where that keeps the triangles' shape (split_ok); the region's border edges are
+// kept. Repeated on the edges the splits made, at most kSplitPasses times (bisecting the
+// spokes of a sliver fan can go on for long otherwise).
 void Remesher::split_long_edges() {
   const double limit = kSplitAbove * L_;
   std::vector<std::pair<double, int>> long_edges;
@@ -392,20 +460,23 @@ void Remesher::split_long_edges() {
     long_edges.clear();
     for (EH e : mesh_.edges())
       if (!mesh_.is_boundary(e) && length(e) > limit) long_edges.emplace_back(length(e), e.idx());
-    if (long_edges.empty()) return;
     std::sort(long_edges.begin(), long_edges.end(), std::greater<>());
+    int splits = 0;
     for (const auto& [l, i] : long_edges) {
       const EH e = mesh_.edge_handle(i);
       if (!(length(e) > limit)) continue;
       const HH h = mesh_.halfedge_handle(e, 0);
-      const Vec3 mid =
-          0.5 * (point(mesh_.from_vertex_handle(h)) + point(mesh_.to_vertex_handle(h)));
-      const VH v = mesh_.split(e, om(mid));
+      const SurfacePoint s = projector_->closest(
+          0.5 * (point(mesh_.from_vertex_handle(h)) + point(mesh_.to_vertex_handle(h))));
+      if (s.on_border || !split_ok(e, s.position)) continue;
+      const VH v = mesh_.split(e, om(s.position));
       mesh_.property(fixed_, v) = false;
       mesh_.property(global_, v) = -1;
       mesh_.property(valence_offset_, v) = 0;
-      place(v, projector_->closest(mid));
+      place(v, s);
+      ++splits;
     }
+    if (splits == 0) return;
   }
 }
 
@@ -427,8 +498,7 @@ bool Remesher::collapse_ok(HH h) {
     const VH a = mesh_.to_vertex_handle(g);
     const VH b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(g));
     const Vec3 pa = point(a), pb = point(b);
-    const Vec3 before = (pa - p0).cross(pb - p0), after = (pa - p1).cross(pb - p1);
-    if (!(after.dot(before) > 0.0) || !(after.norm() > kDegenerateArea * L_ * L_)) return false;
+    if (!keeps_shape(p0, pa, pb, p1, pa, pb)) return false;
     if (!is_free(v1) && !is_free(a) && !is_free(b)) return false;
   }
   return true;
@@ -472,10 +542,10 @@ bool Remesher::flip_improves(EH e) const {
   // Old triangles (a, b, c), (b, a, d); new ones (a, d, c), (d, b, c).
   const Vec3 pa = point(a), pb = point(b), pc = point(c), pd = point(d);
   const Vec3 n_old = (pb - pa).cross(pc - pa) + (pa - pb).cross(pd - pb);
+  const double was = std::min(shape(pa, pb, pc), shape(pb, pa, pd));
   const Vec3 n1 = (pd - pa).cross(pc - pa), n2 = (pb - pd).cross(pc - pd);
-  const double tiny = kDegenerateArea * L_ * L_;
-  return n1.dot(n_old) > 0.0 && n2.dot(n_old) > 0.0 && n1.dot(n2) > 0.0 && n1.norm() > tiny &&
-         n2.norm() > tiny;
+  return n1.dot(n2) > 0.0 && keeps_shape(n_old, was, pa, pd, pc) &&
+         keeps_shape(n_old, was, pd, pb, pc);
 }
 
 // Flips interior edges towards valence 6 (Botsch & Kobbelt 2004's equalize_valences).
@@ -506,13 +576,12 @@ void Remesher::relax_tangentially() {
     centroid /= area;
     const Vec3 target = centroid - normal * normal.dot(centroid - p);
     const SurfacePoint s = projector_->closest(target);
-    bool folds = false;
+    bool folds = s.on_border;  // a free vertex stays off the region's border
     for (HH g : mesh_.voh_range(v)) {
       if (!mesh_.face_handle(g).is_valid()) continue;
       const Vec3 pa = point(mesh_.to_vertex_handle(g));
       const Vec3 pb = point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(g)));
-      const Vec3 before = (pa - p).cross(pb - p), after = (pa - s.position).cross(pb - s.position);
-      if (!(after.dot(before) > 0.0) || !(after.norm() > kDegenerateArea * L_ * L_)) folds = true;
+      if (!keeps_shape(p, pa, pb, s.position, pa, pb)) folds = true;
     }
     if (!folds) place(v, s);
   }

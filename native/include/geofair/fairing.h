@@ -22,7 +22,22 @@ enum class StopReason {
 
 /// Outcome of geofair::fair.
 struct FairingResult {
-  Positions vertices;      ///< #V×3; rows of fixed vertices are bit-identical to the input
+  /// #V'×3; rows of fixed vertices are bit-identical to the input. #V' = #V unless remeshed
+  /// (then max(#V, #fixed + #new free), remesh_region's row layout).
+  Positions vertices;
+  Triangles faces;          ///< #F'×3: the result's triangles (the input's unless remeshed)
+  std::vector<bool> free;   ///< #V': the result's free vertices (the input's unless remeshed)
+  bool remeshed = false;    ///< the region's triangles were replaced (FairingOptions::remesh)
+  /// Rows of `vertices` in no face (input free rows the remesh did not reuse; their input
+  /// positions kept); empty unless remeshed.
+  std::vector<int> unreferenced;
+  /// #V': for each free vertex of a remeshed region the input face (row of F) it was
+  /// created on, on the input surface before fairing; -1 for the other rows and for every
+  /// row when not remeshed.
+  std::vector<int> origin_face;
+  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1); zero rows where
+  /// origin_face is -1. Lets a caller carry per-corner data (UVs) over from the input.
+  Positions origin_barycentric;
   bool converged = false;  ///< residual <= tolerance was reached
   int iterations = 0;      ///< iterations M_k -> M_{k+1} performed, all levels together
   /// Iterations on each level, coarsest first, including those that the cycles of the finer
@@ -53,10 +68,6 @@ struct FairingResult {
   /// iteration "level ℓ iterations". An attempt that was abandoned keeps its phases; the
   /// phases do not overlap, so their sum stays below the call's wall time.
   std::vector<std::pair<std::string, double>> phase_seconds;
-  /// #F'×3: the result's triangles; those of fill_holes' filled mesh (the input's first).
-  Triangles faces;
-  std::vector<bool> free;  ///< #V': the result's free vertices (fill_holes: the new ones)
-  bool remeshed = false;   ///< true where the triangles are not the input's
 };
 
 /// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,
@@ -121,6 +132,19 @@ struct FairingResult {
 /// Attempts 1–3 run where more than one level is asked for (the count before decimation). Iteration::Auto (the
 /// default) runs 1–6; Newton 1–5 and returns the last one's result whatever it is; Paper,
 /// and the linear bilaplacian outer fairness, 6 alone (without Newton attempts).
+///
+/// Remeshing (options.remesh, beyond the paper): Always replaces the region's triangles by
+/// remesh_region's isotropic remesh at the mean length of the region's border edges
+/// (building_blocks.h; fixed vertices and the region's border edges kept) and fairs that
+/// mesh with the G1 normals of the input (the given ones or the estimate from the input's
+/// surrounding surface); IfNeeded fairs with the connectivity kept first and, where that
+/// does not converge (unless cancelled or out of time) or leaves new folds, remeshes and
+/// fairs again, returning the remeshed result if it converged without new folds, else the
+/// better of the two (converged first, then fewer new folds, then the smaller residual);
+/// the message says which. folds and new_folds of a remeshed result count its own triangles
+/// (new: not folded in the remesh before fairing). An explicit time limit covers the whole call; the automatic one
+/// applies to each solve. The result's faces, free, remeshed, unreferenced, origin_face and
+/// origin_barycentric describe the returned mesh either way.
 ///
 /// Beyond the paper, each justified by measurement where it is implemented: the vertex
 /// update divides its step by a measured coupling factor (vertex_update.h); global

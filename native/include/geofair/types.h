@@ -91,6 +91,17 @@ enum class BoundaryNormalEstimate {
 /// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
 enum class TangentPlanes { Fixed, Turning };
 
+/// Whether fair() replaces the region's triangles by an isotropic remesh (remesh_region,
+/// building_blocks.h; beyond the paper, whose section 7.5 suggests it where the connectivity
+/// need not be kept).
+enum class Remesh {
+  Off,       ///< the connectivity kept (the paper's setting). The default.
+  Always,    ///< remesh the region, then fair the new mesh
+  /// Fair with the connectivity kept; where that does not converge or folds triangles that
+  /// were not folded, remesh and fair again, and return the better result.
+  IfNeeded,
+};
+
 /// Progress report: (iteration, residual). Return false to cancel the run.
 using ProgressCallback = std::function<bool(int iteration, double residual)>;
 
@@ -102,6 +113,8 @@ struct FairingOptions {
   NormalWeighting normal_weighting = NormalWeighting::Quadric;
   Iteration iteration = Iteration::Auto;
   BoundaryCondition boundary = BoundaryCondition::G1;
+  /// Remesh the region first (Always) or where the connectivity fails (IfNeeded); see fair.
+  Remesh remesh = Remesh::Off;
   /// Stop when the residual L·max|H̄ − H| (see fairing.h) falls below this. Dimensionless.
   double tolerance = 1e-4;
   /// Upper bound on the number of iterations M_k -> M_{k+1} spent solving each level (the

@@ -27,7 +27,7 @@ class FairingResult:
     @property
     def faces(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]:
         """
-        (m', 3) int32 triangles of the result: fill_holes' filled mesh, the input's faces first and unchanged, then the new ones.
+        (m', 3) int32 triangles of the result: the input's unless .remeshed (then the input faces without a free vertex, unchanged and first, then the region's new ones; fill_holes: the input's faces, then the fill's).
         """
     @property
     def folds(self) -> int:
@@ -37,7 +37,7 @@ class FairingResult:
     @property
     def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
         """
-        (n',) bool: the result's free vertices (fill_holes: exactly the new ones).
+        (n',) bool: the result's free vertices (the input's mask unless .remeshed; fill_holes: exactly the new vertices).
         """
     @property
     def iteration(self) -> str:
@@ -70,14 +70,24 @@ class FairingResult:
         Newton steps performed, including an attempt that iteration="auto" abandoned for the paper's iteration.
         """
     @property
+    def origin_barycentric(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n', 3) float64 barycentric coordinates in .origin_face (rows sum to 1); zero rows where .origin_face is -1. With .origin_face they carry per-corner data (UVs) over from the input.
+        """
+    @property
+    def origin_face(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (n',) int32: for each free vertex of a remeshed region the input face (row of the input faces) it was created on, on the input surface before fairing; -1 for the other rows and for every row unless .remeshed.
+        """
+    @property
     def phase_seconds(self) -> list[tuple[str, float]]:
         """
-        Wall-clock seconds of the solve's phases, a list of (name, seconds) in the order they ran: "hierarchy", then per level l (0 = coarsest) "level l initial mesh", "level l set-up" and, for Newton's method, "level l inner fairness", "level l Newton steps", "level l polishes", for the paper's iteration "level l iterations" (an abandoned attempt's phases included). They do not overlap: their sum stays below the call's wall time.
+        Wall-clock seconds of the solve's phases, a list of (name, seconds) in the order they ran: "remesh" where the region was remeshed, "hierarchy", then per level l (0 = coarsest) "level l initial mesh", "level l set-up" and, for Newton's method, "level l inner fairness", "level l Newton steps", "level l polishes", for the paper's iteration "level l iterations" (an abandoned attempt's phases included). They do not overlap: their sum stays below the call's wall time.
         """
     @property
     def remeshed(self) -> bool:
         """
-        True where the result's triangles are not the input's (fill_holes).
+        True when the region's triangles were replaced (fair's remesh).
         """
     @property
     def residual(self) -> float:
@@ -90,9 +100,14 @@ class FairingResult:
         Why the solve ended, message's first clause as a value: "converged"; "max_iterations" (a level spent max_iterations, or Newton's method stalled with iteration="newton"); "time_limit" (time_limit, or the automatic limit's hard cap); "no_progress" (the automatic limit: the residual did not halve for its span); "cancelled" (progress returned False); "diverged" (iteration="auto"'s last attempt failed: the input is returned).
         """
     @property
+    def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (k,) int32: rows of .vertices in no face (input free rows that the remesh did not reuse, input positions kept); empty unless .remeshed.
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
-        (n, 3) float64 positions; fixed rows are bit-identical to the input.
+        (n', 3) float64 positions; fixed rows are bit-identical to the input. n' = n unless .remeshed (then max(n, #fixed + #new free)).
         """
     @property
     def vertices_per_level(self) -> list[int]:
@@ -210,13 +225,14 @@ def defaults() -> dict:
     -------
     dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
     "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-    "damping" (float), "time_limit" (None: automatic), the automatic time limit of
-    iteration="auto" (time without a halving of the residual), "time_limit_base" (seconds) plus
+    "damping" (float), "remesh" (False, True or "if_needed"), "time_limit" (None: automatic),
+    the automatic time limit of iteration="auto" (time without a halving of the residual),
+    "time_limit_base" (seconds) plus
     "time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
     "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
     dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: typing.Any = False, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
@@ -231,6 +247,20 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
     free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
         by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
         vertex form the boundary.
+    remesh : False (default; also "off"), True (also "always") or "if_needed". False: the
+        connectivity is kept (the paper's setting). True: the region's triangles (those with a
+        free vertex) are first replaced by geofair.remesh_region's isotropic remesh at the mean
+        length of the region's border edges (fixed vertices and the region's border edges
+        kept; the G1 normals taken from the input), then faired. "if_needed": faired with the
+        connectivity kept first; where that does not converge or folds triangles over that
+        were not folded, remeshed and faired again: the remeshed result is returned if it
+        converged without new folds, else the better of the two (converged first, then fewer
+        new folds, then the smaller residual); .message says which. A remeshed result has
+        other vertices and faces: n' rows (fixed rows keep index and position, the input's free
+        rows are reused, extra rows appended; .unreferenced lists free rows left over), its
+        .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
+        the input surface (to carry UVs over). polygon_ids do not apply to the new triangles.
+        An explicit time_limit covers the whole call; the automatic one applies to each solve.
     boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
         normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
         surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
@@ -348,7 +378,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, boundary:
     
     Returns
     -------
-    FairingResult with .vertices (n, 3) float64, .converged, .iterations (all levels),
+    FairingResult with .vertices (n', 3) float64 (n' = n unless remeshed), .faces (m', 3)
+    int32, .free (n',) bool, .remeshed, .unreferenced, .origin_face and .origin_barycentric
+    (see remesh; the input's faces and mask, -1 and zeros when not remeshed), .converged,
+    .iterations (all levels),
     .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
     .iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
     triangles the result flips over, and those not folded in the input) and .phase_seconds
