@@ -298,6 +298,12 @@ def format_row(row):
 # Summary
 
 
+def _size(row):
+    """The nominal hole size of a corpus case, from its name cgal/<mesh>/<size>/s<k> (else None)."""
+    parts = row["case"].split("/")
+    return int(parts[2]) if len(parts) == 4 and parts[2].isdigit() else None
+
+
 def summary(rows, methods):
     lines = []
     holes_ = sorted({r["case"] for r in rows})
@@ -326,6 +332,15 @@ def summary(rows, methods):
                     if r.get("surroundings_max") is not None
                 )
             lines.append(line)
+        sizes = sorted({_size(r) for r in rs if r["kind"] == "corpus"} - {None})
+        if len(sizes) > 1:
+            parts = []
+            for size in sizes:
+                ks = [r for r in rs if r["kind"] == "corpus" and _size(r) == size]
+                ts = [r["seconds"] for r in ks if r["status"] == "done"]
+                t = f", median {np.median(ts):.3f} s" if ts else ""
+                parts.append(f"{size}: {sum(bool(r.get('ok')) for r in ks)} of {len(ks)}{t}")
+            lines.append(f"    {method}: corpus holes ok by size (vertices removed, about): " + "; ".join(parts))
         ts = [r["seconds"] for r in rs if r["status"] == "done"]
         if ts:
             lines.append(f"    {method}: median time {np.median(ts):.3f} s, max {max(ts):.3f} s ({len(ts)} fills)")

@@ -270,6 +270,15 @@ def test_holes_summary_counts_closer_fills_and_the_time_ratio():
     assert "corpus holes filled by both: 3; geofair closer than cgal: mean distance 2 (67 %)" in text
     assert "of those filled ok by both (2): geofair closer (mean) on 2" in text
     assert "time ratio geofair/cgal over 3 holes: median 3.0, max 8.0" in text
+    for r in rows:  # the same holes named as the benchmark names them: counted by size
+        r["case"] = {"a": "cgal/elk/100/s0", "b": "cgal/elk/100/s1", "c": "cgal/bull/1000/s0"}.get(
+            r["case"], "cgal/bull~1/10000/s0"
+        )
+    text = "\n".join(bench.summary(rows, ["geofair", "cgal"]))
+    assert (
+        "geofair: corpus holes ok by size (vertices removed, about): 100: 1 of 2, median 2.500 s; 1000: 1 of 1" in text
+    )
+    assert "10000: 0 of 1\n" in text  # a timeout: no time
 
 
 def test_realmesh_summary_lists_cases_lost_and_gained_by_remeshing():
