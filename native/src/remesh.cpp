@@ -246,7 +246,8 @@ class SurfaceProjector {
   std::vector<int> items_;
 };
 
-// The input's sizes, indices and free vertices (interior, finite, in a triangle).
+// The input's sizes, indices and options, and that a vertex is free (the region's own
+// checks: Remesher's constructor and build).
 void check_input(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                  const RemeshOptions& options) {
   const int nv = int(V.rows());
@@ -481,8 +482,9 @@ void Remesher::split_long_edges() {
 }
 
 // Whether collapsing h = (v0 -> v1) into v1's position keeps the mesh valid: v0 free, the
-// link condition (is_collapse_ok), no new edge longer than 4/3 L, no triangle flipped or
-// degenerate, none left without a free vertex.
+// link condition (is_collapse_ok), no new edge longer than 4/3 L, every triangle of v0's
+// ring facing the same way and keeping its shape (keeps_shape), none left without a free
+// vertex.
 bool Remesher::collapse_ok(HH h) {
   const VH v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
   if (!is_free(v0) || !mesh_.is_collapse_ok(h)) return false;
@@ -522,8 +524,8 @@ void Remesher::collapse_short_edges() {
 }
 
 // Whether flipping interior edge e brings the valences of its four vertices closer to their
-// targets (6 inside, as counted with the edges outside the region) without folding or
-// degenerating its two triangles or leaving one without a free vertex.
+// targets (6 inside, as counted with the edges outside the region) without folding its two
+// triangles or thinning them (keeps_shape) or leaving one without a free vertex.
 bool Remesher::flip_improves(EH e) const {
   if (mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
   const HH h = mesh_.halfedge_handle(e, 0), o = mesh_.opposite_halfedge_handle(h);
@@ -555,8 +557,8 @@ void Remesher::equalize_valences() {
 }
 
 // Moves each free vertex towards the area-weighted centroid of its one-ring's triangles, in
-// its tangent plane, then onto the input surface; a move that would flip one of its
-// triangles over is skipped.
+// its tangent plane, then onto the input surface; a move that would turn one of its
+// triangles over or thin it (keeps_shape), or land on the region's border, is skipped.
 void Remesher::relax_tangentially() {
   for (VH v : mesh_.vertices()) {
     if (mesh_.status(v).deleted() || !is_free(v)) continue;
@@ -587,7 +589,7 @@ void Remesher::relax_tangentially() {
   }
 }
 
-// The output arrays (remesh.h's row layout) from the mesh after garbage collection.
+// The output arrays (RemeshedRegion's row layout) from the mesh after garbage collection.
 RemeshedRegion Remesher::result() {
   mesh_.garbage_collection();
   const int n = int(V_.rows());

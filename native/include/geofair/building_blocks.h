@@ -185,8 +185,11 @@ struct RemeshedRegion {
 /// tangent plane; every new or moved vertex is projected onto the closest point of the
 /// input region's triangles. Fixed vertices never move and are never removed; the region's
 /// border edges are never split, flipped or collapsed; a collapse that would create an edge
-/// longer than 4/3 L, and a collapse, flip or relaxation step that would flip a triangle
-/// over or degenerate it, is skipped; no triangle is left without a free vertex.
+/// longer than 4/3 L is skipped, and so is any split, collapse, flip or relaxation step that
+/// would turn a triangle over or leave it thinner than shape 0.05 (twice the area over the
+/// longest edge squared) and than the triangle it replaces (a split of a longest edge: than
+/// 0.45 of that), or leave a triangle without a free vertex, or put a vertex on the region's
+/// border (docs/DESIGN_NOTES.md, "Remeshing the region").
 ///
 /// \param V  #V×3 positions, mesh units, finite in the region
 /// \param F  #F×3 triangles; those with a free vertex must form a consistently oriented

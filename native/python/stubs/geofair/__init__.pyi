@@ -259,8 +259,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
         other vertices and faces: n' rows (fixed rows keep index and position, the input's free
         rows are reused, extra rows appended; .unreferenced lists free rows left over), its
         .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
-        the input surface (to carry UVs over). polygon_ids do not apply to the new triangles.
-        An explicit time_limit covers the whole call; the automatic one applies to each solve.
+        the input surface (to carry UVs over); its .folds and .new_folds count its own
+        triangles (new: not folded in the remesh before fairing). polygon_ids do not apply to
+        the new triangles. An explicit time_limit covers the whole call; the automatic one
+        applies to each solve.
     boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
         normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
         surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
@@ -547,11 +549,13 @@ def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, 
     fixed vertices and the region's border edges are kept.
     
     Each iteration splits edges longer than 4/3 L, collapses edges shorter than 4/5 L (a free
-    vertex into a neighbour; never one that would create an edge longer than 4/3 L or flip or
-    degenerate a triangle), flips interior edges towards valence 6 (4 on the mesh border,
-    counting the edges outside the region), and moves each free vertex to the area-weighted
-    centroid of its one-ring in its tangent plane. Every new or moved vertex is projected onto
-    the closest point of the input region's triangles.
+    vertex into a neighbour; never one that would create an edge longer than 4/3 L), flips
+    interior edges towards valence 6 (4 on the mesh border, counting the edges outside the
+    region), and moves each free vertex to the area-weighted centroid of its one-ring in its
+    tangent plane. Every new or moved vertex is projected onto the closest point of the input
+    region's triangles. No step turns a triangle over, leaves it thinner (twice the area over
+    the longest edge squared) than 0.05 and than the triangle it replaces, or puts a vertex on
+    the region's border; such a step is skipped.
     
     Parameters
     ----------
