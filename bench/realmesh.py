@@ -18,6 +18,17 @@ included).
 
     PYTHONPATH=build/python python3 bench/realmesh.py [--quick] [--large] [--only SUBSTRING[,SUBSTRING...]]
         [--inner uniform,conformal] [--timeout SECONDS] [--cache DIR] [--json FILE]
+        [--remesh off|always|if_needed] [--compare-remesh]
+
+--remesh MODE passes ``remesh`` to geofair.fair (off: False, the default and today's
+behaviour, the keyword not passed at all; always: True; if_needed: "if_needed"). With a mode
+other than off each row gets a column "remesh" (off: not asked, kept: the connectivity was
+kept, yes: the result was remeshed); new folds of a remeshed result are its folded edges
+with a free endpoint (its triangles are not the input's), and the radial error is taken
+over its free vertices. The summary then says, per inner fairness, in how many cases the
+result was remeshed. --compare-remesh runs each case with remesh off and with MODE (after
+each other, the same input) and the summary also lists the cases that converge without new
+folds with the connectivity kept but not with MODE (lost), and the reverse (gained).
 
 The corpus: geofair_dev.corpus (dev/geofair_dev/corpus.py), which describes its cases:
 regions of CGAL's demo meshes (``cgal/...``), Blender's primitives (``blender/...``, made
@@ -70,9 +81,10 @@ def child(args):
         v, f, free, bn, polygons = d["vertices"], d["faces"], d["free"], d["boundary_normals"], d["polygon_ids"]
     bn = bn if len(bn) else None
     polygons = polygons if len(polygons) else None
+    remesh = {"off": {}, "always": {"remesh": True}, "if_needed": {"remesh": "if_needed"}}[args.remesh]
     t = time.perf_counter()
     try:
-        r = geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner)
+        r = geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner, **remesh)
     except ValueError as error:
         out = {"status": "invalid", "message": str(error)}
     except Exception as error:  # geofair.SolverError (a RuntimeError) and anything else
@@ -82,6 +94,10 @@ def child(args):
         np.save(args.result, np.asarray(r.vertices))
         conv = getattr(r, "converged", None)
         out = {"status": "yes" if conv else "no", "seconds": seconds}
+        if args.remesh != "off":
+            out["remeshed"] = bool(getattr(r, "remeshed", False))
+            if out["remeshed"]:  # the result's own triangles and free mask
+                np.savez(args.result + ".mesh.npz", faces=np.asarray(r.faces), free=np.asarray(r.free))
         for attr in ("converged", "residual", "iteration", "iterations", "newton_iterations", "reason"):
             out[attr] = _scalar(getattr(r, attr, None))
     out.setdefault("seconds", time.perf_counter() - t)
@@ -103,12 +119,24 @@ def build_id():
     return time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(os.path.getmtime(origin))) if origin else "none"
 
 
-def run_solve(path, inner, args):
-    """Runs one solve in a subprocess; (dict, result vertices or None)."""
+def _fair_has_remesh():
+    try:
+        import geofair
+    except ImportError:
+        return True  # unknown: the solves will say
+    return "remesh" in (geofair.fair.__doc__ or "")
+
+
+def run_solve(path, inner, args, remesh="off"):
+    """Runs one solve in a subprocess; (dict, result vertices or None); with remesh other
+    than off a remeshed result's faces and free mask are in dict["mesh"]."""
     result = os.path.join(args.cache, f"result_{os.getpid()}.npy")
-    if os.path.exists(result):
-        os.remove(result)
+    for stale in (result, result + ".mesh.npz"):
+        if os.path.exists(stale):
+            os.remove(stale)
     cmd = [sys.executable, os.path.abspath(__file__), "--child", path, "--inner", inner, "--result", result]
+    if remesh != "off":
+        cmd += ["--remesh", remesh]
     for _ in range(IMPORT_RETRIES):
         try:
             run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
@@ -126,24 +154,37 @@ def run_solve(path, inner, args):
     after = np.load(result) if out["status"] in ("yes", "no") else None
     if after is not None:
         os.remove(result)
+    if out.get("remeshed") and after is not None:
+        with np.load(result + ".mesh.npz") as d:
+            out["mesh"] = {"faces": d["faces"], "free": d["free"].astype(bool)}
+        os.remove(result + ".mesh.npz")
     return out, after
 
 
 def fixed_changed(before, after, free):
-    """Number of fixed vertices whose coordinates are not bit-identical."""
+    """Number of fixed vertices whose coordinates are not bit-identical (a remeshed result
+    keeps the fixed rows' indices; its extra rows are not compared)."""
+    after = after[: len(before)]
     a, b = np.ascontiguousarray(before[~free]), np.ascontiguousarray(after[~free])
     return int((a.view(np.uint64) != b.view(np.uint64)).any(axis=1).sum())
 
 
-def make_row(desc, meta, inner, n_free, out, before, after, faces, free):
+def make_row(desc, meta, inner, n_free, out, before, after, faces, free, remesh=None):
     row = {"case": desc["name"], "free": n_free, "inner": inner, "invalid": meta.get("invalid", 0)}
+    if remesh is not None:
+        row["remesh"] = remesh
     row["topology"], row["euler"], row["loops"] = region_topology(faces, free)
+    mesh = out.pop("mesh", None)
     row.update(out)
     if after is not None:
-        row["new_folds"] = new_folds(before, after, faces, free)
+        if mesh is None:
+            row["new_folds"] = new_folds(before, after, faces, free)
+        else:  # other triangles than the input's: every folded edge with a free endpoint counts
+            row["new_folds"] = new_folds(None, after, mesh["faces"], mesh["free"])
         row["fixed_changed"] = fixed_changed(before, after, free)
         if meta.get("sphere"):
-            row["radial_error"] = float(np.abs(np.linalg.norm(after[free], axis=1) - 1.0).max())
+            result_free = free if mesh is None else mesh["free"]
+            row["radial_error"] = float(np.abs(np.linalg.norm(after[result_free], axis=1) - 1.0).max())
     return row
 
 
@@ -157,7 +198,10 @@ HEADER = (
 )
 
 
-def format_row(row):
+HEADER_REMESH = HEADER.replace(" note", " remesh  note")
+
+
+def format_row(row, remesh_column=False):
     it = ""
     if row.get("iteration") is not None:
         it = f"{row['iteration']} {row.get('iterations', '')}"
@@ -166,11 +210,17 @@ def format_row(row):
     note = row.get("message") or row.get("reason") or ""
     if row.get("fixed_changed"):
         note = f"!!! FIXED VERTICES CHANGED: {row['fixed_changed']} !!! " + note
+    remesh = ""
+    if remesh_column:
+        remesh = "off" if row.get("remesh", "off") == "off" else ""
+        if not remesh and "remeshed" in row:
+            remesh = "yes" if row["remeshed"] else "kept"
+        remesh = f" {remesh:<6}"
     return (
         f"{row['case']:<30} {row['free']:>6} {row.get('topology', ''):<7} {row['inner']:<9} "
         f"{row['invalid']:>5} {row['status']:<7} "
         f"{_fmt(row.get('new_folds'), 'd', 5)} {_fmt(row.get('seconds'), '.2f', 8)} "
-        f"{_fmt(row.get('residual'), '.1e', 8)} {it:<20} {_fmt(row.get('radial_error'), '.1e', 8)}  {note}"
+        f"{_fmt(row.get('residual'), '.1e', 8)} {it:<20} {_fmt(row.get('radial_error'), '.1e', 8)}{remesh}  {note}"
     ).rstrip()
 
 
@@ -181,21 +231,27 @@ def size_class(n):
     return len(SIZE_CLASSES) - 1
 
 
-def summary(rows, inners, timeout):
+def _good(r):
+    """Converged without new folds, fixed vertices untouched."""
+    return r["status"] == "yes" and r.get("new_folds") == 0 and not r.get("fixed_changed")
+
+
+def summary(rows, inners, timeout, modes=("off",)):
     lines = []
-    for inner in inners:
-        rs = [r for r in rows if r["inner"] == inner]
+    for inner, mode in [(inner, mode) for inner in inners for mode in modes]:
+        rs = [r for r in rows if r["inner"] == inner and r.get("remesh", "off") == mode]
         if not rs:
             continue
+        label = inner if tuple(modes) == ("off",) else f"{inner}, remesh {mode}"
         total = len(rs)
-        good = sum(r["status"] == "yes" and r.get("new_folds") == 0 and not r.get("fixed_changed") for r in rs)
+        good = sum(_good(r) for r in rs)
         folded = sum(r["status"] == "yes" and bool(r.get("new_folds")) for r in rs)
         count = {s: sum(r["status"] == s for r in rs) for s in ("no", "timeout", "error", "invalid")}
         fixed = sum(bool(r.get("fixed_changed")) for r in rs)
         slow = sum((r["status"] == "timeout" and timeout > 10) or (r.get("seconds") or 0) > 10
                    for r in rs if r["free"] <= 10000)  # fmt: skip
         lines.append(
-            f"{inner}: {total} cases, converged without new folds {good} ({100 * good / total:.0f} %), "
+            f"{label}: {total} cases, converged without new folds {good} ({100 * good / total:.0f} %), "
             f"not converged {count['no']}, converged with new folds {folded}, timeouts {count['timeout']}, "
             f"errors {count['error']}, invalid input {count['invalid']}"
             + (f", !!! FIXED VERTICES CHANGED in {fixed}" if fixed else "")
@@ -215,6 +271,25 @@ def summary(rows, inners, timeout):
                 parts.append(f"{label} free: {n} cases, {len(ts)} finished, {t}")
         lines += ["    " + p for p in parts]
         lines.append(f"    cases <= 10,000 free taking > 10 s (timeouts included): {slow}")
+        if mode != "off":
+            remeshed = sum(bool(r.get("remeshed")) for r in rs)
+            finished = sum("remeshed" in r for r in rs)
+            lines.append(f"    remeshed: {remeshed} of {total} cases ({finished} finished)")
+    if len(modes) == 2:
+        off, mode = modes
+        for inner in inners:
+            by = {(r["case"], r.get("remesh", "off")): r for r in rows if r["inner"] == inner}
+            cases = [c for c, m in by if m == off and (c, mode) in by]
+            lost = [c for c in cases if _good(by[c, off]) and not _good(by[c, mode])]
+            gained = [c for c in cases if _good(by[c, mode]) and not _good(by[c, off])]
+            lines.append(
+                f"{inner}: {len(cases)} cases run both ways; converged without new folds with the connectivity "
+                f"kept but not with remesh {mode} (lost): {len(lost)}" + (f" ({', '.join(lost)})" if lost else "")
+            )
+            lines.append(
+                f"    with remesh {mode} but not with the connectivity kept (gained): {len(gained)}"
+                + (f" ({', '.join(gained)})" if gained else "")
+            )
     return lines
 
 
@@ -227,12 +302,20 @@ def main():
     parser.add_argument("--inner", default="uniform,conformal", help="inner fairness, comma-separated")
     parser.add_argument("--cache", default=DEFAULT_CACHE)
     parser.add_argument("--json", default=None, help="write all rows to this file")
+    parser.add_argument("--remesh", default="off", choices=("off", "always", "if_needed"),
+                        help="geofair.fair's remesh: off (False, the default), always (True), if_needed")  # fmt: skip
+    parser.add_argument("--compare-remesh", action="store_true",
+                        help="run every case with remesh off and with --remesh's mode")  # fmt: skip
     parser.add_argument("--child", default=None, help=argparse.SUPPRESS)
     parser.add_argument("--result", default=None, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child is not None:
         child(args)
         return
+    if args.compare_remesh and args.remesh == "off":
+        parser.error("--compare-remesh needs --remesh always or --remesh if_needed")
+    modes = ("off", args.remesh) if args.compare_remesh else (args.remesh,)
+    remesh_column = modes != ("off",)
     inners = [s.strip() for s in args.inner.split(",") if s.strip()]
     descs, notes = corpus(args.quick, args.large, args.cache)
     if args.only:
@@ -245,7 +328,11 @@ def main():
     )  # fmt: skip
     for note in notes:
         print(f"# {note}")
-    print(HEADER, flush=True)
+    if remesh_column:
+        print(f"# remesh: {' and '.join(modes)}")
+        if not _fair_has_remesh():
+            print("# geofair.fair has no remesh keyword in this build: the remeshing rows will be errors")
+    print(HEADER_REMESH if remesh_column else HEADER, flush=True)
     rows = []
     start = time.perf_counter()
     build = build_id()
@@ -271,19 +358,20 @@ def main():
                 meta = json.loads(str(d["meta"]))
             redraw = None
             case_rows = []
-            for inner in inners:
+            for inner, mode in [(inner, mode) for inner in inners for mode in modes]:
                 if build_id() != build:
                     build = build_id()
                     print(f"# the geofair module changed (rebuilt {build}): rows below use it", flush=True)
-                out, after = run_solve(path, inner, args)
+                out, after = run_solve(path, inner, args, mode)
                 out["build"] = build
                 if out["status"] == "invalid" and desc["kind"] == "disc":
                     redraw = out["message"]
                     break
-                row = make_row(desc, meta, inner, int(free.sum()), out, v, after, f, free)
+                row = make_row(desc, meta, inner, int(free.sum()), out, v, after, f, free,
+                               mode if remesh_column else None)  # fmt: skip
                 row["seed_vertex"] = meta.get("seed_vertex")
                 case_rows.append(row)
-                print(format_row(row), flush=True)
+                print(format_row(row, remesh_column), flush=True)
             if redraw is None:
                 rows += case_rows
                 break
@@ -292,7 +380,7 @@ def main():
             print(f"# {desc['name']}: seed {meta.get('seed_vertex')} invalid input ({redraw}): redrawn", flush=True)
             desc = dict(desc, attempt=meta["invalid"] + 1)
     print(f"# {len(rows)} solves in {time.perf_counter() - start:.0f} s")
-    print("\n".join(summary(rows, inners, args.timeout)))
+    print("\n".join(summary(rows, inners, args.timeout, modes)))
     if args.json:
         with open(args.json, "w") as out:
             json.dump({"args": vars(args), "notes": notes, "rows": rows}, out, indent=1)

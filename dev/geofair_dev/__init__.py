@@ -15,6 +15,9 @@ What tests/, bench/, scripts/ and examples/ share, imported the same way by all 
 - ``caps``: the speed benchmark's sphere caps, cached as .npz.
 - ``corpus``: the real-mesh corpus (bench/realmesh.py, tests/test_realmesh.py).
 - ``cgal_fair``: CGAL's linear fair as a reference (runs build/bench/cgal_fair).
+- ``holes``: holes cut into meshes and the measures of their fills (bench/holes.py).
+- ``cgal_fill_hole``: CGAL's triangulate_refine_and_fair_hole as a reference (runs
+  build/bench/cgal_fill_hole).
 - ``blender``: inside Blender or the bpy module: enable the add-on, Suzanne, select faces.
 
 Installed editable by scripts/setup.sh (``python3 -m pip install -e dev/``); see paths.py for
