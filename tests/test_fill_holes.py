@@ -111,3 +111,34 @@ def test_bad_loops_and_closed_meshes_are_refused():
     bad[hole[0], 0] = np.inf
     with pytest.raises(ValueError, match=f"vertex {hole[0]} has a non-finite"):
         geofair.fill_holes(bad, f)
+
+
+def test_a_hole_of_three_vertices_gets_one_vertex():
+    s = scenes.sphere(n_vertices=500)
+    v, f = s.vertices, s.faces[1:]  # one triangle removed: a loop of three vertices
+    r = geofair.fill_holes(v, f)
+    check_fill(r, v, f)
+    assert len(r.vertices) == len(v) + 1 and len(r.faces) == len(f) + 3
+    assert r.converged, r.message
+    # The new vertex sits near the sphere (one vertex: no finer statement than the chord).
+    assert abs(np.linalg.norm(r.vertices[-1]) - 1) < 0.05
+
+
+def test_loops_must_be_a_list_of_index_sequences():
+    v, f = sphere_with_hole()
+    hole = geofair.boundary_loops(v, f)[0]
+    with pytest.raises(ValueError, match=r"loops=\[loop\]"):
+        geofair.fill_holes(v, f, hole)  # a single loop, not in a list
+    with pytest.raises(ValueError, match="holds 1.5"):
+        geofair.fill_holes(v, f, [[*hole[:-1].tolist(), 1.5]])
+    with pytest.raises(ValueError, match="out of range"):
+        geofair.fill_holes(v, f, [[2**40, *hole[1:].tolist()]])
+    # numpy integers are indices
+    r = geofair.fill_holes(v, f, [np.asarray(hole, np.int64)])
+    assert r.converged, r.message
+
+
+def test_a_fill_finer_than_the_memory_allows_is_refused():
+    v, f = sphere_with_hole()
+    with pytest.raises(ValueError, match="new vertices at edge length"):
+        geofair.fill_holes(v, f, target_edge_length=1e-5)

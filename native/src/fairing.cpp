@@ -356,8 +356,13 @@ FairingResult fair_if_needed(const Positions& V, const Triangles& F,
   if (reason.empty() || kept.stop_reason == StopReason::Cancelled ||
       (options.time_limit >= 0.0 && spent >= options.time_limit))
     return kept;
-  FairingResult remeshed =
-      fair_remeshed(V, F, free, boundary_normals, after(options, spent), polygon_ids);
+  FairingResult remeshed;
+  try {
+    remeshed = fair_remeshed(V, F, free, boundary_normals, after(options, spent), polygon_ids);
+  } catch (const std::exception& error) {  // the remesh or its solve failed: keep the first
+    kept.message += std::string("; remeshing failed (") + error.what() + ")";
+    return kept;
+  }
   const bool use_remesh = (remeshed.converged && remeshed.new_folds == 0) || better(remeshed, kept);
   FairingResult& out = use_remesh ? remeshed : kept;
   const FairingResult& other = use_remesh ? kept : remeshed;

@@ -23,12 +23,12 @@ namespace {
 using hole_filling::DirectedEdges;
 
 // Validates the triangles (indices, manifold, orientation) and the coordinates they use.
-void check_mesh(const Positions& V, const Triangles& F) {
-  build_one_rings(int(V.rows()), F, "fill_holes");
+void check_mesh(const Positions& V, const Triangles& F, const char* caller) {
+  build_one_rings(int(V.rows()), F, caller);
   for (int f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c)
       if (!V.row(F(f, c)).allFinite())
-        throw InvalidInputError("fill_holes: vertex " + std::to_string(F(f, c)) +
+        throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(F(f, c)) +
                                 " has a non-finite coordinate");
 }
 
@@ -64,16 +64,16 @@ std::vector<int> oriented_loop(const std::vector<int>& loop, const DirectedEdges
   return out;
 }
 
-}  // namespace
-
-std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F) {
-  check_mesh(V, F);
+std::vector<std::vector<int>> loops_of(const Positions& V, const Triangles& F,
+                                       const char* caller) {
+  check_mesh(V, F, caller);
   const DirectedEdges edges(F);
   std::map<int, int> next;  // loop successor in the direction of the missing face
   edges.for_each_border_edge([&](int a, int b) {
     if (!next.emplace(b, a).second)
-      throw InvalidInputError("fill_holes: vertex " + std::to_string(b) +
-                              " lies on two boundary loops (the holes touch there)");
+      throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(b) +
+                              " lies on the border twice (two holes, or one hole's border, "
+                              "touch there)");
   });
   std::vector<std::vector<int>> loops;
   std::map<int, bool> done;
@@ -88,6 +88,12 @@ std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles
     loops.push_back(std::move(loop));
   }
   return loops;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F) {
+  return loops_of(V, F, "boundary_loops");
 }
 
 namespace hole_filling {
@@ -232,6 +238,10 @@ SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
     const int v[3] = {patch(f, 0), patch(f, 1), patch(f, 2)};
     const int m[3] = {mid(v[0], v[1]), mid(v[1], v[2]), mid(v[2], v[0])};
     const int splits = (m[0] >= 0) + (m[1] >= 0) + (m[2] >= 0);
+    if (splits == 0) {  // a hole of three vertices: its one triangle gets a centroid below
+      faces.push_back({v[0], v[1], v[2]});
+      continue;
+    }
     if (splits == 3) {  // 1-to-4
       faces.push_back({v[0], m[0], m[2]});
       faces.push_back({v[1], m[1], m[0]});
@@ -247,12 +257,10 @@ SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
     if (splits == 1) {
       faces.push_back({a, ab, c});
       faces.push_back({ab, b, c});
-    } else if (splits == 2) {
+    } else {
       faces.push_back({a, ab, c});
       faces.push_back({ab, b, bc});
       faces.push_back({ab, bc, c});
-    } else {
-      faces.push_back({a, b, c});  // a triangle hole: split at its centroid below
     }
   }
   // A hole of three vertices has no edge across it: its one triangle gets a centroid.
@@ -272,11 +280,11 @@ SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
 std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
                                             const std::vector<std::vector<int>>& loops) {
   if (loops.empty()) {
-    auto all = boundary_loops(V, F);
+    auto all = loops_of(V, F, "fill_holes");
     if (all.empty()) throw InvalidInputError("fill_holes: the mesh has no hole (no boundary edge)");
     return all;
   }
-  check_mesh(V, F);
+  check_mesh(V, F, "fill_holes");
   const DirectedEdges edges(F);
   std::vector<std::vector<int>> out;
   std::map<int, int> owner;
@@ -309,6 +317,19 @@ void append_rows(Matrix& M, const Matrix& rows) {
   M.bottomRows(rows.rows()) = rows;
 }
 
+// The most new vertices a fill may make (about 1 GiB of solver memory, README).
+constexpr double kMaxFillVertices = 2e6;
+
+// The mesh around the holes: its directed edges and each vertex's triangles.
+struct Surroundings {
+  Surroundings(const Triangles& F, Eigen::Index n_vertices) : edges(F), at(n_vertices) {
+    for (int f = 0; f < F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) at[F(f, c)].push_back(f);
+  }
+  DirectedEdges edges;
+  std::vector<std::vector<int>> at;
+};
+
 // One hole's fill: the new vertices (to be appended after `base` rows) and the new
 // triangles, in the caller's indices.
 struct Fill {
@@ -318,8 +339,9 @@ struct Fill {
 
 // Triangulates, splits and remeshes one hole at edge length L. The remesh sees only the
 // patch and the mesh's triangles at the loop (the valences there), not the whole mesh.
-Fill fill_one(const Positions& V, const Triangles& F, const std::vector<std::vector<int>>& at,
-              const std::vector<int>& loop, const DirectedEdges& mesh_edges, double L, int base) {
+Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
+              const std::vector<int>& loop, double L, int base) {
+  const auto& at = mesh.at;
   // Local rows: the vertices of the triangles at the loop, then the split's midpoints.
   std::vector<int> global;
   std::unordered_map<int, int> local;
@@ -339,12 +361,24 @@ Fill fill_one(const Positions& V, const Triangles& F, const std::vector<std::vec
   for (int v : loop) local_loop.push_back(add(v));
   Positions X(Eigen::Index(global.size()), 3);
   for (size_t k = 0; k < global.size(); ++k) X.row(Eigen::Index(k)) = V.row(global[k]);
-  const Triangles patch = hole_filling::triangulate_loop(V, loop, mesh_edges);
+  const Triangles patch = hole_filling::triangulate_loop(V, loop, mesh.edges);
   Triangles local_patch(patch.rows(), 3);
   for (int t = 0; t < patch.rows(); ++t)
     for (int c = 0; c < 3; ++c) local_patch(t, c) = local.at(patch(t, c));
   const auto split = hole_filling::split_inner_edges(X, local_patch, local_loop);
   const int n_fixed = int(X.rows());
+  // About one vertex per two triangles of area sqrt(3)/4 L² (refused before the remesh).
+  double area = 0.0;
+  for (int t = 0; t < patch.rows(); ++t)
+    area += 0.5 * (V.row(patch(t, 1)) - V.row(patch(t, 0)))
+                      .cross(V.row(patch(t, 2)) - V.row(patch(t, 0)))
+                      .norm();
+  const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
+  if (estimate > kMaxFillVertices)
+    throw InvalidInputError("fill_holes: the hole at vertex " + std::to_string(loop[0]) +
+                            " would take about " + std::to_string(std::llround(estimate)) +
+                            " new vertices at edge length " + std::to_string(L) +
+                            " (at most 2000000): give a larger target_edge_length");
   append_rows(X, split.new_vertices);
   append_rows(T, split.faces);
   std::vector<bool> free(X.rows(), false);
@@ -372,30 +406,53 @@ Fill fill_one(const Positions& V, const Triangles& F, const std::vector<std::vec
   return fill;
 }
 
-// All holes filled at `scale` times their edge lengths, then faired together.
-FairingResult fill_and_fair(const Positions& V, const Triangles& F,
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The options of a solve after `spent` seconds of the call: an explicit time limit less
+// what is spent.
+FairingOptions after(const FairingOptions& options, double spent) {
+  FairingOptions rest = options;
+  if (options.time_limit >= 0.0) rest.time_limit = std::max(0.0, options.time_limit - spent);
+  return rest;
+}
+
+// All holes filled at `scale` times their edge lengths, then faired together (the phase
+// "fill" first in phase_seconds).
+FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Surroundings& mesh,
                             const std::vector<std::vector<int>>& holes,
                             const std::vector<double>& lengths, double scale,
                             const FairingOptions& options) {
-  const DirectedEdges mesh_edges(F);
-  std::vector<std::vector<int>> at(V.rows());  // each vertex's triangles
-  for (int f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) at[F(f, c)].push_back(f);
-  Positions X = V;
-  Triangles T = F;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Fill> fills;
+  Eigen::Index rows = V.rows(), faces = F.rows();
   for (size_t h = 0; h < holes.size(); ++h) {
-    const Fill fill = fill_one(V, F, at, holes[h], mesh_edges, scale * lengths[h], int(X.rows()));
-    append_rows(X, fill.vertices);
-    append_rows(T, fill.faces);
+    fills.push_back(fill_one(V, F, mesh, holes[h], scale * lengths[h], int(rows)));
+    rows += fills.back().vertices.rows();
+    faces += fills.back().faces.rows();
+  }
+  Positions X(rows, 3);
+  Triangles T(faces, 3);
+  X.topRows(V.rows()) = V;
+  T.topRows(F.rows()) = F;
+  rows = V.rows(), faces = F.rows();
+  for (const Fill& fill : fills) {
+    X.middleRows(rows, fill.vertices.rows()) = fill.vertices;
+    T.middleRows(faces, fill.faces.rows()) = fill.faces;
+    rows += fill.vertices.rows();
+    faces += fill.faces.rows();
   }
   std::vector<bool> free(X.rows(), false);
   for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
-  FairingOptions fairing = options;
+  const double seconds = seconds_since(start);
+  FairingOptions fairing = after(options, seconds);
   fairing.remesh = Remesh::Off;  // the patches are remeshed already
   FairingResult result = fair(X, T, free, nullptr, fairing);
   result.faces = std::move(T);
   result.free = std::move(free);
   result.remeshed = true;
+  result.phase_seconds.insert(result.phase_seconds.begin(), {"fill", seconds});
   return result;
 }
 
@@ -412,18 +469,17 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
     lengths.push_back(target_edge_length > 0.0 ? target_edge_length
                                                : mean_loop_edge_length(V, loop));
   const auto start = std::chrono::steady_clock::now();
-  FairingResult result = fill_and_fair(V, F, holes, lengths, 1.0, options);
+  const Surroundings mesh(F, V.rows());
+  FairingResult result = fill_and_fair(V, F, mesh, holes, lengths, 1.0, options);
   const bool failed = !result.converged || result.new_folds > 0;
-  const double spent =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double spent = seconds_since(start);
   const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
-  if (!failed || target_edge_length > 0.0 || !time_left ||
+  const double added = double(result.vertices.rows() - V.rows());
+  if (!failed || target_edge_length > 0.0 || !time_left || 4.0 * added > kMaxFillVertices ||
       result.stop_reason == StopReason::Cancelled)
     return result;
   // A ragged loop asks for a finer fill next to it: once more at half the edge length.
-  FairingOptions rest = options;
-  if (options.time_limit >= 0.0) rest.time_limit = options.time_limit - spent;
-  FairingResult finer = fill_and_fair(V, F, holes, lengths, 0.5, rest);
+  FairingResult finer = fill_and_fair(V, F, mesh, holes, lengths, 0.5, after(options, spent));
   const bool finer_ok = finer.converged && finer.new_folds == 0;
   if (finer_ok || (finer.converged && !result.converged)) {
     finer.message += "; filled at half the loops' edge length (at their own it did not " +

@@ -109,6 +109,22 @@ TEST(HolesToFill, AcceptsALoopInEitherDirectionAndOrientsIt) {
   EXPECT_TRUE(edges.count({given[0][1], given[0][0]}));
 }
 
+TEST(SplitInnerEdges, AThreeVertexHoleGetsItsCentroid) {
+  const testing::Mesh m = testing::hexagon_fan();
+  const std::vector<int> loop{1, 2, 3};  // any triangle: no edge across it
+  Triangles T(1, 3);
+  T << 1, 2, 3;
+  const auto split = hole_filling::split_inner_edges(m.V, T, loop);
+  ASSERT_EQ(split.new_vertices.rows(), 1);
+  EXPECT_NEAR((split.new_vertices.row(0) - (m.V.row(1) + m.V.row(2) + m.V.row(3)) / 3.0).norm(),
+              0.0, 1e-15);
+  ASSERT_EQ(split.faces.rows(), 3);
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(split.faces(t, 2), int(m.V.rows()));  // each triangle uses the centroid
+    for (int c = 0; c < 3; ++c) EXPECT_GE(split.faces(t, c), 1);
+  }
+}
+
 TEST(SplitInnerEdges, ALongLoopGetsACentroidFan) {
   // The border of a 250×250 grid: 1000 vertices, above kMaxLiepaLoop.
   const testing::Mesh m = testing::planar_grid(250);
