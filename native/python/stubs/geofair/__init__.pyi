@@ -402,39 +402,45 @@ def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None
     does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
     or catenoid is filled with that surface (beyond the paper: the triangulation and refinement).
     
-    Each hole's loop is triangulated (Liepa 2003, "Filling holes in meshes": the triangulation
-    with the smallest largest dihedral angle, the faces around the loop included, then the
-    smallest area; loops of more than 500 vertices get a fan around their centroid), the edges
-    across the hole are split, the patch is remeshed isotropically at target_edge_length
-    (geofair.remesh_region), and all patches are faired together by geofair.fair with the new
-    vertices free.
+    Each hole's loop is triangulated (Liepa's dynamic programme, Liepa 2003, "Filling holes
+    in meshes", by the largest dihedral angle between adjacent triangles, the faces around the
+    loop included, then the area; loops of more than 500 vertices get a fan around their
+    centroid), the edges across the hole are split, the patch is remeshed isotropically at
+    target_edge_length (geofair.remesh_region), and all patches are faired together by
+    geofair.fair with the new vertices free. Where that does not converge or folds an edge and
+    target_edge_length is None, the holes are filled once more at half the loops' edge length
+    (ragged loops need a finer fill next to them) and the better result is returned; its
+    message says so.
     
     Parameters
     ----------
     vertices : (n, 3) float64 array, positions in mesh units.
     faces : (m, 3) integer array, triangles, consistently oriented, manifold.
-    loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops);
-        or a list of loops, each a sequence of vertex indices along one boundary loop (any start
-        vertex, either direction).
+    loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops;
+        an open mesh's outer border too); or a list of loops, each a sequence of vertex indices
+        along one boundary loop (any start vertex, either direction).
     target_edge_length : edge length of the fill in mesh units, or None (default): the mean
         length of the hole's loop edges.
     boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
     damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
-        geofair.fair; boundary="g0" fills with the minimal surface spanned by the loop.
+        geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
+        surface spanned by the loop.
     
     Returns
     -------
     FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
     vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
     after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
-    new vertices; .remeshed True; .converged, .residual, .message, .stop_reason, .folds and
-    .new_folds as for fair.
+    new vertices; .remeshed True (.origin_face -1: a fill has no input surface); .converged,
+    .residual, .message, .stop_reason, .folds, .new_folds and .phase_seconds (starting with
+    "fill") as for fair.
     
     Raises
     ------
-    ValueError when a loop is not a boundary loop of the mesh (the offending pair of vertices is
-    named), a vertex is on two given loops, the mesh has no hole, or for the input fair refuses
-    (the message names the problem and the vertex or face); RuntimeError as fair.
+    ValueError when loops is not a list of sequences of vertex indices, a loop is not a boundary
+    loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
+    the mesh has no hole, a fill would take more than 2,000,000 new vertices, or for the input
+    fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.
     """
 def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], int]:
     """
