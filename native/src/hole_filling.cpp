@@ -367,20 +367,21 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
     for (int c = 0; c < 3; ++c) local_patch(t, c) = local.at(patch(t, c));
   const auto split = hole_filling::split_inner_edges(X, local_patch, local_loop);
   const int n_fixed = int(X.rows());
+  append_rows(X, split.new_vertices);
+  append_rows(T, split.faces);
   // About one vertex per two triangles of area sqrt(3)/4 L² (refused before the remesh).
   double area = 0.0;
-  for (int t = 0; t < patch.rows(); ++t)
-    area += 0.5 * (V.row(patch(t, 1)) - V.row(patch(t, 0)))
-                      .cross(V.row(patch(t, 2)) - V.row(patch(t, 0)))
-                      .norm();
+  for (int t = 0; t < split.faces.rows(); ++t) {
+    const auto a = X.row(split.faces(t, 0)), b = X.row(split.faces(t, 1)),
+               c = X.row(split.faces(t, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
   const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
   if (estimate > kMaxFillVertices)
     throw InvalidInputError("fill_holes: the hole at vertex " + std::to_string(loop[0]) +
                             " would take about " + std::to_string(std::llround(estimate)) +
                             " new vertices at edge length " + std::to_string(L) +
                             " (at most 2000000): give a larger target_edge_length");
-  append_rows(X, split.new_vertices);
-  append_rows(T, split.faces);
   std::vector<bool> free(X.rows(), false);
   for (int v = n_fixed; v < int(X.rows()); ++v) free[v] = true;
   RemeshOptions remesh;
