@@ -129,6 +129,26 @@ def _restore(bm, snapshot):
         bpy.data.meshes.remove(temporary)
 
 
+def _corner_loops(bm, data, n):
+    """``loop_at(corner)``: the BMLoop of a corner of the mesh as read (``data``), after
+    checking that ``bm`` still has the read mesh's ``n`` vertices and its faces.
+
+    Raises:
+        RuntimeError: the mesh changed during the run.
+    """
+    _lookup(bm)
+    if len(bm.verts) != n or len(bm.faces) != len(data.loop_start):
+        raise RuntimeError("the mesh changed during the run; result discarded")
+    bm_faces = bm.faces
+    corner_face = carry.corner_faces(data.loop_start, data.loop_total, len(data.corner_verts))
+
+    def loop_at(corner):
+        polygon = int(corner_face[corner])
+        return bm_faces[polygon].loops[int(corner - data.loop_start[polygon])]
+
+    return loop_at
+
+
 def _lookup(bm):
     bm.verts.ensure_lookup_table()
     bm.faces.ensure_lookup_table()
@@ -240,16 +260,8 @@ def replace_region(obj, data, input_index, old_free, result):
 
     written = Written()
     with editable_bmesh(obj) as bm:
-        _lookup(bm)
-        if len(bm.verts) != n or len(bm.faces) != len(data.loop_start):
-            raise RuntimeError("the mesh changed during the run; result discarded")
+        loop_at = _corner_loops(bm, data, n)
         verts, bm_faces = bm.verts, bm.faces
-        loop_start = data.loop_start
-        corner_face = carry.corner_faces(data.loop_start, data.loop_total, len(data.corner_verts))
-
-        def loop_at(corner):
-            polygon = int(corner_face[corner])
-            return bm_faces[polygon].loops[int(corner - loop_start[polygon])]
 
         # -- read what is carried, before anything changes ------------------------------------
         region_input = np.flatnonzero(in_region)  # rows of triangles_in
@@ -452,15 +464,8 @@ def add_fill(obj, data, result):
 
     written = Written()
     with editable_bmesh(obj) as bm:
-        _lookup(bm)
-        if len(bm.verts) != n or len(bm.faces) != len(data.loop_start):
-            raise RuntimeError("the mesh changed during the run; result discarded")
+        loop_at = _corner_loops(bm, data, n)
         verts, bm_faces = bm.verts, bm.faces
-        corner_face = carry.corner_faces(data.loop_start, data.loop_total, len(data.corner_verts))
-
-        def loop_at(corner):
-            polygon = int(corner_face[corner])
-            return bm_faces[polygon].loops[int(corner - data.loop_start[polygon])]
 
         # Corner loops of the boundary vertices in the faces across the boundary edges.
         boundary_loops = {}  # vertex -> list of BMLoop (one per boundary edge at it)
