@@ -14,6 +14,16 @@ int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
   return levels;
 }
 
+// The share of the free vertices whose valence is not 6 (free vertices are interior: their
+// ring is closed).
+double irregularity(const FairingRegion& region) {
+  if (region.n_free == 0) return 0.0;
+  const std::vector<int>& offset = region.rings.offset;
+  int irregular = 0;
+  for (int i = 0; i < region.n_free; ++i) irregular += offset[i + 1] - offset[i] != 6;
+  return double(irregular) / region.n_free;
+}
+
 }  // namespace
 
 std::vector<Attempt> plan_attempts(const Problem& p) {
@@ -25,9 +35,15 @@ std::vector<Attempt> plan_attempts(const Problem& p) {
   const bool uniform = o.inner_fairness == InnerFairness::Uniform;
   const int levels = o.levels > 0 ? o.levels : newton_levels(p.region, schedule);
   if (newton && levels > 1) {
+    // The membrane needs symmetric finest weights (InnerFairnessWeights::row_sum given). It
+    // goes first on an irregular connectivity, the smoothed copy on a regular one.
+    const bool membrane =
+        uniform && p.lambda_finest.row_sum.size() == std::size_t(p.lambda_finest.size());
+    const bool membrane_first =
+        membrane && irregularity(p.region) >= schedule.membrane_first_irregularity;
+    if (membrane_first) attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane});
     attempts.push_back({Iteration::Newton, levels, CoarseReference::Smoothed});
-    // The membrane needs symmetric finest weights (InnerFairnessWeights::row_sum given).
-    if (uniform && p.lambda_finest.row_sum.size() == std::size_t(p.lambda_finest.size()))
+    if (membrane && !membrane_first)
       attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane});
     if (uniform) attempts.push_back({Iteration::Newton, levels, CoarseReference::Own});
   }

@@ -13,6 +13,7 @@ namespace geofair {
 /// |---|-----------|---------------------------|----------------|-----------------------------|
 /// | 1 | Newton    | newton_levels (or levels) | Smoothed       | more than one level         |
 /// | 2 | Newton    | same                      | Membrane       | 1, uniform, symmetric (*)   |
+/// |   |           |                           |                | (before 1 where irregular)  |
 /// | 3 | Newton    | same                      | Own            | 1 and uniform inner fairness|
 /// | 4 | Newton    | 1                         | –              | always                      |
 /// | 5 | Newton    | 2                         | Smoothed       | one level by default and at |
@@ -22,7 +23,9 @@ namespace geofair {
 ///
 /// "More than one level": the levels asked for (newton_levels or options.levels), before
 /// decimation, which may build fewer. (*) The finest weights symmetric
-/// (InnerFairnessWeights::row_sum given), which the membrane needs.
+/// (InnerFairnessWeights::row_sum given), which the membrane needs. "Irregular": at least
+/// ScheduleTuning::membrane_first_irregularity of the free vertices have a valence other
+/// than 6.
 /// Newton's attempts (1–5) run with intrinsic outer fairness and Iteration::Auto or Newton;
 /// Auto's last attempt is the paper's iteration (6) with Newton attempts from its iterate;
 /// Iteration::Paper and the linear bilaplacian outer fairness run 6 alone.

@@ -120,7 +120,10 @@ struct FairingResult {
 ///     options.levels), coarse uniform weights from the smoothed copy of the input;
 ///  2. with uniform inner fairness (and symmetric finest weights), the same with the coarse
 ///     weights of the membrane of the finest uniform weights (membrane_positions: the distribution an irregular
-///     connectivity asks for), its base level first solved with the smoothed copy's;
+///     connectivity asks for), its base level first solved with the smoothed copy's; this
+///     attempt goes first where the connectivity is irregular (at least
+///     ScheduleTuning::membrane_first_irregularity of the free vertices of a valence other
+///     than 6);
 ///  3. with uniform inner fairness, the same with each coarse level's own uniform weights;
 ///  4. Newton's method on the finest level alone;
 ///  5. where the region was one level by default and has at least

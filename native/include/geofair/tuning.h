@@ -179,6 +179,12 @@ struct ScheduleTuning {
   /// method fails on that level tries two levels before the paper's iteration
   /// (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
   int newton_retry_min_free = 1400;
+  /// With uniform inner fairness, the hierarchy attempt whose coarse levels take the
+  /// membrane's weights goes before the one with the smoothed copy's where at least this
+  /// share of the free vertices has a valence other than 6 (an irregular connectivity sets
+  /// its own uniform distribution, which the membrane reproduces and the smoothed copy does
+  /// not; docs/DESIGN_NOTES.md, "Flattened caps"). 0: always first; above 1: never.
+  double membrane_first_irregularity = 0.55;
   /// Steps of a coarse level of the Newton hierarchy at most: it only starts the next
   /// level.
   int coarse_newton_steps = 30;
@@ -263,6 +269,8 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);
   f("schedule.newton_min_base_free", t.schedule.newton_min_base_free, 1, inf, false, false);
   f("schedule.newton_retry_min_free", t.schedule.newton_retry_min_free, 1, inf, false, false);
+  f("schedule.membrane_first_irregularity", t.schedule.membrane_first_irregularity, 0, inf, false,
+    false);
   f("schedule.coarse_newton_steps", t.schedule.coarse_newton_steps, 1, inf, false, false);
   f("schedule.coarse_tolerance", t.schedule.coarse_tolerance, 1, inf, false, false);
   f("schedule.coarse_iterations", t.schedule.coarse_iterations, 1, inf, false, false);
