@@ -71,12 +71,14 @@ def test_large_icosphere_cap_converges_on_the_newton_hierarchy():
     assert error <= 2e-3
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed", [2, 3])
 def test_small_random_samples_cap_converges_on_two_levels(seed):
-    # Too small for the default hierarchy (one level below 2,800 free vertices), and Newton's
-    # method fails on that one level from its linear initial mesh: two levels are tried before
-    # the paper's iteration (ScheduleTuning::newton_retry_min_free).
-    s, r, error = fair_cap(2000, "random", seed, exact_normals=True)
+    # Too small for the default hierarchy (one level below 1,600 free vertices; these caps
+    # have 1,494 and 1,545), and Newton's method fails on that one level from its linear
+    # initial mesh: two levels are tried before the paper's iteration
+    # (ScheduleTuning::newton_retry_min_free).
+    s, r, error = fair_cap(1500, "random", seed, exact_normals=True)
+    assert s.free.sum() < 4 * geofair.defaults()["tuning"]["schedule.newton_min_base_free"]
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) == 2
     assert error <= 1e-5

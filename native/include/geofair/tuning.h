@@ -174,7 +174,7 @@ struct ScheduleTuning {
   int newton_attempt_steps = 60;
   /// The Newton hierarchy keeps at least this many free vertices on its base level (one
   /// level below four times this; docs/DESIGN_NOTES.md, "Coarse levels").
-  int newton_min_base_free = 700;
+  int newton_min_base_free = 400;
   /// A region solved as one level with at least this many free vertices where Newton's
   /// method fails on that level tries two levels before the paper's iteration
   /// (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
