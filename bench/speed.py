@@ -11,7 +11,7 @@ vertices) of both.
     PYTHONPATH=build/python python3 bench/speed.py [n_free ...]
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
         [--iteration auto|newton|paper] [--phases] [--caps irregular|regular|random|icosphere]
-        [--cache DIR] [--timeout SECONDS]
+        [--seeds 1,2,3] [--cache DIR] [--timeout SECONDS]
 
 Scenes: ``geofair_dev.scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
 disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same with
@@ -19,7 +19,8 @@ disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same w
 vertex count is the nearest 1 + 3K(K - 1)); with ``--caps random`` or ``--caps icosphere``
 ``geofair_dev.scenes.flattened_sphere_cap(n_free, construction, seed=1)``: a whole sphere of
 random samples or a geodesic icosphere, the cap above z = 0.3 pressed flat onto that plane
-(a modeller's flattened selection), the rest of the sphere fixed; geofair gets the exact
+(a modeller's flattened selection), the rest of the sphere fixed; ``--seeds`` makes each size
+with these seeds instead of 1 (geofair_dev.caps.load_scene); geofair gets the exact
 normals on the random caps and estimates them on the icosphere caps. CGAL gets the whole mesh (its second,
 outer fixed ring gives it tangent continuity); geofair the same vertices and free mask with
 the exact sphere normals as G1 boundary normals. Generating the 1M-vertex irregular cap
@@ -74,7 +75,7 @@ def child(args):
     """Runs one of our solves; prints a JSON line."""
     import geofair
 
-    v, f, free, normals = load_scene(args.cache, args.child, args.caps)
+    v, f, free, normals = load_scene(args.cache, args.child, args.caps, args.seed)
     before = vm_hwm_mib()
     t = time.perf_counter()
     r = geofair.fair(
@@ -109,8 +110,9 @@ def child(args):
     )
 
 
-def run_ours(args, n):
-    cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--cache", args.cache]
+def run_ours(args, n, seed):
+    cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--seed", str(seed)]
+    cmd += ["--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
     cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
     cmd += ["--caps", args.caps]
@@ -145,9 +147,11 @@ def main():
     parser.add_argument("--phases", action="store_true", help="print the time of each phase")
     parser.add_argument("--caps", default="irregular", choices=sorted(CAPS), help="the caps' construction")
     parser.add_argument("--regular", action="store_true", help="the same as --caps regular")
+    parser.add_argument("--seeds", default="1", help="comma-separated seeds of the caps (default 1)")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--seed", type=int, default=1, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.regular:
         args.caps = "regular"
@@ -166,21 +170,22 @@ def main():
         f"{os.getloadavg()[0]:.1f}"
     )
     print(
-        f"{'free':>8} {'time [s]':>9} {'iterations per level':>30} {'residual':>9} {'max err':>9} "
+        f"{'free':>8} {'seed':>4} {'time [s]':>9} {'iterations per level':>30} {'residual':>9} {'max err':>9} "
         f"{'peak MiB':>9} {'solve MiB':>9} | {'CGAL [s]':>9} {'CGAL MiB':>9} {'CGAL err':>9} "
         f"{'ours/CGAL':>9}"
     )
     ns, ours_t, cgal_t = [], [], []
-    for n in args.sizes:
-        load_scene(args.cache, n, args.caps)  # generate outside the timed children
-        r = run_ours(args, n)
+    seeds = [int(s) for s in args.seeds.split(",") if s.strip()]
+    for n, seed in [(n, seed) for n in args.sizes for seed in seeds]:
+        load_scene(args.cache, n, args.caps, seed)  # generate outside the timed children
+        r = run_ours(args, n, seed)
         failed = r.pop("failed", None) if r else None
         if failed:
             print(f"# {n}: {failed}", flush=True)
             r = None
         c = None
         if use_cgal:
-            v, f, free, _ = load_scene(args.cache, n, args.caps)
+            v, f, free, _ = load_scene(args.cache, n, args.caps, seed)
             c = cgal_fair.cgal_fair(v, f, free)
             c_err = radial_error(c.vertices, free)
             n_free = int(free.sum())
@@ -208,7 +213,7 @@ def main():
             theirs = f"{c.seconds:>9.3f} {c.peak_mib:>9.0f} {c_err:>9.1e} {ratio}{ok}"
         else:
             theirs = "(CGAL not run)"
-        print(f"{n_free:>8} {ours} | {theirs}", flush=True)
+        print(f"{n_free:>8} {seed:>4} {ours} | {theirs}", flush=True)
         if args.phases and r:
             print("#   phases [s]: " + ", ".join(f"{name} {t:.3f}" for name, t in r["phases"]), flush=True)
     print(f"time exponent (log-log slope over the sizes): ours {slope(ns, ours_t):.2f}", end="")
