@@ -157,6 +157,27 @@ class FairingReport:
     notes: tuple = ()
     holes: int = 0
 
+    @classmethod
+    def of_result(cls, result, options, **fields):
+        """The report of a run whose library result is ``result`` (``geofair.FairingResult``)
+        with ``options`` (:class:`FairingOptions`): the solver's figures from the result, the
+        tolerance and boundary from the options, the rest from ``fields``."""
+        return cls(
+            converged=bool(result.converged),
+            iterations=int(result.iterations),
+            residual=float(result.residual),
+            iterations_per_level=list(result.iterations_per_level),
+            vertices_per_level=list(result.vertices_per_level),
+            iteration=str(result.iteration),
+            folds=int(getattr(result, "folds", 0)),
+            new_folds=int(getattr(result, "new_folds", 0)),
+            message=str(getattr(result, "message", "")),
+            stop_reason=str(getattr(result, "stop_reason", "")),
+            tolerance=float(options.tolerance),
+            boundary=options.boundary,
+            **fields,
+        )
+
     @property
     def stopped_at_time_limit(self):
         """The library's words where an unconverged solve stopped at its time limit, the given or the automatic
@@ -459,30 +480,20 @@ class FairingRun(_WorkerThread):
             else:
                 uv_after = self._uv_distortion(positions)
             self.timings["uv"] += time.perf_counter() - clock
-        return FairingReport(
+        return FairingReport.of_result(
+            result,
+            self.options,
             object_name=self.object_name,
             free_vertices=int(np.count_nonzero(result.free if remeshed else self.region.free)),
             pinned_vertices=int(np.count_nonzero(self.region.pinned)),
             border_fixed_vertices=int(np.count_nonzero(self.region.border_fixed)),
             hidden_fixed_vertices=int(np.count_nonzero(self.region.hidden_fixed)),
-            converged=bool(result.converged),
             cancelled=cancelled,
-            iterations=int(result.iterations),
-            residual=float(result.residual),
             seconds=self.seconds,
             uv_before=self.uv_before,
             uv_after=uv_after,
-            iterations_per_level=list(result.iterations_per_level),
-            vertices_per_level=list(result.vertices_per_level),
-            iteration=str(result.iteration),
             timings=dict(self.timings),
             discarded=discarded,
-            tolerance=float(self.options.tolerance),
-            folds=int(getattr(result, "folds", 0)),
-            new_folds=int(getattr(result, "new_folds", 0)),
-            message=str(getattr(result, "message", "")),
-            stop_reason=str(getattr(result, "stop_reason", "")),
-            boundary=self.options.boundary,
             remesh=self.options.remesh,
             remeshed=remeshed,
             triangles_added=written.triangles_added,

@@ -136,28 +136,18 @@ class FillRun(fairing.FairingRun):
                     written.metric_vertices, written.metric_triangles, written.metric_uvs
                 )
         new_vertices = int(np.count_nonzero(np.asarray(getattr(result, "free", []), dtype=bool)))
-        return fairing.FairingReport(
+        return fairing.FairingReport.of_result(
+            result,
+            self.options,
             object_name=self.object_name,
             free_vertices=new_vertices,
             pinned_vertices=0,
             border_fixed_vertices=0,
-            converged=bool(result.converged),
             cancelled=cancelled,
-            iterations=int(result.iterations),
-            residual=float(result.residual),
             seconds=self.seconds,
             uv_after=uv_after,
-            iterations_per_level=list(result.iterations_per_level),
-            vertices_per_level=list(result.vertices_per_level),
-            iteration=str(result.iteration),
             timings=dict(self.timings),
             discarded=discarded,
-            tolerance=float(self.options.tolerance),
-            folds=int(getattr(result, "folds", 0)),
-            new_folds=int(getattr(result, "new_folds", 0)),
-            message=str(getattr(result, "message", "")),
-            stop_reason=str(getattr(result, "stop_reason", "")),
-            boundary=self.options.boundary,
             remeshed=written.triangles_added > 0,
             triangles_added=written.triangles_added,
             notes=tuple(written.notes),
