@@ -261,6 +261,7 @@ std::string fair_doc(std::string doc) {
   replace("{coarse_merit}", number(t.newton.coarse_merit));
   replace("{min_base_free}", number(t.schedule.newton_min_base_free));
   replace("{retry_min_free}", number(t.schedule.newton_retry_min_free));
+  replace("{membrane_first}", number(t.schedule.membrane_first_irregularity));
   replace("{attempt_first}", number(t.schedule.newton_attempt_first));
   replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
   replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
@@ -668,6 +669,8 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
     again with other coarse weights (uniform inner fairness: from the membrane of the
     finest weights, then each level's own uniform weights), then the finest level alone;
+    the membrane's weights go first where at least {membrane_first} of the free vertices have a
+    valence other than 6 (an irregular connectivity);
     a region solved as one level (fewer than 4 × {min_base_free} free vertices) with at least
     {retry_min_free} free vertices tries two levels where the one fails.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).
@@ -683,7 +686,7 @@ damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
 cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
 levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
     free vertices per level: 1 solves the whole region as one level; 0 (default) picks
-    them from the region. For "newton": as many as keep at least 700 free vertices on the
+    them from the region. For "newton": as many as keep at least {min_base_free} free vertices on the
     base level (its hierarchy coarsens the G1 boundary too, see progressive_mesh); for
     "paper": one level up to 1000 free vertices and
     about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear

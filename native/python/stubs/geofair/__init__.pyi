@@ -344,7 +344,9 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
         merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
         again with other coarse weights (uniform inner fairness: from the membrane of the
         finest weights, then each level's own uniform weights), then the finest level alone;
-        a region solved as one level (fewer than 4 × 700 free vertices) with at least
+        the membrane's weights go first where at least 0.55 of the free vertices have a
+        valence other than 6 (an irregular connectivity);
+        a region solved as one level (fewer than 4 × 400 free vertices) with at least
         1400 free vertices tries two levels where the one fails.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
         "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
@@ -359,7 +361,7 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
     cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
     levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
         free vertices per level: 1 solves the whole region as one level; 0 (default) picks
-        them from the region. For "newton": as many as keep at least 700 free vertices on the
+        them from the region. For "newton": as many as keep at least 400 free vertices on the
         base level (its hierarchy coarsens the G1 boundary too, see progressive_mesh); for
         "paper": one level up to 1000 free vertices and
         about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
