@@ -9,7 +9,6 @@ import pytest
 import geofair
 from geofair_dev import scenes
 
-
 # The schedule before the membrane went first on irregular connectivity: the smoothed copy's
 # hierarchy attempt first everywhere (ScheduleTuning::membrane_first_irregularity).
 SMOOTHED_FIRST = {"schedule.membrane_first_irregularity": 2.0}
