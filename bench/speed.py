@@ -181,7 +181,7 @@ def main():
         r = run_ours(args, n, seed)
         failed = r.pop("failed", None) if r else None
         if failed:
-            print(f"# {n}: {failed}", flush=True)
+            print(f"# {n} (seed {seed}): {failed}", flush=True)
             r = None
         c = None
         if use_cgal:
