@@ -238,8 +238,8 @@ py::dict defaults_py() {
   return d;
 }
 
-// fair's docstring with the figures of the automatic time limit and of Newton's method
-// filled in from the default tuning (tuning.h).
+// fair's and fill_holes' docstrings with the figures of the automatic time limit, of Newton's
+// method (the default tuning, tuning.h) and of fill_holes' size cap filled in.
 std::string fair_doc(std::string doc) {
   const auto replace = [&doc](const std::string& key, const std::string& value) {
     for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
@@ -262,6 +262,7 @@ std::string fair_doc(std::string doc) {
   replace("{min_base_free}", number(t.schedule.newton_min_base_free));
   replace("{retry_min_free}", number(t.schedule.newton_retry_min_free));
   replace("{membrane_first}", number(t.schedule.membrane_first_irregularity));
+  replace("{max_fill_vertices}", std::to_string(kMaxFillVertices));
   replace("{attempt_first}", number(t.schedule.newton_attempt_first));
   replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
   replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
@@ -965,18 +966,7 @@ ValueError for invalid input.)doc");
 // geofair.fill_holes and geofair.boundary_loops.
 void bind_holes(py::module_& m) {
   const FairingOptions d;
-  m.def("fill_holes", &fill_holes_py, py::arg("vertices"), py::arg("faces"),
-        py::arg("loops") = py::none(), py::kw_only(), py::arg("target_edge_length") = py::none(),
-        py::arg("boundary") = name(d.boundary, kBoundaryNames),
-        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
-        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
-        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
-        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
-        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
-        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
-        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
-        py::arg("tuning") = py::none(),
-        R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
+  static const std::string fill_holes_docstring = fair_doc(R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
 loop keeps its positions and takes its unit normals from the faces around it (the G1
 boundary of Schneider & Kobbelt 2001, section 4; estimated as geofair.boundary_normals
 does), and the patch solves Δ_B H = 0 (eq. (12)), so a hole cut into a sphere, cylinder
@@ -1019,8 +1009,19 @@ Raises
 ------
 ValueError when loops is not a list of sequences of vertex indices, a loop is not a boundary
 loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
-the mesh has no hole, a fill would take more than 2,000,000 new vertices, or for the input
+the mesh has no hole, a fill would take more than {max_fill_vertices} new vertices, or for the input
 fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.)doc");
+  m.def("fill_holes", &fill_holes_py, py::arg("vertices"), py::arg("faces"),
+        py::arg("loops") = py::none(), py::kw_only(), py::arg("target_edge_length") = py::none(),
+        py::arg("boundary") = name(d.boundary, kBoundaryNames),
+        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
+        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
+        py::arg("tuning") = py::none(), fill_holes_docstring.c_str());
   m.def(
       "boundary_loops",
       [](const py::object& vertices, const py::object& faces) {

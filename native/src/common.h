@@ -3,6 +3,7 @@
 
 #include "geofair/types.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -38,6 +39,14 @@ class Laps {
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
+
+/// The options of a solve that follows `spent` seconds of the same call: an explicit time
+/// limit less what is spent (the automatic one applies to each solve).
+inline FairingOptions options_after(const FairingOptions& options, double spent) {
+  FairingOptions rest = options;
+  if (options.time_limit >= 0.0) rest.time_limit = std::max(0.0, options.time_limit - spent);
+  return rest;
+}
 
 /// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
 /// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).

@@ -290,14 +290,6 @@ FairingResult fair_kept(const Positions& V, const Triangles& F, const std::vecto
   return result;
 }
 
-// The options of a solve that follows `spent` seconds of the call: an explicit time limit
-// less what is spent (the automatic one applies to each solve).
-FairingOptions after(const FairingOptions& options, double spent) {
-  FairingOptions rest = options;
-  if (options.time_limit >= 0.0) rest.time_limit = std::max(0.0, options.time_limit - spent);
-  return rest;
-}
-
 // fair() on remesh_region's remesh of the region, with the G1 normals of the input (the
 // given ones, or the estimate from the input's surrounding surface) at the kept rows.
 FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
@@ -317,7 +309,7 @@ FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::v
   const double seconds = laps.lap();
   // The new triangles come from no polygon: polygon_ids no longer apply.
   FairingResult result = fair_kept(mesh.vertices, mesh.faces, mesh.free,
-                                   normals ? &*normals : nullptr, after(options, seconds), nullptr);
+                                   normals ? &*normals : nullptr, options_after(options, seconds), nullptr);
   result.remeshed = true;
   result.unreferenced = std::move(mesh.unreferenced);
   result.origin_face = std::move(mesh.origin_face);
@@ -358,7 +350,7 @@ FairingResult fair_if_needed(const Positions& V, const Triangles& F,
     return kept;
   FairingResult remeshed;
   try {
-    remeshed = fair_remeshed(V, F, free, boundary_normals, after(options, spent), polygon_ids);
+    remeshed = fair_remeshed(V, F, free, boundary_normals, options_after(options, spent), polygon_ids);
   } catch (const std::exception& error) {  // the remesh or its solve failed: keep the first
     kept.message += std::string("; remeshing failed (") + error.what() + ")";
     return kept;

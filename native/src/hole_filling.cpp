@@ -2,13 +2,13 @@
 // patch remeshed and faired (geofair/hole_filling.h).
 #include "geofair/hole_filling.h"
 
+#include "common.h"
 #include "hole_filling_internal.h"
 #include "region.h"
 #include "remesh.h"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -317,9 +317,6 @@ void append_rows(Matrix& M, const Matrix& rows) {
   M.bottomRows(rows.rows()) = rows;
 }
 
-// The most new vertices a fill may make (about 1 GiB of solver memory, README).
-constexpr double kMaxFillVertices = 2e6;
-
 // The mesh around the holes: its directed edges and each vertex's triangles.
 struct Surroundings {
   Surroundings(const Triangles& F, Eigen::Index n_vertices) : edges(F), at(n_vertices) {
@@ -381,7 +378,8 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
     throw InvalidInputError("fill_holes: the hole at vertex " + std::to_string(loop[0]) +
                             " would take about " + std::to_string(std::llround(estimate)) +
                             " new vertices at edge length " + std::to_string(L) +
-                            " (at most 2000000): give a larger target_edge_length");
+                            " (at most " + std::to_string(kMaxFillVertices) +
+                            "): give a larger target_edge_length");
   std::vector<bool> free(X.rows(), false);
   for (int v = n_fixed; v < int(X.rows()); ++v) free[v] = true;
   RemeshOptions remesh;
@@ -407,25 +405,13 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
   return fill;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The options of a solve after `spent` seconds of the call: an explicit time limit less
-// what is spent.
-FairingOptions after(const FairingOptions& options, double spent) {
-  FairingOptions rest = options;
-  if (options.time_limit >= 0.0) rest.time_limit = std::max(0.0, options.time_limit - spent);
-  return rest;
-}
-
 // All holes filled at `scale` times their edge lengths, then faired together (the phase
 // "fill" first in phase_seconds).
 FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Surroundings& mesh,
                             const std::vector<std::vector<int>>& holes,
                             const std::vector<double>& lengths, double scale,
                             const FairingOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  Laps laps;
   std::vector<Fill> fills;
   Eigen::Index rows = V.rows(), faces = F.rows();
   for (size_t h = 0; h < holes.size(); ++h) {
@@ -446,8 +432,8 @@ FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Surrou
   }
   std::vector<bool> free(X.rows(), false);
   for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
-  const double seconds = seconds_since(start);
-  FairingOptions fairing = after(options, seconds);
+  const double seconds = laps.lap();
+  FairingOptions fairing = options_after(options, seconds);
   fairing.remesh = Remesh::Off;  // the patches are remeshed already
   FairingResult result = fair(X, T, free, nullptr, fairing);
   result.faces = std::move(T);
@@ -469,18 +455,18 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
   for (const auto& loop : holes)
     lengths.push_back(target_edge_length > 0.0 ? target_edge_length
                                                : mean_loop_edge_length(V, loop));
-  const auto start = std::chrono::steady_clock::now();
+  Laps laps;
   const Surroundings mesh(F, V.rows());
   FairingResult result = fill_and_fair(V, F, mesh, holes, lengths, 1.0, options);
   const bool failed = !result.converged || result.new_folds > 0;
-  const double spent = seconds_since(start);
+  const double spent = laps.lap();
   const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
-  const double added = double(result.vertices.rows() - V.rows());
-  if (!failed || target_edge_length > 0.0 || !time_left || 4.0 * added > kMaxFillVertices ||
+  const auto added = result.vertices.rows() - V.rows();
+  if (!failed || target_edge_length > 0.0 || !time_left || 4 * added > kMaxFillVertices ||
       result.stop_reason == StopReason::Cancelled)
     return result;
   // A ragged loop asks for a finer fill next to it: once more at half the edge length.
-  FairingResult finer = fill_and_fair(V, F, mesh, holes, lengths, 0.5, after(options, spent));
+  FairingResult finer = fill_and_fair(V, F, mesh, holes, lengths, 0.5, options_after(options, spent));
   const bool finer_ok = finer.converged && finer.new_folds == 0;
   if (finer_ok || (finer.converged && !result.converged)) {
     finer.message += "; filled at half the loops' edge length (at their own it did not " +

@@ -20,6 +20,10 @@ namespace geofair {
 ///        (two holes touch there; fill them one at a time).
 std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F);
 
+/// The most new vertices fill_holes makes (about 14 GiB for the solve at the README's
+/// 6–7 KiB per free vertex); a fill estimated above it is refused.
+constexpr int kMaxFillVertices = 2000000;
+
 /// Triangulates each hole's loop, refines the patch to the edge length of its surroundings
 /// and fairs it with fair(): Δ_B H = 0 on the new vertices, with the G1 boundary (or G0 with
 /// options.boundary) at the loop vertices, whose normals are estimated from the faces around
@@ -46,7 +50,7 @@ std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles
 /// \throw InvalidInputError for invalid input (see fair), a loop that is not a boundary loop
 ///        of F (the offending pair of vertices is named), a loop given twice, a mesh
 ///        without a hole, a negative or non-finite target_edge_length, or a fill of more
-///        than 2,000,000 new vertices; otherwise as fair().
+///        than kMaxFillVertices new vertices; otherwise as fair().
 FairingResult fill_holes(const Positions& V, const Triangles& F,
                          const std::vector<std::vector<int>>& loops,
                          const FairingOptions& options, double target_edge_length = 0.0);

@@ -441,7 +441,7 @@ def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None
     ------
     ValueError when loops is not a list of sequences of vertex indices, a loop is not a boundary
     loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
-    the mesh has no hole, a fill would take more than 2,000,000 new vertices, or for the input
+    the mesh has no hole, a fill would take more than 2000000 new vertices, or for the input
     fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.
     """
 def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], int]:
