@@ -62,7 +62,7 @@ def test_docstring_figures_are_filled_in():
 
 def test_tuning_defaults_name_every_field_once():
     tuning = geofair.defaults()["tuning"]
-    assert len(tuning) == 54
+    assert len(tuning) == 55
     assert tuning["newton.patience"] == 20 and isinstance(tuning["newton.patience"], int)
     assert tuning["schedule.time_limit_base"] == geofair.defaults()["time_limit_base"]
     assert {name.split(".")[0] for name in tuning} == {

@@ -12,6 +12,9 @@ from geofair_dev import scenes
 # The schedule before the membrane went first on irregular connectivity: the smoothed copy's
 # hierarchy attempt first everywhere (ScheduleTuning::membrane_first_irregularity).
 SMOOTHED_FIRST = {"schedule.membrane_first_irregularity": 2.0}
+# The relaxations before Newton's steps without the projection back onto the surface
+# (NewtonTuning::projection_move): the starts that the fallbacks below exist for.
+UNPROJECTED = {"newton.projection_move": 1e9}
 
 
 def fair_cap(n_free, construction, seed, exact_normals, tuning=None):
@@ -53,7 +56,9 @@ def test_base_level_that_newton_cannot_start_falls_back_to_the_paper_iteration()
     # initial mesh with the smoothed copy's weights: it is solved by the paper's iteration
     # with Newton attempts (a phase of its own) and the hierarchy goes on from there
     # (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
-    s, r, error = fair_cap(13000, "random", 1, exact_normals=True, tuning=SMOOTHED_FIRST)
+    s, r, error = fair_cap(
+        13000, "random", 1, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED
+    )
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) > 1
     assert "level 0 paper iterations" in dict(r.phase_seconds)
@@ -76,7 +81,7 @@ def test_small_random_samples_cap_converges_on_two_levels(seed):
     # have 1,494 and 1,545), and Newton's method fails on that one level from its linear
     # initial mesh: two levels are tried before the paper's iteration
     # (ScheduleTuning::newton_retry_min_free).
-    s, r, error = fair_cap(1500, "random", seed, exact_normals=True)
+    s, r, error = fair_cap(1500, "random", seed, exact_normals=True, tuning=UNPROJECTED)
     assert s.free.sum() < 4 * geofair.defaults()["tuning"]["schedule.newton_min_base_free"]
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) == 2
@@ -88,7 +93,9 @@ def test_a_far_prolongated_start_ends_its_hierarchy_attempt_after_far_steps():
     # above newton.far_merit: that attempt stops after newton.far_steps steps there instead
     # of wandering until patience (75 Newton steps in all before), and the next attempt's
     # coarse weights converge (docs/NEWTON.md, "The same rule for prolongated levels").
-    s, r, error = fair_cap(13000, "random", 2, exact_normals=True, tuning=SMOOTHED_FIRST)
+    s, r, error = fair_cap(
+        13000, "random", 2, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED
+    )
     assert r.converged, r.message
     assert [name for name, _ in r.phase_seconds].count("hierarchy") == 2
     assert r.newton_iterations <= 30
@@ -107,4 +114,22 @@ def test_the_first_hierarchy_attempt_suits_the_connectivity(construction, n_free
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) > 1
     assert [name for name, _ in r.phase_seconds].count("hierarchy") == 1
+    assert error <= (1e-5 if construction == "random" else 2e-3)
+
+
+@pytest.mark.parametrize(("construction", "n_free", "seed"), [
+    ("random", 30000, 1), ("icosphere", 30000, 1), ("random", 1500, 2), ("random", 1500, 3),
+])  # fmt: skip
+def test_relaxations_stay_on_the_surface(construction, n_free, seed):
+    # The uniform distribution of these caps lies up to 20 neighbour distances from the
+    # coarse levels' (30k) or the linear initial mesh's (1.5k); relaxed in tangent planes
+    # alone the mesh left the sphere and every hierarchy attempt failed (30k; the 1.5k caps
+    # needed a second attempt). Each relaxation projected back onto the surface it started
+    # from, the first attempt converges (NewtonTuning::projection_move; docs/DESIGN_NOTES.md,
+    # "Relaxations on the surface").
+    s, r, error = fair_cap(n_free, construction, seed, exact_normals=construction == "random")
+    assert r.converged, r.message
+    assert r.iteration == "newton"
+    assert [name for name, _ in r.phase_seconds].count("hierarchy") == 1
+    assert r.new_folds == 0
     assert error <= (1e-5 if construction == "random" else 2e-3)

@@ -3,10 +3,12 @@
 
 #include "common.h"
 #include "mean_curvature.h"
+#include "surface_projection.h"
 #include "vertex_update.h"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 namespace geofair {
@@ -135,6 +137,14 @@ IterationReport Construction::run(Positions& X, int max_iterations, double toler
   return report;
 }
 
+double Construction::longest_move(const Positions& before, const Positions& X) const {
+  double move = 0.0;
+  for (int i = 0; i < region_.n_free; ++i)
+    move = std::max(move, (X.row(i) - before.row(i)).norm() /
+                              region_.rings.mean_neighbour_distance(before, i));
+  return move;
+}
+
 bool Construction::relax_before_steps(Positions& X) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
@@ -142,12 +152,24 @@ bool Construction::relax_before_steps(Positions& X) {
   // direct solves (the second corrects the tangent planes of the first), more while the
   // stretch limit cuts a solve short. The first holds the tangent planes fixed: far from
   // inner fairness turning planes made the base level of a large hierarchy stall.
-  for (int p = 0; p < options_.tuning.newton.relaxations; ++p) {
+  // Long moves are put back onto the surface of X and its normals as the relaxations
+  // found them (the projection is set up the first time it is needed).
+  const NewtonTuning& newton = options_.tuning.newton;
+  Positions surface, surface_normals;
+  std::unique_ptr<SurfaceProjection> projection;
+  for (int p = 0; p < newton.relaxations; ++p) {
     // Each solve factorizes a system of the level's size (seconds at 10^5 vertices).
     if (options_.stop_requested && options_.stop_requested()) return false;
     evaluate(X);  // the normals at X
+    if (p == 0) surface = X, surface_normals = N_;
+    const Positions before = X;
     const double scale = tangential_solver_.relax(
         lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
+    if (longest_move(before, X) > newton.projection_move) {
+      if (!projection)
+        projection = std::make_unique<SurfaceProjection>(region_, surface, surface_normals);
+      for (int i = 0; i < region_.n_free; ++i) projection->project(i, X);
+    }
     if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
   }
   return true;

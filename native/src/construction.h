@@ -158,6 +158,9 @@ class Construction {
   // the neighbours); the continuation's M_i = Σ_j |w_ij| / h_i² (#V_I, 1/length²); and
   // J v by a forward difference of the defects d0 at X, everything recomputed at X + ε v N.
   bool relax_before_steps(Positions& X);
+  // The largest move of a free vertex from `before` to X, in mean distances to its
+  // neighbours at `before`.
+  double longest_move(const Positions& before, const Positions& X) const;
   double local_step(Positions& X, double residual);
   double polish(Positions& X);
   void shift_mass(const Positions& X, Eigen::VectorXd& mass) const;

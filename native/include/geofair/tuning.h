@@ -42,6 +42,12 @@ struct NewtonTuning {
   /// Tangential solves towards inner fairness before the first step, at most: more than one
   /// where the stretch limit cuts a solve short.
   int relaxations = 8;
+  /// A relaxation solve that moves a vertex by more than this many mean distances to its
+  /// neighbours puts every moved vertex back onto the surface the relaxations started from
+  /// (SurfaceProjection): a long move in a tangent plane leaves a curved surface by about
+  /// κ·d²/2, and Newton's steps do not recover from that (docs/DESIGN_NOTES.md, "Relaxations
+  /// on the surface").
+  double projection_move = 1.0;
   /// Tangential solves (polishes) at convergence, at most ...
   int polishes = 8;
   /// ... repeated while the next one would move a vertex by more than this many mean
@@ -226,6 +232,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.far_merit", t.newton.far_merit, 0, inf, true, false);
   f("newton.max_step", t.newton.max_step, 0, inf, true, false);
   f("newton.relaxations", t.newton.relaxations, 1, inf, false, false);
+  f("newton.projection_move", t.newton.projection_move, 0, inf, false, false);
   f("newton.polishes", t.newton.polishes, 0, inf, false, false);
   f("newton.polished_move", t.newton.polished_move, 0, inf, true, false);
   f("newton.polish_contraction", t.newton.polish_contraction, 0, inf, false, false);
