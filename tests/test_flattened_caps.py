@@ -56,9 +56,7 @@ def test_base_level_that_newton_cannot_start_falls_back_to_the_paper_iteration()
     # initial mesh with the smoothed copy's weights: it is solved by the paper's iteration
     # with Newton attempts (a phase of its own) and the hierarchy goes on from there
     # (docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
-    s, r, error = fair_cap(
-        13000, "random", 1, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED
-    )
+    s, r, error = fair_cap(13000, "random", 1, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED)
     assert r.converged, r.message
     assert r.iteration == "newton" and len(r.iterations_per_level) > 1
     assert "level 0 paper iterations" in dict(r.phase_seconds)
@@ -93,9 +91,7 @@ def test_a_far_prolongated_start_ends_its_hierarchy_attempt_after_far_steps():
     # above newton.far_merit: that attempt stops after newton.far_steps steps there instead
     # of wandering until patience (75 Newton steps in all before), and the next attempt's
     # coarse weights converge (docs/NEWTON.md, "The same rule for prolongated levels").
-    s, r, error = fair_cap(
-        13000, "random", 2, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED
-    )
+    s, r, error = fair_cap(13000, "random", 2, exact_normals=True, tuning=SMOOTHED_FIRST | UNPROJECTED)
     assert r.converged, r.message
     assert [name for name, _ in r.phase_seconds].count("hierarchy") == 2
     assert r.newton_iterations <= 30
