@@ -167,7 +167,8 @@ bool Construction::relax_before_steps(Positions& X) {
         lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
     if (longest_move(before, X) > newton.projection_move) {
       if (!projection)
-        projection = std::make_unique<SurfaceProjection>(region_, surface, surface_normals);
+        projection = std::make_unique<SurfaceProjection>(region_, std::move(surface),
+                                                         std::move(surface_normals));
       for (int i = 0; i < region_.n_free; ++i) projection->project(i, X);
     }
     if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;

@@ -17,7 +17,7 @@ namespace geofair {
 /// quarter of that). Each free vertex starts in a triangle around its reference position.
 class SurfaceProjection {
  public:
-  SurfaceProjection(const FairingRegion& region, const Positions& R, const Positions& NR);
+  SurfaceProjection(const FairingRegion& region, Positions R, Positions NR);
 
   /// Moves free vertex i at X.row(i) onto the reference surface: walks from its last
   /// triangle across the edges towards the point, in each triangle's plane (clamped at
