@@ -43,7 +43,7 @@ struct NewtonTuning {
   /// where the stretch limit cuts a solve short.
   int relaxations = 8;
   /// A relaxation solve that moves a vertex by more than this many mean distances to its
-  /// neighbours puts every moved vertex back onto the surface the relaxations started from
+  /// neighbours puts the free vertices back onto the surface the relaxations started from
   /// (SurfaceProjection): a long move in a tangent plane leaves a curved surface by about
   /// κ·d²/2, and Newton's steps do not recover from that (docs/DESIGN_NOTES.md, "Relaxations
   /// on the surface").
