@@ -543,6 +543,24 @@ void bind_result(py::module_& m) {
       });
 }
 
+// Defines geofair.<python_name>: the function's own arguments `own`, then the keyword arguments of
+// the solve that fair and fill_holes share (their defaults: FairingOptions'), then `doc`.
+template <class Function, class... Own>
+void def_solve(py::module_& m, const char* python_name, Function&& f, const char* doc,
+               Own&&... own) {
+  const FairingOptions d;
+  m.def(python_name, std::forward<Function>(f), std::forward<Own>(own)...,
+        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+        py::arg("levels") = d.levels,
+        py::arg("iteration") = name(d.iteration, kIterationNames),
+        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
+        py::arg("tuning") = py::none(), doc);
+}
+
 // geofair.defaults and geofair.fair.
 void bind_fair(py::module_& m) {
   m.def("defaults", &defaults_py,
@@ -721,18 +739,10 @@ Raises
 ------
 ValueError for invalid input (the message names the problem and the vertex or face),
 RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
-  m.def("fair", &fair_py, py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
-        py::arg("remesh") = remesh_value(d.remesh),
-        py::arg("boundary") = name(d.boundary, kBoundaryNames),
-        py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
-        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
-        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
-        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
-        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
-        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
-        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
-        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
-        py::arg("tuning") = py::none(), fair_docstring.c_str());
+  def_solve(m, "fair", &fair_py, fair_docstring.c_str(), py::arg("vertices"), py::arg("faces"),
+            py::arg("free"), py::kw_only(), py::arg("remesh") = remesh_value(d.remesh),
+            py::arg("boundary") = name(d.boundary, kBoundaryNames),
+            py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none());
 }
 
 // geofair.cotangent_laplacian, intrinsic_delaunay and intrinsic_delaunay_laplacian.
@@ -1011,17 +1021,10 @@ ValueError when loops is not a list of sequences of vertex indices, a loop is no
 loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
 the mesh has no hole, a fill would take more than {max_fill_vertices} new vertices, or for the input
 fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.)doc");
-  m.def("fill_holes", &fill_holes_py, py::arg("vertices"), py::arg("faces"),
-        py::arg("loops") = py::none(), py::kw_only(), py::arg("target_edge_length") = py::none(),
-        py::arg("boundary") = name(d.boundary, kBoundaryNames),
-        py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
-        py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
-        py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
-        py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
-        py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
-        py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
-        py::arg("progress") = py::none(), py::arg("time_limit") = py::none(),
-        py::arg("tuning") = py::none(), fill_holes_docstring.c_str());
+  def_solve(m, "fill_holes", &fill_holes_py, fill_holes_docstring.c_str(), py::arg("vertices"),
+            py::arg("faces"), py::arg("loops") = py::none(), py::kw_only(),
+            py::arg("target_edge_length") = py::none(),
+            py::arg("boundary") = name(d.boundary, kBoundaryNames));
   m.def(
       "boundary_loops",
       [](const py::object& vertices, const py::object& faces) {
