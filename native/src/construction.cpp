@@ -39,7 +39,7 @@ Construction::Construction(const FairingRegion& region, InnerFairnessWeights lam
       solver_(options.cg_iterations),
       tangential_solver_(region.rings, lambda_, region.n_free,
                          options.tuning.paper.tangential_iterations, options.tuning.tangential),
-      newton_(region, options.tuning.newton),
+      newton_(region, options.tuning.newton, options.normal_weighting),
       probe_dirichlet_(region) {
   N_.bottomRows(region.n - region.n_free) = region.g1_normals;
 }

@@ -9,8 +9,9 @@
 
 namespace geofair {
 
-NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning)
-    : region_(region), tuning_(tuning) {
+NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning,
+                       NormalWeighting weighting)
+    : region_(region), tuning_(tuning), weighting_(weighting) {
   // Rows of J: region vertex k holds (m, ∂H_k/∂t_m) for m = k (if free) and for the free
   // vertices m of its ring; the entry of column m at row k lives at slot k of m's ring.
   const OneRings& r = region.rings;
@@ -60,9 +61,13 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
   const int nf = region_.n_free;
   const bool g0 = region_.boundary == BoundaryCondition::G0;
   // Columns of J by forward differences: move free vertex m by h along its normal and
-  // re-estimate H at m and its ring (normals held fixed). Each thread moves vertices in
-  // its own copy of X.
+  // re-estimate the normals and H at m and its ring (a G1 boundary's normals are fixed).
+  // Each thread moves vertices in its own copy of X.
   jacobian_.resize(std::size_t(nf) + r.offset[nf]);
+  auto normal = [&](const Positions& Y, int k) -> Vec3 {
+    const Vec3 estimate = k < nf ? vertex_normal(r, Y, k, weighting_) : Vec3(Vec3::Zero());
+    return estimate.squaredNorm() > 0.0 ? estimate : Vec3(N.row(k).transpose());
+  };
 #pragma omp parallel if (nf > kParallelMin)
   {
     Positions Y = X;
@@ -71,16 +76,16 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
       const int begin = r.offset[m], end = r.offset[m + 1];
       const double h = 1e-6 * r.mean_neighbour_distance(X, m);
       Y.row(m) = X.row(m) + h * N.row(m);
+      const Vec3 n_m = normal(Y, m);
       jacobian_[m] =
-          (moreton_sequin(r, Y, N, m, Y.row(m), N.row(m), needs_spiral_samples(r, m)).H - H(m)) /
-          h;
+          (moreton_sequin(r, Y, N, m, Y.row(m), n_m, needs_spiral_samples(r, m)).H - H(m)) / h;
       for (int k = begin; k < end; ++k) {
         const int j = r.ring[k];
         if (j >= nf && g0) {  // H = 0 prescribed on a G0 boundary
           jacobian_[nf + k] = 0.0;
           continue;
         }
-        jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), N.row(j),
+        jacobian_[nf + k] = (moreton_sequin(r, Y, N, j, Y.row(j), normal(Y, j),
                                             needs_spiral_samples(r, j)).H - H(j)) / h;
       }
       Y.row(m) = X.row(m);

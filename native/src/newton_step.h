@@ -84,21 +84,27 @@ namespace geofair {
 /// evaluation of the whole mesh per product).
 ///
 /// The preconditioner is the sparse LU factorization (SuiteSparse's UMFPACK with OpenBLAS)
-/// of an approximate Jacobian D J_N that holds the normals and the weights fixed: the
-/// derivatives of H by forward differences at each free vertex m and its ring (column m
-/// touches H_m and the H of m's ring; not a G0 boundary's, whose H = 0 is prescribed), so
-/// D J_N is a 2-ring sparse matrix. It is
-/// factorized at the first step and again only after a step whose GMRES needed more than
-/// half of its iterations or failed, or when the shift σ differs from the factorized one by
-/// more than NewtonTuning::shift_refactorization (shifts below shift_negligible count as
-/// none).
+/// of an approximate Jacobian D J_1 that holds the weights fixed and keeps, of each
+/// column, what lies in the ring: the derivatives of H by forward differences at each free
+/// vertex m and its ring, with the normals of m and of its free ring neighbours estimated
+/// anew (column m touches H_m and the H of m's ring; not a G0 boundary's, whose H = 0 is
+/// prescribed), so D J_1 is a 2-ring sparse matrix. Left out: the weights' change and the
+/// reach of the spiral samples (valence 3 and 4) and of the normal fit's flaps (valence
+/// below 5) beyond the ring. It is factorized at the first step and again only after a step
+/// whose GMRES needed more than half of its iterations or failed, or when the shift σ
+/// differs from the factorized one by more than NewtonTuning::shift_refactorization (shifts
+/// below shift_negligible count as none).
 ///
-/// Why the products of the exact Jacobian: the fixed-normal matrix ignores how the quadric
-/// normal tilts with the neighbours, and Newton's method on it alone converged only
-/// linearly; with the exact products it converges quadratically (docs/NEWTON.md).
+/// Why the normals in the preconditioner: the Jacobian with the normals held fixed ignores
+/// how the fitted normals tilt with the neighbours, which on decimated coarse levels left
+/// GMRES at a relative residual of 0.2-0.7 after its 30 iterations (docs/DESIGN_NOTES.md,
+/// "The Newton preconditioner's normals"). Why the products of the exact Jacobian: Newton's
+/// method on the preconditioner's matrix alone (then with the normals held fixed) converged
+/// only linearly; with the exact products it converges quadratically (docs/NEWTON.md).
 class NewtonStep {
  public:
-  NewtonStep(const FairingRegion& region, const NewtonTuning& tuning);
+  /// `weighting`: the normal estimate of the construction (Construction::curvatures).
+  NewtonStep(const FairingRegion& region, const NewtonTuning& tuning, NormalWeighting weighting);
 
   /// Products J v of the Jacobian of the defects (#V_I in, #V_I out, 1/length²: defects
   /// per unit of normal offset) at the current positions.
@@ -133,20 +139,21 @@ class NewtonStep {
   void analyze() { lu_.analyze(A_, A_.rows() >= kNestedDissectionMin); }
 
  private:
-  // Fills A_ = D J_N at X (the preconditioner's matrix, see the class comment).
+  // Fills A_ = D J_1 at X (the preconditioner's matrix, see the class comment).
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                 const std::vector<double>& w);
   const FairingRegion& region_;
   NewtonTuning tuning_;
+  NormalWeighting weighting_;
   std::vector<double> jacobian_;  // [m]: ∂H_m/∂t_m; [nf + slot k of m's ring]: ∂H_ring[k]/∂t_m
-  std::vector<int> row_offset_, row_column_, row_source_;  // rows of J_N (see constructor)
+  std::vector<int> row_offset_, row_column_, row_source_;  // rows of J_1 (see constructor)
   std::vector<int> term_entry_;  // per term of the assembly of A: its index in A's values
   std::vector<int> diagonal_entry_;  // per free vertex: the index of A_ii in A's values
   double factorized_sigma_ = 0.0;    // the shift σ of the last factorization
   Eigen::SparseMatrix<double> A_;
   PatternLU lu_;
   bool refactorize_ = true;
-  // GMRES preconditioned by the last factorization of D J_N, of an earlier iterate.
+  // GMRES preconditioned by the last factorization of D J_1, of an earlier iterate.
   Eigen::GMRES<JacobianOperator, LaggedFactorization> gmres_;
 };
 
