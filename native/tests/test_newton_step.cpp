@@ -33,8 +33,9 @@ void curvatures(const FairingRegion& region, const Positions& X, Positions& N,
 // a neighbour's normal (no spiral samples) and no normal fit reaches beyond the ring (no
 // flaps). The Jacobian of the defects with fixed weights then has the preconditioner's
 // pattern and values: one GMRES iteration solves the Newton system. With the normals held
-// fixed in the preconditioner (its earlier form) the fit's tilt is missed, and one
-// iteration leaves a relative residual of 5.8 on this grid (2e-6 with them).
+// fixed in the preconditioner (its earlier form) the fit's tilt is missed and one iteration
+// leaves a residual larger than the right-hand side (docs/DESIGN_NOTES.md, "The Newton
+// preconditioner's normals").
 TEST(NewtonStep, PreconditionerIsTheJacobianWhereNoSpiralSampleReachesFarther) {
   testing::Mesh m = testing::planar_grid(14, 0.2);
   std::vector<bool> free(m.V.rows());
