@@ -96,9 +96,9 @@ namespace geofair {
 /// below shift_negligible count as none).
 ///
 /// Why the normals in the preconditioner: the Jacobian with the normals held fixed ignores
-/// how the fitted normals tilt with the neighbours, which on decimated coarse levels left
-/// GMRES at a relative residual of 0.2-0.7 after its 30 iterations (docs/DESIGN_NOTES.md,
-/// "The Newton preconditioner's normals"). Why the products of the exact Jacobian: Newton's
+/// how the fitted normals tilt with the neighbours, and on decimated coarse levels GMRES
+/// then ran out of iterations far from its tolerance (docs/DESIGN_NOTES.md, "The Newton
+/// preconditioner's normals"). Why the products of the exact Jacobian: Newton's
 /// method on the preconditioner's matrix alone (then with the normals held fixed) converged
 /// only linearly; with the exact products it converges quadratically (docs/NEWTON.md).
 class NewtonStep {
