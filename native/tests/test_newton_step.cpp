@@ -3,8 +3,9 @@
 #include "newton_step.h"
 
 #include "common.h"
+#include "construction.h"
+#include "inner_fairness.h"
 #include "laplace_beltrami.h"
-#include "mean_curvature.h"
 #include "meshes.h"
 #include "region.h"
 
@@ -14,20 +15,6 @@
 
 namespace geofair {
 namespace {
-
-// The normals (quadric fits of the free vertices; a G0 boundary's by Max's weights, as in
-// Construction::curvatures) and the mean curvatures (H = 0 prescribed on a G0 boundary).
-void curvatures(const FairingRegion& region, const Positions& X, Positions& N,
-                Eigen::VectorXd& H) {
-  const OneRings& r = region.rings;
-  N.resize(region.n, 3);
-  H = Eigen::VectorXd::Zero(region.n);
-  for (int i = 0; i < region.n; ++i)
-    N.row(i) = vertex_normal(r, X, i, i < region.n_free ? NormalWeighting::Quadric
-                                                        : NormalWeighting::Max);
-  for (int i = 0; i < region.n_free; ++i)
-    H(i) = moreton_sequin(r, X, N, i, X.row(i), N.row(i), needs_spiral_samples(r, i)).H;
-}
 
 // A wavy, jittered grid with a G0 boundary: every free vertex has valence 6, so no H reads
 // a neighbour's normal (no spiral samples) and no normal fit reaches beyond the ring (no
@@ -50,9 +37,13 @@ TEST(NewtonStep, PreconditionerIsTheJacobianWhereNoSpiralSampleReachesFarther) {
   ASSERT_GT(nf, 50);
   for (int i = 0; i < nf; ++i) ASSERT_EQ(region.rings.valence(i), 6);
   const Positions X = gather(m.V, region.global);
-  Positions N;
-  Eigen::VectorXd H;
-  curvatures(region, X, N, H);
+  // The construction's normals (quadric fits) and mean curvatures, as fair() evaluates them.
+  const FairingOptions options;
+  Construction construction(region, inner_fairness_weights(region, X, InnerFairness::Uniform),
+                            options, 1.0);
+  construction.evaluate(X);
+  const Positions N = construction.normals();
+  const Eigen::VectorXd H = construction.mean_curvatures();
   DirichletMatrix dirichlet(region);
   dirichlet.assemble(X);
   const Eigen::VectorXd d0 = dirichlet.defects(H);
@@ -64,10 +55,8 @@ TEST(NewtonStep, PreconditionerIsTheJacobianWhereNoSpiralSampleReachesFarther) {
     for (int s = 0; s < 2; ++s) {
       Positions Y = X;
       for (int i = 0; i < nf; ++i) Y.row(i) += ((s == 0 ? eps : -eps) * v(i)) * N.row(i);
-      Positions NY;
-      Eigen::VectorXd HY;
-      curvatures(region, Y, NY, HY);
-      side[s] = dirichlet.defects(HY);
+      construction.evaluate(Y);
+      side[s] = dirichlet.defects(construction.mean_curvatures());
     }
     Jv = (side[0] - side[1]) / (2.0 * eps);
   };
