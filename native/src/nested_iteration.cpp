@@ -41,19 +41,29 @@ std::string level_phase(int l, const char* what) {
   return "level " + std::to_string(l) + " " + what;
 }
 
-// The progressive mesh an attempt solves on, coarsest first, measured on a smoothed copy Xs
-// of the input (progressive_mesh.h, hierarchy_positions: on a noisy input the raw positions
-// fold coarse triangles, and the splits interpolate smooth corrections); one level (the
-// region, Xs empty) if levels is 1 or the mesh cannot be decimated.
-ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& X0,
-                                const InnerFairnessWeights& lambda_finest, int levels,
-                                const Decimation& rules, const HierarchyTuning& tuning,
-                                Positions& Xs) {
+// The positions Xs (#region×3) the hierarchy of `attempt` is measured on (progressive_mesh.h),
+// whose conformal weights also interpolate the splits; empty for one level:
+// - Newton's method with the membrane's reference: the membrane itself, where its uniform
+//   coarse weights place the vertices (coarse_level_weights). Decimated on another copy, a
+//   coarse triangle valid there folds on the membrane where an irregular connectivity moves
+//   vertices by many edge lengths, and the base level's relaxations and Newton steps
+//   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
+// - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
+//   positions fold coarse triangles, and the splits interpolate smooth corrections).
+Positions hierarchy_reference(const Problem& p, const Attempt& attempt) {
+  if (attempt.levels <= 1) return Positions();
+  if (attempt.iteration == Iteration::Newton && attempt.reference == CoarseReference::Membrane)
+    return membrane_positions(p.region, p.lambda_finest, p.X0);
+  return hierarchy_positions(p.region, p.X0, &p.lambda_finest, p.options.tuning.hierarchy.smoothing);
+}
+
+// The progressive mesh an attempt solves on, coarsest first, measured on Xs
+// (hierarchy_reference); one level (the region) if levels is 1 or the mesh cannot be
+// decimated.
+ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& Xs, int levels,
+                                const Decimation& rules, const HierarchyTuning& tuning) {
   ProgressiveMesh hierarchy;
-  if (levels > 1) {
-    Xs = hierarchy_positions(region, X0, &lambda_finest, tuning.smoothing);
-    hierarchy = build_progressive_mesh(region, Xs, levels, rules, tuning);
-  }
+  if (levels > 1) hierarchy = build_progressive_mesh(region, Xs, levels, rules, tuning);
   if (hierarchy.triangles.size() < 2) {
     hierarchy.triangles.assign(1, region.triangles);
     hierarchy.splits.assign(1, VertexSplits{});
@@ -241,15 +251,12 @@ IterationReport base_level_fallback(const FairingRegion& level, Construction& co
 
 // Solves the base level (coarser than the finest) of the Newton hierarchy from its linear
 // initial mesh Y, which becomes the level's solution: Newton's method, and where that fails,
-// base_level_fallback. With the membrane's weights the level is solved with the smoothed
-// copy's weights first, and from there with its own (Newton's method does not converge
-// from the linear initial mesh with them, rough where the connectivity is irregular).
-// Returns the report of the last solve, its `iterations` the Newton steps not yet added to
-// `newton_iterations`; `paper_seconds`: the time of the paper's iteration.
+// base_level_fallback. Returns the report of the last solve, its `iterations` the Newton
+// steps not yet added to `newton_iterations`; `paper_seconds`: the time of the paper's
+// iteration.
 IterationReport solve_base_level(const FairingRegion& level, Construction& construction,
-                                 Positions& Y, const Positions& X0, const Positions& Xs,
-                                 CoarseReference reference, const FairingOptions& options,
-                                 double L, int budget, double tolerance, int& newton_iterations,
+                                 Positions& Y, const FairingOptions& options, double L,
+                                 int budget, double tolerance, int& newton_iterations,
                                  double& paper_seconds) {
   const Positions initial = Y;
   NewtonRun run;
@@ -257,26 +264,8 @@ IterationReport solve_base_level(const FairingRegion& level, Construction& const
   run.tolerance = tolerance;
   run.patience = options.tuning.newton.coarse_patience;
   run.from_initial_mesh = true;
-  bool presolved = false;
-  IterationReport first;  // the smoothed copy's solve
-  if (reference == CoarseReference::Membrane) {
-    Construction smoothed(level,
-                          coarse_level_weights(level, Iteration::Newton, X0, Xs, Xs,
-                                               options.inner_fairness),
-                          options, L);
-    Positions Z = Y;
-    run.iteration_offset = newton_iterations;
-    first = smoothed.run_newton(Z, run);
-    newton_iterations += first.iterations;
-    presolved = first.converged;
-    if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
-  }
   run.iteration_offset = newton_iterations;
-  run.from_initial_mesh = !presolved;
   IterationReport report = construction.run_newton(Y, run);
-  report.relax_seconds += first.relax_seconds;
-  report.step_seconds += first.step_seconds;
-  report.polish_seconds += first.polish_seconds;
   if (report.converged || report.cancelled) return report;
   newton_iterations += report.iterations;
   return base_level_fallback(level, construction, Y, initial, options, L, tolerance, report,
@@ -310,9 +299,8 @@ class LevelIteration {
 // spaces for their relaxations.
 class NewtonLevels final : public LevelIteration {
  public:
-  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, const Positions& Xs,
-               CoarseReference reference, int& newton_iterations)
-      : p_(p), levels_(levels), Xs_(Xs), reference_(reference), newton_(newton_iterations) {
+  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, int& newton_iterations)
+      : p_(p), levels_(levels), newton_(newton_iterations) {
     // The finest level's construction does not depend on the hierarchy: it is set up, with
     // the symbolic analysis of its Newton preconditioner, on another thread while this one
     // decimates and solves the coarser levels, which take longer (docs/DESIGN_NOTES.md,
@@ -355,8 +343,8 @@ class NewtonLevels final : public LevelIteration {
     IterationReport report;
     double paper_seconds = 0.0;
     if (l == 0 && !finest) {
-      report = solve_base_level(levels_[l].region, construction, Y, p_.X0, Xs_, reference_,
-                                options, p_.L, budget, tolerance, newton_, paper_seconds);
+      report = solve_base_level(levels_[l].region, construction, Y, options, p_.L, budget,
+                                tolerance, newton_, paper_seconds);
     } else {
       NewtonRun newton_run;
       newton_run.max_iterations = budget;
@@ -407,8 +395,6 @@ class NewtonLevels final : public LevelIteration {
  private:
   const Problem& p_;
   std::deque<MultigridLevel>& levels_;
-  const Positions& Xs_;
-  CoarseReference reference_;
   int& newton_;
   std::future<std::unique_ptr<Construction>> finest_;
   InnerFairnessWeights coarser_lambda_;  // the inner fairness weights of level l - 1
@@ -510,19 +496,18 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
                       Phases& phases) {
   const bool newton = attempt.iteration == Iteration::Newton;
   std::deque<MultigridLevel> levels;  // kept in place: the constructions refer to the regions
-  Positions Xs;                       // the smoothed copy the hierarchy is measured on
+  Positions Xs;                       // what the hierarchy is measured on
   std::unique_ptr<LevelIteration> iteration;
   if (newton)
-    iteration = std::make_unique<NewtonLevels>(p, levels, Xs, attempt.reference, newton_iterations);
+    iteration = std::make_unique<NewtonLevels>(p, levels, newton_iterations);
   Laps laps;
-  ProgressiveMesh hierarchy = build_hierarchy(p.region, p.X0, p.lambda_finest, attempt.levels,
-                                              newton ? kNewtonDecimation : kPaperDecimation,
-                                              p.options.tuning.hierarchy, Xs);
+  Xs = hierarchy_reference(p, attempt);
+  ProgressiveMesh hierarchy =
+      build_hierarchy(p.region, Xs, attempt.levels, newton ? kNewtonDecimation : kPaperDecimation,
+                      p.options.tuning.hierarchy);
   // The reference of Newton's uniform coarse weights (coarse_level_weights; empty: their own).
-  Positions Xr = !newton || attempt.reference == CoarseReference::Own ? Positions()
-                 : attempt.reference == CoarseReference::Membrane && hierarchy.triangles.size() > 1
-                     ? membrane_positions(p.region, p.lambda_finest, p.X0)
-                     : Xs;
+  const Positions none;
+  const Positions& Xr = !newton || attempt.reference == CoarseReference::Own ? none : Xs;
   if (!newton) iteration = std::make_unique<PaperLevels>(p, levels);
   SolveRun run;
   FairingResult& result = run.result;
@@ -562,7 +547,7 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
         for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
       }
     }
-    if (finest) hierarchy = ProgressiveMesh(), Xs = Xr = Positions();  // memory of the finest
+    if (finest) hierarchy = ProgressiveMesh(), Xs = Positions();  // memory of the finest
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     Construction& construction = iteration->set_up(l, finest, std::move(coarse_lambda));
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());

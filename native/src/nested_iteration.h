@@ -23,7 +23,9 @@ using Phases = std::vector<std::pair<std::string, double>>;
 /// distribution is about uniform where the input's is (regular meshes, of any metric).
 /// Membrane: the membrane of the finest uniform weights (membrane_positions), the
 /// distribution an irregular connectivity asks for, which Xs does not know (random samples
-/// of a surface: docs/DESIGN_NOTES.md, "Flattened caps"). Own: no reference; each coarse
+/// of a surface: docs/DESIGN_NOTES.md, "Flattened caps"); the attempt's hierarchy is
+/// decimated on the membrane too, so that its coarse triangles are valid where its weights
+/// put them. Own: no reference; each coarse
 /// level takes its own uniform weights, whose distribution follows the finest one's where
 /// decimation keeps the connectivity about as irregular (the 1M-vertex irregular cap:
 /// docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
