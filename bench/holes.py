@@ -56,12 +56,11 @@ import os
 import subprocess
 import sys
 import time
-import zlib
 
 import numpy as np
 
 from geofair_dev import cgal_fill_hole, holes, scenes
-from geofair_dev.corpus import CGAL_MESHES, cgal_mesh
+from geofair_dev.corpus import CGAL_MESHES
 
 SIZES = (100, 1000, 10000)
 DEFAULT_SIZES = (100, 1000)
@@ -69,8 +68,6 @@ DEFAULT_SEEDS = 2
 LARGE_MESHES = ("bear", "diplodocus", "ChineseDragon-10kv")  # 10,000-vertex holes by default
 QUICK_CORPUS = [(m, 100) for m in ("elk", "bull", "dino", "knot1", "blobby", "hand")]
 QUICK_CORPUS += [("bull", 1000), ("lion-head", 1000)]
-MAX_HOLE_FRACTION = 0.25  # a mesh is Loop-subdivided until a hole takes at most this fraction
-MAX_CANDIDATES = 40
 ANALYTIC_N, ANALYTIC_N_QUICK = 10000, 2500
 HOLE_RADIUS = 0.5
 TARGET = 1e-3  # the target: within 1e-3 of the radius
@@ -123,16 +120,7 @@ def analytic_surface(desc):
     raise ValueError(s)
 
 
-_MESHES = {}
-
-
-def corpus_mesh(name, levels, cache):
-    if (name, levels) not in _MESHES:
-        v, f = cgal_mesh(name, cache)
-        for _ in range(levels):
-            v, f = holes.loop_subdivide(v, f)
-        _MESHES[name, levels] = (v, f)
-    return _MESHES[name, levels]
+_MESHES = {}  # the subdivided corpus meshes (holes.corpus_hole)
 
 
 def make_hole(desc, args):
@@ -144,23 +132,9 @@ def make_hole(desc, args):
         if hole is None:
             raise ValueError(f"{desc['name']}: {why}")
         return holes.neighbourhood(hole, args.rings), sc.distance, radius, {"redraw": 0, "levels": 0}
-    name, size = desc["mesh"], desc["size"]
-    v0, _ = cgal_mesh(name, args.cache)
-    levels = 0
-    while len(v0) * 4**levels * MAX_HOLE_FRACTION < size:
-        levels += 1
-    v, f = corpus_mesh(name, levels, args.cache)
-    border = scenes.border_mask(f, len(v))
-    rng = np.random.default_rng([zlib.crc32(name.encode()), size, desc["slot"]])
-    order = rng.permutation(np.flatnonzero(~border & (np.bincount(f.ravel(), minlength=len(v)) > 0)))
-    reasons = []
-    for j in range(min(MAX_CANDIDATES, len(order))):
-        hole, why = holes.cut_disc(v, f, int(order[j]), count=size)
-        if hole is not None:
-            ref = (hole.cut_vertices, hole.cut_faces)
-            return holes.neighbourhood(hole, args.rings), ref, hole.diameter, {"redraw": j, "levels": levels}
-        reasons.append(why)
-    raise ValueError(f"{desc['name']}: no clean hole in {MAX_CANDIDATES} seeds ({reasons[-1]})")
+    hole, levels, redraw = holes.corpus_hole(desc["mesh"], desc["size"], desc["slot"], args.cache, _MESHES)
+    ref = (hole.cut_vertices, hole.cut_faces)
+    return holes.neighbourhood(hole, args.rings), ref, hole.diameter, {"redraw": redraw, "levels": levels}
 
 
 # --------------------------------------------------------------------------------------

@@ -32,6 +32,8 @@ from geofair_dev.measures import _closest_on_triangles, point_mesh_distance
 
 POCKET = 10  # parts of at most this many vertices cut off by a hole are removed with it
 MAX_CLEANUPS = 50
+MAX_HOLE_FRACTION = 0.25  # a corpus mesh is Loop-subdivided until a hole takes at most this
+MAX_CANDIDATES = 40  # seed vertices tried for a clean corpus hole
 
 
 # --------------------------------------------------------------------------------------
@@ -486,3 +488,38 @@ def loop_subdivide(vertices, faces):
         np.column_stack([e01, e12, e20]),
     ])  # fmt: skip
     return np.concatenate([moved, edge_point]), out
+
+
+def corpus_hole(name, size, slot, cache, meshes=None):
+    """bench/holes.py's corpus hole ``cgal/<name>/<size>/s<slot>``: the geodesic disc of
+    ``size`` vertices cut out of CGAL's demo mesh ``name`` (geofair_dev.corpus.cgal_mesh),
+    Loop-subdivided until the disc takes at most MAX_HOLE_FRACTION of its vertices, around
+    the first of MAX_CANDIDATES seed vertices (off the border, in a random order seeded by
+    the name, size and slot) that gives a clean hole. ``meshes``: a dict that keeps the
+    subdivided meshes between calls. Returns (Hole, subdivision levels, seeds passed over);
+    raises ValueError when no seed gives a clean hole."""
+    import zlib
+
+    from geofair_dev.corpus import cgal_mesh
+    from geofair_dev.scenes import border_mask
+
+    meshes = {} if meshes is None else meshes
+    v0, _ = cgal_mesh(name, cache)
+    levels = 0
+    while len(v0) * 4**levels * MAX_HOLE_FRACTION < size:
+        levels += 1
+    if (name, levels) not in meshes:
+        v, f = cgal_mesh(name, cache)
+        for _ in range(levels):
+            v, f = loop_subdivide(v, f)
+        meshes[name, levels] = (v, f)
+    v, f = meshes[name, levels]
+    border = border_mask(f, len(v))
+    rng = np.random.default_rng([zlib.crc32(name.encode()), size, slot])
+    order = rng.permutation(np.flatnonzero(~border & (np.bincount(f.ravel(), minlength=len(v)) > 0)))
+    why = "no candidate seed"
+    for j in range(min(MAX_CANDIDATES, len(order))):
+        hole, why = cut_disc(v, f, int(order[j]), count=size)
+        if hole is not None:
+            return hole, levels, j
+    raise ValueError(f"cgal/{name}/{size}/s{slot}: no clean hole in {MAX_CANDIDATES} seeds ({why})")

@@ -687,9 +687,10 @@ iteration : how eq. (12) is solved; all choices solve the same discrete equation
     most {coarse_merit} still starts the next, and a coarse level above the base stops once its
     merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
     again with other coarse weights (uniform inner fairness: from the membrane of the
-    finest weights, then each level's own uniform weights), then the finest level alone;
-    the membrane's weights go first where at least {membrane_first} of the free vertices have a
-    valence other than 6 (an irregular connectivity);
+    finest weights, its hierarchy decimated on the smoothed input and then on the membrane,
+    then each level's own uniform weights), then the finest level alone; the membrane's
+    weights go first where at least {membrane_first} of the free vertices have a valence
+    other than 6 (an irregular connectivity), its hierarchy decimated on the membrane;
     a region solved as one level (fewer than 4 × {min_base_free} free vertices) with at least
     {retry_min_free} free vertices tries two levels where the one fails.
     "paper": the local/global iteration of section 7 with multigrid cycles (levels).

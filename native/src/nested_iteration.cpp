@@ -43,18 +43,18 @@ std::string level_phase(int l, const char* what) {
 
 // The positions Xs (#region×3) the hierarchy of `attempt` is measured on (progressive_mesh.h),
 // whose conformal weights also interpolate the splits; empty for one level:
-// - Newton's method with the membrane's reference: the membrane itself, where its uniform
-//   coarse weights place the vertices (coarse_level_weights). Decimated on another copy, a
-//   coarse triangle valid there folds on the membrane where an irregular connectivity moves
+// - Attempt::decimate_on_membrane: the membrane `Xm`, where the attempt's uniform coarse
+//   weights place the vertices (coarse_level_weights). Decimated on another copy, a coarse
+//   triangle valid there folds on the membrane where an irregular connectivity moves
 //   vertices by many edge lengths, and the base level's relaxations and Newton steps
 //   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
 // - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
 //   positions fold coarse triangles, and the splits interpolate smooth corrections).
-Positions hierarchy_reference(const Problem& p, const Attempt& attempt) {
+Positions hierarchy_reference(const Problem& p, const Attempt& attempt, const Positions& Xm) {
   if (attempt.levels <= 1) return Positions();
-  if (attempt.iteration == Iteration::Newton && attempt.reference == CoarseReference::Membrane)
-    return membrane_positions(p.region, p.lambda_finest, p.X0);
-  return hierarchy_positions(p.region, p.X0, &p.lambda_finest, p.options.tuning.hierarchy.smoothing);
+  if (attempt.decimate_on_membrane && Xm.rows() > 0) return Xm;
+  return hierarchy_positions(p.region, p.X0, &p.lambda_finest,
+                             p.options.tuning.hierarchy.smoothing);
 }
 
 // The progressive mesh an attempt solves on, coarsest first, measured on Xs
@@ -251,12 +251,16 @@ IterationReport base_level_fallback(const FairingRegion& level, Construction& co
 
 // Solves the base level (coarser than the finest) of the Newton hierarchy from its linear
 // initial mesh Y, which becomes the level's solution: Newton's method, and where that fails,
-// base_level_fallback. Returns the report of the last solve, its `iterations` the Newton
-// steps not yet added to `newton_iterations`; `paper_seconds`: the time of the paper's
-// iteration.
+// base_level_fallback. `presolve_on`: empty, or the smoothed copy Xs where the membrane's
+// attempt decimated on it; then the level is solved with Xs's weights first, and from there
+// with its own (Newton's method does not converge from the linear initial mesh with them,
+// where the membrane is far from Xs). Returns the report of the last solve, its
+// `iterations` the Newton steps not yet added to `newton_iterations`; `paper_seconds`: the
+// time of the paper's iteration.
 IterationReport solve_base_level(const FairingRegion& level, Construction& construction,
-                                 Positions& Y, const FairingOptions& options, double L,
-                                 int budget, double tolerance, int& newton_iterations,
+                                 Positions& Y, const Positions& X0, const Positions& presolve_on,
+                                 const FairingOptions& options, double L, int budget,
+                                 double tolerance, int& newton_iterations,
                                  double& paper_seconds) {
   const Positions initial = Y;
   NewtonRun run;
@@ -264,8 +268,26 @@ IterationReport solve_base_level(const FairingRegion& level, Construction& const
   run.tolerance = tolerance;
   run.patience = options.tuning.newton.coarse_patience;
   run.from_initial_mesh = true;
+  bool presolved = false;
+  IterationReport first;  // the smoothed copy's solve
+  if (presolve_on.rows() > 0) {
+    Construction smoothed(level,
+                          coarse_level_weights(level, Iteration::Newton, X0, presolve_on,
+                                               presolve_on, options.inner_fairness),
+                          options, L);
+    Positions Z = Y;
+    run.iteration_offset = newton_iterations;
+    first = smoothed.run_newton(Z, run);
+    newton_iterations += first.iterations;
+    presolved = first.converged;
+    if (presolved) Y = std::move(Z);  // else from the linear initial mesh as without it
+  }
   run.iteration_offset = newton_iterations;
+  run.from_initial_mesh = !presolved;
   IterationReport report = construction.run_newton(Y, run);
+  report.relax_seconds += first.relax_seconds;
+  report.step_seconds += first.step_seconds;
+  report.polish_seconds += first.polish_seconds;
   if (report.converged || report.cancelled) return report;
   newton_iterations += report.iterations;
   return base_level_fallback(level, construction, Y, initial, options, L, tolerance, report,
@@ -299,8 +321,10 @@ class LevelIteration {
 // spaces for their relaxations.
 class NewtonLevels final : public LevelIteration {
  public:
-  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, int& newton_iterations)
-      : p_(p), levels_(levels), newton_(newton_iterations) {
+  // `presolve_on`: solve_base_level's.
+  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, const Positions& presolve_on,
+               int& newton_iterations)
+      : p_(p), levels_(levels), presolve_on_(presolve_on), newton_(newton_iterations) {
     // The finest level's construction does not depend on the hierarchy: it is set up, with
     // the symbolic analysis of its Newton preconditioner, on another thread while this one
     // decimates and solves the coarser levels, which take longer (docs/DESIGN_NOTES.md,
@@ -343,8 +367,8 @@ class NewtonLevels final : public LevelIteration {
     IterationReport report;
     double paper_seconds = 0.0;
     if (l == 0 && !finest) {
-      report = solve_base_level(levels_[l].region, construction, Y, options, p_.L, budget,
-                                tolerance, newton_, paper_seconds);
+      report = solve_base_level(levels_[l].region, construction, Y, p_.X0, presolve_on_, options,
+                                p_.L, budget, tolerance, newton_, paper_seconds);
     } else {
       NewtonRun newton_run;
       newton_run.max_iterations = budget;
@@ -395,6 +419,7 @@ class NewtonLevels final : public LevelIteration {
  private:
   const Problem& p_;
   std::deque<MultigridLevel>& levels_;
+  const Positions& presolve_on_;
   int& newton_;
   std::future<std::unique_ptr<Construction>> finest_;
   InnerFairnessWeights coarser_lambda_;  // the inner fairness weights of level l - 1
@@ -497,17 +522,24 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
   const bool newton = attempt.iteration == Iteration::Newton;
   std::deque<MultigridLevel> levels;  // kept in place: the constructions refer to the regions
   Positions Xs;                       // what the hierarchy is measured on
+  Positions Xm;                       // the membrane attempt's reference
+  Positions presolve_on;              // solve_base_level's
   std::unique_ptr<LevelIteration> iteration;
   if (newton)
-    iteration = std::make_unique<NewtonLevels>(p, levels, newton_iterations);
+    iteration = std::make_unique<NewtonLevels>(p, levels, presolve_on, newton_iterations);
   Laps laps;
-  Xs = hierarchy_reference(p, attempt);
+  const bool membrane = newton && attempt.reference == CoarseReference::Membrane;
+  if (membrane && attempt.levels > 1) Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
+  Xs = hierarchy_reference(p, attempt, Xm);
   ProgressiveMesh hierarchy =
       build_hierarchy(p.region, Xs, attempt.levels, newton ? kNewtonDecimation : kPaperDecimation,
                       p.options.tuning.hierarchy);
+  if (membrane && !attempt.decimate_on_membrane) presolve_on = Xs;
   // The reference of Newton's uniform coarse weights (coarse_level_weights; empty: their own).
   const Positions none;
-  const Positions& Xr = !newton || attempt.reference == CoarseReference::Own ? none : Xs;
+  const Positions& Xr = !newton || attempt.reference == CoarseReference::Own ? none
+                        : membrane && hierarchy.triangles.size() > 1         ? Xm
+                                                                             : Xs;
   if (!newton) iteration = std::make_unique<PaperLevels>(p, levels);
   SolveRun run;
   FairingResult& result = run.result;
@@ -547,7 +579,8 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
         for (int c = 0; c < coarser.n; ++c) level.from_coarser[c] = local[coarser.global[c]];
       }
     }
-    if (finest) hierarchy = ProgressiveMesh(), Xs = Positions();  // memory of the finest
+    if (finest)  // memory of the finest
+      hierarchy = ProgressiveMesh(), Xs = Xm = presolve_on = Positions();
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     Construction& construction = iteration->set_up(l, finest, std::move(coarse_lambda));
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());

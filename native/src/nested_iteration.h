@@ -23,9 +23,7 @@ using Phases = std::vector<std::pair<std::string, double>>;
 /// distribution is about uniform where the input's is (regular meshes, of any metric).
 /// Membrane: the membrane of the finest uniform weights (membrane_positions), the
 /// distribution an irregular connectivity asks for, which Xs does not know (random samples
-/// of a surface: docs/DESIGN_NOTES.md, "Flattened caps"); the attempt's hierarchy is
-/// decimated on the membrane too, so that its coarse triangles are valid where its weights
-/// put them. Own: no reference; each coarse
+/// of a surface: docs/DESIGN_NOTES.md, "Flattened caps"). Own: no reference; each coarse
 /// level takes its own uniform weights, whose distribution follows the finest one's where
 /// decimation keeps the connectivity about as irregular (the 1M-vertex irregular cap:
 /// docs/DESIGN_NOTES.md, "Coarse levels of large irregular caps").
@@ -37,6 +35,14 @@ struct Attempt {
   Iteration iteration = Iteration::Newton;  ///< Newton or Paper
   int levels = 1;
   CoarseReference reference = CoarseReference::Smoothed;
+  /// With CoarseReference::Membrane: the hierarchy is decimated on the membrane, where the
+  /// coarse weights place the vertices, instead of on the smoothed copy Xs (on an irregular
+  /// connectivity the membrane lies many edge lengths from Xs, and coarse triangles valid on
+  /// Xs fold there; the membrane of a loop on a curved surface is far from its shape, and
+  /// coarse triangles valid on it fold after the prolongation). On Xs the base level is
+  /// solved with Xs's weights first (docs/DESIGN_NOTES.md, "The membrane attempt's
+  /// hierarchy").
+  bool decimate_on_membrane = false;
 };
 
 /// What every attempt solves: the region, itself as the finest level (region-local ids as

@@ -41,10 +41,13 @@ std::vector<Attempt> plan_attempts(const Problem& p) {
         uniform && p.lambda_finest.row_sum.size() == std::size_t(p.lambda_finest.size());
     const bool membrane_first =
         membrane && irregularity(p.region) >= schedule.membrane_first_irregularity;
-    if (membrane_first) attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane});
+    if (membrane_first)
+      attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane, true});
     attempts.push_back({Iteration::Newton, levels, CoarseReference::Smoothed});
-    if (membrane && !membrane_first)
+    if (membrane && !membrane_first) {
       attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane});
+      attempts.push_back({Iteration::Newton, levels, CoarseReference::Membrane, true});
+    }
     if (uniform) attempts.push_back({Iteration::Newton, levels, CoarseReference::Own});
   }
   if (newton) attempts.push_back({Iteration::Newton, 1, CoarseReference::Smoothed});

@@ -13,22 +13,25 @@ namespace geofair {
 /// |---|-----------|---------------------------|----------------|-----------------------------|
 /// | 1 | Newton    | newton_levels (or levels) | Smoothed       | more than one level         |
 /// | 2 | Newton    | same                      | Membrane       | 1, uniform, symmetric (*)   |
-/// |   |           |                           |                | (before 1 where irregular)  |
-/// | 3 | Newton    | same                      | Own            | 1 and uniform inner fairness|
-/// | 4 | Newton    | 1                         | –              | always                      |
-/// | 5 | Newton    | 2                         | Smoothed       | one level by default and at |
+/// |   |           |                           |                | (before 1 where irregular,  |
+/// |   |           |                           |                | decimated on the membrane)  |
+/// | 3 | Newton    | same                      | Membrane,      | 2, where 2 is decimated on  |
+/// |   |           |                           | decimated on it| the smoothed copy           |
+/// | 4 | Newton    | same                      | Own            | 1 and uniform inner fairness|
+/// | 5 | Newton    | 1                         | –              | always                      |
+/// | 6 | Newton    | 2                         | Smoothed       | one level by default and at |
 /// |   |           |                           |                | least newton_retry_min_free |
-/// | 6 | Paper     | default_levels (or levels;| –              | Auto: last; Paper: only     |
+/// | 7 | Paper     | default_levels (or levels;| –              | Auto: last; Paper: only     |
 /// |   |           | 1 with bilaplacian outer) |                |                             |
 ///
 /// "More than one level": the levels asked for (newton_levels or options.levels), before
 /// decimation, which may build fewer. (*) The finest weights symmetric
 /// (InnerFairnessWeights::row_sum given), which the membrane needs. "Irregular": at least
 /// ScheduleTuning::membrane_first_irregularity of the free vertices have a valence other
-/// than 6.
-/// Newton's attempts (1–5) run with intrinsic outer fairness and Iteration::Auto or Newton;
-/// Auto's last attempt is the paper's iteration (6) with Newton attempts from its iterate;
-/// Iteration::Paper and the linear bilaplacian outer fairness run 6 alone.
+/// than 6. "Decimated on": Attempt::decimate_on_membrane.
+/// Newton's attempts (1–6) run with intrinsic outer fairness and Iteration::Auto or Newton;
+/// Auto's last attempt is the paper's iteration (7) with Newton attempts from its iterate;
+/// Iteration::Paper and the linear bilaplacian outer fairness run 7 alone.
 std::vector<Attempt> plan_attempts(const Problem& problem);
 
 /// Walks `attempts` (plan_attempts) and returns the first run that converged or was

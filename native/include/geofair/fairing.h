@@ -119,22 +119,24 @@ struct FairingResult {
 ///     ScheduleTuning::newton_min_base_free free vertices on the base level (or
 ///     options.levels), coarse uniform weights from the smoothed copy of the input;
 ///  2. with uniform inner fairness (and symmetric finest weights), the same with the coarse
-///     weights of the membrane of the finest uniform weights (membrane_positions: the distribution an irregular
-///     connectivity asks for), its base level first solved with the smoothed copy's; this
-///     attempt goes first where the connectivity is irregular (at least
-///     ScheduleTuning::membrane_first_irregularity of the free vertices of a valence other
-///     than 6);
-///  3. with uniform inner fairness, the same with each coarse level's own uniform weights;
-///  4. Newton's method on the finest level alone;
-///  5. where the region was one level by default and has at least
+///     weights of the membrane of the finest uniform weights (membrane_positions: the
+///     distribution an irregular connectivity asks for), its base level first solved with
+///     the smoothed copy's; this attempt goes first where the connectivity is irregular (at
+///     least ScheduleTuning::membrane_first_irregularity of the free vertices of a valence
+///     other than 6), and there its hierarchy is decimated on the membrane itself;
+///  3. where 2 decimated on the smoothed copy, 2 again with the hierarchy decimated on the
+///     membrane;
+///  4. with uniform inner fairness, the same with each coarse level's own uniform weights;
+///  5. Newton's method on the finest level alone;
+///  6. where the region was one level by default and has at least
 ///     ScheduleTuning::newton_retry_min_free free vertices, Newton's method on two levels;
-///  6. the paper's iteration on its hierarchy (default_levels or options.levels; one level
+///  7. the paper's iteration on its hierarchy (default_levels or options.levels; one level
 ///     with the linear bilaplacian outer fairness), with Newton's method tried
 ///     from the finest level's iterate after ScheduleTuning::newton_attempt_first
 ///     iterations and each doubling.
-/// Attempts 1–3 run where more than one level is asked for (the count before decimation). Iteration::Auto (the
-/// default) runs 1–6; Newton 1–5 and returns the last one's result whatever it is; Paper,
-/// and the linear bilaplacian outer fairness, 6 alone (without Newton attempts).
+/// Attempts 1–4 run where more than one level is asked for (the count before decimation). Iteration::Auto (the
+/// default) runs 1–7; Newton 1–6 and returns the last one's result whatever it is; Paper,
+/// and the linear bilaplacian outer fairness, 7 alone (without Newton attempts).
 ///
 /// Remeshing (options.remesh, beyond the paper): Always replaces the region's triangles by
 /// remesh_region's isotropic remesh at the mean length of the region's border edges

@@ -343,9 +343,10 @@ def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: t
         most 0.01 still starts the next, and a coarse level above the base stops once its
         merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
         again with other coarse weights (uniform inner fairness: from the membrane of the
-        finest weights, then each level's own uniform weights), then the finest level alone;
-        the membrane's weights go first where at least 0.55 of the free vertices have a
-        valence other than 6 (an irregular connectivity);
+        finest weights, its hierarchy decimated on the smoothed input and then on the membrane,
+        then each level's own uniform weights), then the finest level alone; the membrane's
+        weights go first where at least 0.55 of the free vertices have a valence
+        other than 6 (an irregular connectivity), its hierarchy decimated on the membrane;
         a region solved as one level (fewer than 4 × 400 free vertices) with at least
         1400 free vertices tries two levels where the one fails.
         "paper": the local/global iteration of section 7 with multigrid cycles (levels).
