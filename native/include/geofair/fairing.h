@@ -120,10 +120,11 @@ struct FairingResult {
 ///     options.levels), coarse uniform weights from the smoothed copy of the input;
 ///  2. with uniform inner fairness (and symmetric finest weights), the same with the coarse
 ///     weights of the membrane of the finest uniform weights (membrane_positions: the
-///     distribution an irregular connectivity asks for), its base level first solved with
-///     the smoothed copy's; this attempt goes first where the connectivity is irregular (at
-///     least ScheduleTuning::membrane_first_irregularity of the free vertices of a valence
-///     other than 6), and there its hierarchy is decimated on the membrane itself;
+///     distribution an irregular connectivity asks for); this attempt goes first where the
+///     connectivity is irregular (at least ScheduleTuning::membrane_first_irregularity of the
+///     free vertices of a valence other than 6), and there its hierarchy is decimated on the
+///     membrane itself; elsewhere on the smoothed copy, its base level first solved with the
+///     smoothed copy's weights;
 ///  3. where 2 decimated on the smoothed copy, 2 again with the hierarchy decimated on the
 ///     membrane;
 ///  4. with uniform inner fairness, the same with each coarse level's own uniform weights;
