@@ -132,17 +132,18 @@ def test_phase_seconds_account_for_the_solve():
     # One step per level does not converge: "auto" tries Newton's method on two levels (the
     # base level, not converged in one step, by one paper iteration and a Newton attempt:
     # a phase of its own; then the finest level, not converged), again with the membrane's
-    # and with the levels' own coarse weights (uniform inner fairness), and on one level,
-    # then the paper's iteration, and keeps the phases of all five attempts.
+    # coarse weights (this regular connectivity: its hierarchy decimated on the smoothed
+    # copy, then on the membrane) and with the levels' own (uniform inner fairness), and on
+    # one level, then the paper's iteration, and keeps the phases of all six attempts.
     auto, wall = timed(max_iterations=1)
     assert auto.iteration == "paper" and not auto.converged
     names = [name for name, _ in auto.phase_seconds]
     hierarchy = ["hierarchy"] + [f"level 0 {what}" for what in per_level] + ["level 0 paper iterations"]
     hierarchy += [f"level 1 {what}" for what in per_level]
-    assert names[:36] == 3 * hierarchy
-    one_level = names[36:42]
+    assert names[:48] == 4 * hierarchy
+    one_level = names[48:54]
     assert one_level == ["hierarchy"] + [f"level 0 {what}" for what in per_level]
-    assert names[42:] == ["hierarchy"] + [
+    assert names[54:] == ["hierarchy"] + [
         f"level {level} {what}" for level in (0, 1) for what in ("initial mesh", "set-up", "iterations")
     ]
     assert sum(t for _, t in auto.phase_seconds) <= wall
