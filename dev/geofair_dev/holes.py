@@ -24,6 +24,7 @@
 
 from __future__ import annotations
 
+import zlib
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -498,8 +499,7 @@ def corpus_hole(name, size, slot, cache, meshes=None):
     the name, size and slot) that gives a clean hole. ``meshes``: a dict that keeps the
     subdivided meshes between calls. Returns (Hole, subdivision levels, seeds passed over);
     raises ValueError when no seed gives a clean hole."""
-    import zlib
-
+    # Imported here: the corpus reads CGAL's archive, which nothing else in this module needs.
     from geofair_dev.corpus import cgal_mesh
     from geofair_dev.scenes import border_mask
 
