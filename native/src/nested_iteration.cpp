@@ -41,25 +41,8 @@ std::string level_phase(int l, const char* what) {
   return "level " + std::to_string(l) + " " + what;
 }
 
-// The positions Xs (#region×3) the hierarchy of `attempt` is measured on (progressive_mesh.h),
-// whose conformal weights also interpolate the splits; empty for one level:
-// - Attempt::decimate_on_membrane: the membrane `Xm`, where the attempt's uniform coarse
-//   weights place the vertices (coarse_level_weights). Decimated on another copy, a coarse
-//   triangle valid there folds on the membrane where an irregular connectivity moves
-//   vertices by many edge lengths, and the base level's relaxations and Newton steps
-//   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
-// - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
-//   positions fold coarse triangles, and the splits interpolate smooth corrections).
-Positions hierarchy_reference(const Problem& p, const Attempt& attempt, const Positions& Xm) {
-  if (attempt.levels <= 1) return Positions();
-  if (attempt.decimate_on_membrane && Xm.rows() > 0) return Xm;
-  return hierarchy_positions(p.region, p.X0, &p.lambda_finest,
-                             p.options.tuning.hierarchy.smoothing);
-}
-
-// The progressive mesh an attempt solves on, coarsest first, measured on Xs
-// (hierarchy_reference); one level (the region) if levels is 1 or the mesh cannot be
-// decimated.
+// The progressive mesh an attempt solves on, coarsest first, measured on Xs (see
+// solve_levels); one level (the region) if levels is 1 or the mesh cannot be decimated.
 ProgressiveMesh build_hierarchy(const FairingRegion& region, const Positions& Xs, int levels,
                                 const Decimation& rules, const HierarchyTuning& tuning) {
   ProgressiveMesh hierarchy;
@@ -251,14 +234,14 @@ IterationReport base_level_fallback(const FairingRegion& level, Construction& co
 
 // Solves the base level (coarser than the finest) of the Newton hierarchy from its linear
 // initial mesh Y, which becomes the level's solution: Newton's method, and where that fails,
-// base_level_fallback. `presolve_on`: empty, or the smoothed copy Xs where the membrane's
+// base_level_fallback. `presolve_on`: null, or the smoothed copy Xs where the membrane's
 // attempt decimated on it; then the level is solved with Xs's weights first, and from there
 // with its own (Newton's method does not converge from the linear initial mesh with them,
 // where the membrane is far from Xs). Returns the report of the last solve, its
 // `iterations` the Newton steps not yet added to `newton_iterations`; `paper_seconds`: the
 // time of the paper's iteration.
 IterationReport solve_base_level(const FairingRegion& level, Construction& construction,
-                                 Positions& Y, const Positions& X0, const Positions& presolve_on,
+                                 Positions& Y, const Positions& X0, const Positions* presolve_on,
                                  const FairingOptions& options, double L, int budget,
                                  double tolerance, int& newton_iterations,
                                  double& paper_seconds) {
@@ -270,10 +253,10 @@ IterationReport solve_base_level(const FairingRegion& level, Construction& const
   run.from_initial_mesh = true;
   bool presolved = false;
   IterationReport first;  // the smoothed copy's solve
-  if (presolve_on.rows() > 0) {
+  if (presolve_on && presolve_on->rows() > 0) {
     Construction smoothed(level,
-                          coarse_level_weights(level, Iteration::Newton, X0, presolve_on,
-                                               presolve_on, options.inner_fairness),
+                          coarse_level_weights(level, Iteration::Newton, X0, *presolve_on,
+                                               *presolve_on, options.inner_fairness),
                           options, L);
     Positions Z = Y;
     run.iteration_offset = newton_iterations;
@@ -322,7 +305,7 @@ class LevelIteration {
 class NewtonLevels final : public LevelIteration {
  public:
   // `presolve_on`: solve_base_level's.
-  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, const Positions& presolve_on,
+  NewtonLevels(const Problem& p, std::deque<MultigridLevel>& levels, const Positions* presolve_on,
                int& newton_iterations)
       : p_(p), levels_(levels), presolve_on_(presolve_on), newton_(newton_iterations) {
     // The finest level's construction does not depend on the hierarchy: it is set up, with
@@ -419,7 +402,7 @@ class NewtonLevels final : public LevelIteration {
  private:
   const Problem& p_;
   std::deque<MultigridLevel>& levels_;
-  const Positions& presolve_on_;
+  const Positions* presolve_on_;
   int& newton_;
   std::future<std::unique_ptr<Construction>> finest_;
   InnerFairnessWeights coarser_lambda_;  // the inner fairness weights of level l - 1
@@ -521,24 +504,40 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
                       Phases& phases) {
   const bool newton = attempt.iteration == Iteration::Newton;
   std::deque<MultigridLevel> levels;  // kept in place: the constructions refer to the regions
-  Positions Xs;                       // what the hierarchy is measured on
-  Positions Xm;                       // the membrane attempt's reference
-  Positions presolve_on;              // solve_base_level's
-  std::unique_ptr<LevelIteration> iteration;
-  if (newton)
-    iteration = std::make_unique<NewtonLevels>(p, levels, presolve_on, newton_iterations);
-  Laps laps;
   const bool membrane = newton && attempt.reference == CoarseReference::Membrane;
-  if (membrane && attempt.levels > 1) Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
-  Xs = hierarchy_reference(p, attempt, Xm);
+  const bool on_membrane = membrane && attempt.decimate_on_membrane && attempt.levels > 1;
+  // Xs (#region×3, empty for one level), what the hierarchy is measured on
+  // (progressive_mesh.h), whose conformal weights also interpolate the splits:
+  // - Attempt::decimate_on_membrane: the membrane Xm, where the attempt's uniform coarse
+  //   weights place the vertices (coarse_level_weights). Decimated on another copy, a coarse
+  //   triangle valid there folds on the membrane where an irregular connectivity moves
+  //   vertices by many edge lengths, and the base level's relaxations and Newton steps
+  //   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
+  // - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
+  //   positions fold coarse triangles, and the splits interpolate smooth corrections).
+  Positions smoothed, Xm;
+  const Positions& Xs = on_membrane ? Xm : smoothed;
+  std::unique_ptr<LevelIteration> iteration;
+  if (newton)  // the membrane's attempt decimated on the smoothed copy presolves on it
+    iteration = std::make_unique<NewtonLevels>(
+        p, levels, membrane && !attempt.decimate_on_membrane ? &smoothed : nullptr,
+        newton_iterations);
+  Laps laps;
+  if (on_membrane)
+    Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
+  else if (attempt.levels > 1)
+    smoothed = hierarchy_positions(p.region, p.X0, &p.lambda_finest,
+                                   p.options.tuning.hierarchy.smoothing);
   ProgressiveMesh hierarchy =
       build_hierarchy(p.region, Xs, attempt.levels, newton ? kNewtonDecimation : kPaperDecimation,
                       p.options.tuning.hierarchy);
-  if (membrane && !attempt.decimate_on_membrane) presolve_on = Xs;
+  const bool coarse_levels = hierarchy.triangles.size() > 1;
+  if (membrane && coarse_levels && !on_membrane)  // only once the mesh could be decimated
+    Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
   // The reference of Newton's uniform coarse weights (coarse_level_weights; empty: their own).
   const Positions none;
   const Positions& Xr = !newton || attempt.reference == CoarseReference::Own ? none
-                        : membrane && hierarchy.triangles.size() > 1         ? Xm
+                        : membrane && coarse_levels                          ? Xm
                                                                              : Xs;
   if (!newton) iteration = std::make_unique<PaperLevels>(p, levels);
   SolveRun run;
@@ -580,7 +579,7 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
       }
     }
     if (finest)  // memory of the finest
-      hierarchy = ProgressiveMesh(), Xs = Xm = presolve_on = Positions();
+      hierarchy = ProgressiveMesh(), smoothed = Xm = Positions();
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     Construction& construction = iteration->set_up(l, finest, std::move(coarse_lambda));
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());
