@@ -4,8 +4,6 @@ CGAL reference (geofair_dev.cgal_fill_hole) measure what they claim.
 The CGAL tests are skipped when build/bench/cgal_fill_hole is not built, except in CI.
 """
 
-import os
-
 import numpy as np
 import pytest
 
@@ -209,15 +207,6 @@ def test_folded_edges_counts_a_fold():
 
 # --------------------------------------------------------------------------------------
 # CGAL's fill
-
-
-@pytest.fixture
-def needs_cgal():
-    if not cgal_fill_hole.available():
-        reason = f"{cgal_fill_hole.EXECUTABLE} is not built"
-        if os.environ.get("CI"):
-            pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-        pytest.skip(reason)
 
 
 def test_cgal_fill_of_a_planar_hole_lies_in_the_plane(needs_cgal):
