@@ -60,6 +60,7 @@ import time
 import numpy as np
 
 from geofair_dev import cgal_fill_hole, holes, scenes
+from geofair_dev import child as child_process
 from geofair_dev.corpus import CGAL_MESHES
 
 SIZES = (100, 1000, 10000)
@@ -151,16 +152,6 @@ def fill_holes_available():
     return True, None
 
 
-def _scalar(x):
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, np.integer)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        return float(x)
-    return None if x is None else str(x)
-
-
 def child(args):
     """Fills one hole with geofair.fill_holes; writes the result to --result, prints a JSON line."""
     import geofair
@@ -168,24 +159,17 @@ def child(args):
     with np.load(args.child) as d:
         v, f, loop = d["vertices"], d["faces"], d["loop"]
     options = {"inner_fairness": args.inner} if args.inner else {}
-    t = time.perf_counter()
-    try:
-        r = geofair.fill_holes(v, f, loops=[loop], **options)
-    except ValueError as error:
-        out = {"status": "invalid", "message": str(error)}
-    except Exception as error:  # geofair.SolverError (a RuntimeError) and anything else
-        out = {"status": "error", "message": f"{type(error).__name__}: {error}"}
-    else:
-        out = {"status": "done", "seconds": time.perf_counter() - t}
+    out, r = child_process.solve(lambda: geofair.fill_holes(v, f, loops=[loop], **options))
+    if r is not None:
         np.savez(args.result, vertices=np.asarray(r.vertices), faces=np.asarray(r.faces))
         for attr in ("converged", "residual", "message", "stop_reason", "folds", "new_folds", "remeshed"):
-            out[attr] = _scalar(getattr(r, attr, None))
-    out.setdefault("seconds", time.perf_counter() - t)
-    print(json.dumps(out), flush=True)
+            out[attr] = child_process.scalar(getattr(r, attr, None))
+    child_process.report(out)
 
 
 def run_ours(hole, args):
-    """(report dict, vertices, faces) of geofair.fill_holes on the hole, in a subprocess."""
+    """(report dict, vertices, faces) of geofair.fill_holes on the hole, in a child process
+    (geofair_dev.child.run)."""
     os.makedirs(args.cache, exist_ok=True)
     src = os.path.join(args.cache, f"hole_{os.getpid()}.npz")
     dst = os.path.join(args.cache, f"fill_{os.getpid()}.npz")
@@ -195,15 +179,7 @@ def run_ours(hole, args):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", src, "--result", dst]
     if args.inner:
         cmd += ["--inner", args.inner]
-    try:
-        run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
-    except subprocess.TimeoutExpired:
-        return {"status": "timeout", "seconds": args.timeout}, None, None
-    lines = run.stdout.strip().splitlines()
-    if run.returncode != 0 or not lines:
-        err = run.stderr.strip().splitlines()
-        return {"status": "error", "message": err[-1] if err else f"exit status {run.returncode}"}, None, None
-    out = json.loads(lines[-1])
+    out = child_process.run(cmd, args.timeout)
     if out["status"] != "done":
         return out, None, None
     with np.load(dst) as d:

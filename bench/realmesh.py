@@ -47,30 +47,18 @@ import argparse
 import importlib.util
 import json
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
 
+from geofair_dev import child as child_process
 from geofair_dev.corpus import DEFAULT_CACHE, case_file, corpus, new_folds, region_topology
 
 SIZE_CLASSES = ((150, "<=150"), (1500, "<=1.5k"), (15000, "<=15k"), (None, ">15k"))
 
 # --------------------------------------------------------------------------------------
 # Running
-
-
-def _scalar(x):
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, np.integer)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        return float(x)
-    if isinstance(x, (list, tuple)):
-        return [_scalar(y) for y in x]
-    return None if x is None else str(x)
 
 
 def child(args):
@@ -82,34 +70,19 @@ def child(args):
     bn = bn if len(bn) else None
     polygons = polygons if len(polygons) else None
     remesh = {"off": {}, "always": {"remesh": True}, "if_needed": {"remesh": "if_needed"}}[args.remesh]
-    t = time.perf_counter()
-    try:
-        r = geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner, **remesh)
-    except ValueError as error:
-        out = {"status": "invalid", "message": str(error)}
-    except Exception as error:  # geofair.SolverError (a RuntimeError) and anything else
-        out = {"status": "error", "message": f"{type(error).__name__}: {error}"}
-    else:
-        seconds = time.perf_counter() - t
+    out, r = child_process.solve(
+        lambda: geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner, **remesh)
+    )
+    if r is not None:
         np.save(args.result, np.asarray(r.vertices))
-        conv = getattr(r, "converged", None)
-        out = {"status": "yes" if conv else "no", "seconds": seconds}
+        out["status"] = "yes" if getattr(r, "converged", None) else "no"
         if args.remesh != "off":
             out["remeshed"] = bool(getattr(r, "remeshed", False))
             if out["remeshed"]:  # the result's own triangles and free mask
                 np.savez(args.result + ".mesh.npz", faces=np.asarray(r.faces), free=np.asarray(r.free))
         for attr in ("converged", "residual", "iteration", "iterations", "newton_iterations", "reason"):
-            out[attr] = _scalar(getattr(r, attr, None))
-    out.setdefault("seconds", time.perf_counter() - t)
-    print(json.dumps(out), flush=True)
-
-
-IMPORT_RETRIES, IMPORT_WAIT = 40, 15  # geofair may be rebuilt while the benchmark runs: wait for it
-
-
-def _import_failed(stderr):
-    last = stderr.strip().splitlines()[-1:] or [""]
-    return last[0].startswith(("ImportError", "ModuleNotFoundError"))
+            out[attr] = child_process.scalar(getattr(r, attr, None))
+    child_process.report(out)
 
 
 def build_id():
@@ -128,8 +101,9 @@ def _fair_has_remesh():
 
 
 def run_solve(path, inner, args, remesh="off"):
-    """Runs one solve in a subprocess; (dict, result vertices or None); with remesh other
-    than off a remeshed result's faces and free mask are in dict["mesh"]."""
+    """Runs one solve in a child process (geofair_dev.child.run); (dict, result vertices or
+    None); with remesh other than off a remeshed result's faces and free mask are in
+    dict["mesh"]."""
     result = os.path.join(args.cache, f"result_{os.getpid()}.npy")
     for stale in (result, result + ".mesh.npz"):
         if os.path.exists(stale):
@@ -137,20 +111,7 @@ def run_solve(path, inner, args, remesh="off"):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", path, "--inner", inner, "--result", result]
     if remesh != "off":
         cmd += ["--remesh", remesh]
-    for _ in range(IMPORT_RETRIES):
-        try:
-            run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
-        except subprocess.TimeoutExpired:
-            return {"status": "timeout"}, None
-        if not _import_failed(run.stderr):
-            break
-        print(f"# geofair not importable (being rebuilt?), retrying in {IMPORT_WAIT} s", flush=True)
-        time.sleep(IMPORT_WAIT)
-    lines = run.stdout.strip().splitlines()
-    if run.returncode != 0 or not lines:
-        err = run.stderr.strip().splitlines()
-        return {"status": "error", "message": err[-1] if err else f"exit status {run.returncode}"}, None
-    out = json.loads(lines[-1])
+    out = child_process.run(cmd, args.timeout)
     after = np.load(result) if out["status"] in ("yes", "no") else None
     if after is not None:
         os.remove(result)
@@ -347,11 +308,11 @@ def main():
                 break
             except ImportError as error:  # geofair, maybe being rebuilt
                 import_waits += 1
-                if import_waits > IMPORT_RETRIES:
+                if import_waits > child_process.IMPORT_RETRIES:
                     raise
-                print(f"# {desc['name']}: {error}; retrying in {IMPORT_WAIT} s", flush=True)
+                print(f"# {desc['name']}: {error}; retrying in {child_process.IMPORT_WAIT} s", flush=True)
                 sys.modules.pop("geofair", None)
-                time.sleep(IMPORT_WAIT)
+                time.sleep(child_process.IMPORT_WAIT)
                 continue
             with np.load(path) as d:
                 v, f, free = d["vertices"], d["faces"], d["free"]

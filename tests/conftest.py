@@ -6,11 +6,10 @@ With GEOFAIR_TEST_INSTALLED=1 the tests run against the installed ``geofair`` (t
 a virtual environment, tests/test_wheel.py) and build/python stays off sys.path.
 """
 
-import os
-
 import pytest
 
 from geofair_dev import cgal_fill_hole, paths
+from geofair_dev.testing import require_built
 
 paths.use_build_module()
 
@@ -18,8 +17,4 @@ paths.use_build_module()
 @pytest.fixture
 def needs_cgal():
     """Skips a test that needs bench/cgal_fill_hole where it is not built; fails it in CI."""
-    if not cgal_fill_hole.available():
-        reason = f"{cgal_fill_hole.EXECUTABLE} is not built"
-        if os.environ.get("CI"):
-            pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-        pytest.skip(reason)
+    require_built(cgal_fill_hole)

@@ -32,6 +32,7 @@ import pytest
 
 from geofair_dev import paths
 from geofair_dev.paths import BUILD, REPO
+from geofair_dev.testing import unavailable
 
 CHECKS = REPO / "tests" / "blender"
 
@@ -46,29 +47,23 @@ CHECKS_IN_BOTH = [
 ]
 
 
-def _unavailable(reason):
-    if os.environ.get("CI"):
-        pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-    pytest.skip(reason)
-
-
 def _built_addon():
     addon = BUILD / "addon"
     if not list((addon / "geometric_fairing").glob("geofair*.so")):
-        _unavailable(f"no built add-on with its compiled module in {addon}: build the project first")
+        unavailable(f"no built add-on with its compiled module in {addon}: build the project first")
     return addon
 
 
 def _blender_command(script):
     blender = shutil.which("blender")
     if blender is None:
-        _unavailable("blender is not installed")
+        unavailable("blender is not installed")
     return [blender, "--background", "--factory-startup", "--python-exit-code", "1", "--python", str(script)]
 
 
 def _bpy_module_command(script):
     if importlib.util.find_spec("bpy") is None:
-        _unavailable(f"the bpy module is not installed for {sys.executable}")
+        unavailable(f"the bpy module is not installed for {sys.executable}")
     return [sys.executable, str(script)]
 
 
@@ -145,7 +140,7 @@ def test_portable_legacy_addon_needs_no_suitesparse(tmp_path):
     addon = REPO / "build-portable" / "addon"
     modules = list((addon / "geometric_fairing").glob("geofair*.so"))
     if not modules:
-        _unavailable(f"no portable build's add-on in {addon}: scripts/setup.sh builds it")
+        unavailable(f"no portable build's add-on in {addon}: scripts/setup.sh builds it")
     needed = subprocess.run(["ldd", str(modules[0])], capture_output=True, text=True, check=True).stdout
     for library in ("umfpack", "cholmod", "metis", "blas", "lapack", "suitesparse"):
         assert library not in needed.lower(), needed
@@ -170,7 +165,7 @@ def test_fair_object_example(variant, tmp_path):
 def test_modal_operator_under_xvfb():
     blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
     if blender is None or xvfb is None:
-        _unavailable("the modal check needs blender and xvfb-run")
+        unavailable("the modal check needs blender and xvfb-run")
     command = [
         xvfb,
         "-a",

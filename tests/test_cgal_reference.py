@@ -5,21 +5,16 @@ reproduces a plane exactly and leaves the fixed vertices alone. Skipped when the
 executable is not built, except in CI.
 """
 
-import os
-
 import numpy as np
 import pytest
 
 from geofair_dev import cgal_fair, scenes
+from geofair_dev.testing import require_built
 
 
 @pytest.fixture(autouse=True)
 def _needs_cgal():
-    if not cgal_fair.available():
-        reason = f"{cgal_fair.EXECUTABLE} is not built"
-        if os.environ.get("CI"):
-            pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-        pytest.skip(reason)
+    require_built(cgal_fair)
 
 
 def test_plane_is_reproduced_and_fixed_vertices_are_untouched():

@@ -29,6 +29,7 @@ import pytest
 import geofair
 from geofair_dev import paths
 from geofair_dev.paths import BUILD, REPO
+from geofair_dev.testing import unavailable
 
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
 CACHE = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache")
@@ -40,20 +41,14 @@ VARIANTS = ["bpy-4.5", *BPY_VENVS]
 BLENDER_COMMAND = paths.source_module(REPO / "scripts" / "build_extension.py").BLENDER_COMMAND
 
 
-def _unavailable(reason):
-    if os.environ.get("CI"):
-        pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-    pytest.skip(reason)
-
-
 def bpy_python(variant):
     if variant == "bpy-4.5":
         if importlib.util.find_spec("bpy") is None:
-            _unavailable(f"the bpy module is not installed for {sys.executable}")
+            unavailable(f"the bpy module is not installed for {sys.executable}")
         return sys.executable
     python = pathlib.Path(BPY_VENVS[variant][0])
     if not python.is_file():
-        _unavailable(f"no {variant} venv at {python}: scripts/setup.sh makes it")
+        unavailable(f"no {variant} venv at {python}: scripts/setup.sh makes it")
     return str(python)
 
 
@@ -75,9 +70,9 @@ def extension_zip(tmp_path_factory):
         for wheel in sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux*.whl"))
     ]
     if [w.name.split("-")[2] for w in wheels] != ["cp311", "cp313"]:
-        _unavailable(f"no repaired cp311 and cp313 wheels in dist/ ({wheels}): run scripts/build_wheel.sh")
+        unavailable(f"no repaired cp311 and cp313 wheels in dist/ ({wheels}): run scripts/build_wheel.sh")
     if not (BUILD / "addon" / "geometric_fairing" / "blender_manifest.toml").is_file():
-        _unavailable(f"no built add-on in {BUILD / 'addon'}")
+        unavailable(f"no built add-on in {BUILD / 'addon'}")
     bpy_python("bpy-4.5")
     out = tmp_path_factory.mktemp("extension")
     run(

@@ -29,6 +29,8 @@ import tomllib
 
 import pytest
 
+from geofair_dev.testing import unavailable
+
 REPO = pathlib.Path(__file__).resolve().parents[1]
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
 NOT_MODULE_TESTS = {
@@ -41,12 +43,6 @@ NOT_MODULE_TESTS = {
 }
 
 
-def _unavailable(reason):
-    if os.environ.get("CI"):
-        pytest.fail(f"{reason} (CI is set, so this is not skipped)")
-    pytest.skip(reason)
-
-
 TAGS = ("cp311", "cp312", "cp313")
 TEST_REQUIREMENTS = ("numpy", "scipy", "matplotlib", "pytest", "mypy")  # of the module's tests
 PYENV = pathlib.Path(os.environ.get("PYENV_ROOT") or pathlib.Path.home() / ".pyenv")
@@ -56,7 +52,7 @@ def built_wheel(tag):
     """The repaired wheel of this version for CPython ``tag`` in dist/ (skip or fail when there is none)."""
     wheels = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux*_x86_64.whl"))
     if not wheels:
-        _unavailable(f"no repaired {tag} wheel geofair-{VERSION}-*manylinux* in dist/: run scripts/build_wheel.sh")
+        unavailable(f"no repaired {tag} wheel geofair-{VERSION}-*manylinux* in dist/: run scripts/build_wheel.sh")
     assert len(wheels) == 1, wheels
     return wheels[0]
 
@@ -65,12 +61,12 @@ def interpreter(tag):
     """The Python of ``tag``: this one for cp311 (the system's packages), pyenv's for the others."""
     if tag == "cp311":
         if sys.version_info[:2] != (3, 11):
-            _unavailable(f"the cp311 wheel needs Python 3.11, this is {sys.version.split()[0]}")
+            unavailable(f"the cp311 wheel needs Python 3.11, this is {sys.version.split()[0]}")
         return pathlib.Path(sys.executable)
     minor = tag.removeprefix("cp3")
     found = sorted(PYENV.glob(f"versions/3.{minor}.*/bin/python3.{minor}"))
     if not found:
-        _unavailable(f"no Python 3.{minor} under {PYENV}/versions")
+        unavailable(f"no Python 3.{minor} under {PYENV}/versions")
     return found[-1]
 
 

@@ -19,6 +19,8 @@ What tests/, bench/, scripts/ and examples/ share, imported the same way by all 
 - ``cgal_fill_hole``: CGAL's triangulate_refine_and_fair_hole as a reference (runs
   build/bench/cgal_fill_hole).
 - ``blender``: inside Blender or the bpy module: enable the add-on, Suzanne, select faces.
+- ``child``: a benchmark's solves, each in a child process (bench/realmesh.py, bench/holes.py).
+- ``testing``: a missing tool skips a test locally and fails it in CI (tests/).
 
 Installed editable by scripts/setup.sh (``python3 -m pip install -e dev/``); see paths.py for
 how each interpreter finds it.
