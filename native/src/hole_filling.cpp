@@ -64,10 +64,32 @@ std::vector<int> oriented_loop(const std::vector<int>& loop, const DirectedEdges
   return out;
 }
 
-std::vector<std::vector<int>> loops_of(const Positions& V, const Triangles& F,
-                                       const char* caller) {
-  check_mesh(V, F, caller);
-  const DirectedEdges edges(F);
+}  // namespace
+
+std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F) {
+  check_mesh(V, F, "boundary_loops");
+  return hole_filling::border_loops(DirectedEdges(F), "boundary_loops");
+}
+
+namespace hole_filling {
+
+DirectedEdges::DirectedEdges(const Triangles& F) {
+  const int n = F.size() > 0 ? F.maxCoeff() + 1 : 0;
+  offset_.assign(size_t(n) + 1, 0);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++offset_[size_t(F(f, c)) + 1];
+  for (int v = 0; v < n; ++v) offset_[v + 1] += offset_[v];
+  const size_t m = size_t(3 * F.rows());
+  to_.resize(m), third_.resize(m), triangle_.resize(m);
+  std::vector<int> next(offset_.begin(), offset_.end() - 1);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int k = next[F(f, c)]++;
+      to_[k] = F(f, (c + 1) % 3), third_[k] = F(f, (c + 2) % 3), triangle_[k] = f;
+    }
+}
+
+std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller) {
   std::map<int, int> next;  // loop successor in the direction of the missing face
   edges.for_each_border_edge([&](int a, int b) {
     if (!next.emplace(b, a).second)
@@ -88,20 +110,6 @@ std::vector<std::vector<int>> loops_of(const Positions& V, const Triangles& F,
     loops.push_back(std::move(loop));
   }
   return loops;
-}
-
-}  // namespace
-
-std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F) {
-  return loops_of(V, F, "boundary_loops");
-}
-
-namespace hole_filling {
-
-DirectedEdges::DirectedEdges(const Triangles& F) {
-  map_.reserve(size_t(3 * F.rows()));
-  for (int f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) map_[key(F(f, c), F(f, (c + 1) % 3))] = F(f, (c + 2) % 3);
 }
 
 namespace {
@@ -279,13 +287,18 @@ SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
 
 std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
                                             const std::vector<std::vector<int>>& loops) {
+  check_mesh(V, F, "fill_holes");
+  return holes_to_fill(V, loops, DirectedEdges(F));
+}
+
+std::vector<std::vector<int>> holes_to_fill(const Positions& V,
+                                            const std::vector<std::vector<int>>& loops,
+                                            const DirectedEdges& edges) {
   if (loops.empty()) {
-    auto all = loops_of(V, F, "fill_holes");
+    auto all = border_loops(edges, "fill_holes");
     if (all.empty()) throw InvalidInputError("fill_holes: the mesh has no hole (no boundary edge)");
     return all;
   }
-  check_mesh(V, F, "fill_holes");
-  const DirectedEdges edges(F);
   std::vector<std::vector<int>> out;
   std::map<int, int> owner;
   for (size_t l = 0; l < loops.size(); ++l) {
@@ -317,16 +330,6 @@ void append_rows(Matrix& M, const Matrix& rows) {
   M.bottomRows(rows.rows()) = rows;
 }
 
-// The mesh around the holes: its directed edges and each vertex's triangles.
-struct Surroundings {
-  Surroundings(const Triangles& F, Eigen::Index n_vertices) : edges(F), at(n_vertices) {
-    for (int f = 0; f < F.rows(); ++f)
-      for (int c = 0; c < 3; ++c) at[F(f, c)].push_back(f);
-  }
-  DirectedEdges edges;
-  std::vector<std::vector<int>> at;
-};
-
 // One hole's fill: the new vertices (to be appended after `base` rows) and the new
 // triangles, in the caller's indices.
 struct Fill {
@@ -336,9 +339,8 @@ struct Fill {
 
 // Triangulates, splits and remeshes one hole at edge length L. The remesh sees only the
 // patch and the mesh's triangles at the loop (the valences there), not the whole mesh.
-Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
+Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges,
               const std::vector<int>& loop, double L, int base) {
-  const auto& at = mesh.at;
   // Local rows: the vertices of the triangles at the loop, then the split's midpoints.
   std::vector<int> global;
   std::unordered_map<int, int> local;
@@ -347,8 +349,7 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
     return local.at(v);
   };
   std::vector<int> around;  // the mesh's triangles at the loop vertices
-  for (int v : loop)
-    for (int f : at[v]) around.push_back(f);
+  for (int v : loop) edges.for_each_triangle_at(v, [&](int f) { around.push_back(f); });
   std::sort(around.begin(), around.end());
   around.erase(std::unique(around.begin(), around.end()), around.end());
   Triangles T(Eigen::Index(around.size()), 3);
@@ -358,7 +359,7 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
   for (int v : loop) local_loop.push_back(add(v));
   Positions X(Eigen::Index(global.size()), 3);
   for (size_t k = 0; k < global.size(); ++k) X.row(Eigen::Index(k)) = V.row(global[k]);
-  const Triangles patch = hole_filling::triangulate_loop(V, loop, mesh.edges);
+  const Triangles patch = hole_filling::triangulate_loop(V, loop, edges);
   Triangles local_patch(patch.rows(), 3);
   for (int t = 0; t < patch.rows(); ++t)
     for (int c = 0; c < 3; ++c) local_patch(t, c) = local.at(patch(t, c));
@@ -407,7 +408,7 @@ Fill fill_one(const Positions& V, const Triangles& F, const Surroundings& mesh,
 
 // All holes filled at `scale` times their edge lengths, then faired together (the phase
 // "fill" first in phase_seconds).
-FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Surroundings& mesh,
+FairingResult fill_and_fair(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                             const std::vector<std::vector<int>>& holes,
                             const std::vector<double>& lengths, double scale,
                             const FairingOptions& options) {
@@ -415,7 +416,7 @@ FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Surrou
   std::vector<Fill> fills;
   Eigen::Index rows = V.rows(), faces = F.rows();
   for (size_t h = 0; h < holes.size(); ++h) {
-    fills.push_back(fill_one(V, F, mesh, holes[h], scale * lengths[h], int(rows)));
+    fills.push_back(fill_one(V, F, edges, holes[h], scale * lengths[h], int(rows)));
     rows += fills.back().vertices.rows();
     faces += fills.back().faces.rows();
   }
@@ -450,14 +451,15 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
                          const FairingOptions& options, double target_edge_length) {
   if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
     throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
-  const auto holes = hole_filling::holes_to_fill(V, F, loops);
+  check_mesh(V, F, "fill_holes");
+  const DirectedEdges edges(F);
+  const auto holes = hole_filling::holes_to_fill(V, loops, edges);
   std::vector<double> lengths;
   for (const auto& loop : holes)
     lengths.push_back(target_edge_length > 0.0 ? target_edge_length
                                                : mean_loop_edge_length(V, loop));
   Laps laps;
-  const Surroundings mesh(F, V.rows());
-  FairingResult result = fill_and_fair(V, F, mesh, holes, lengths, 1.0, options);
+  FairingResult result = fill_and_fair(V, F, edges, holes, lengths, 1.0, options);
   const bool failed = !result.converged || result.new_folds > 0;
   const double spent = laps.lap();
   const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
@@ -466,7 +468,7 @@ FairingResult fill_holes(const Positions& V, const Triangles& F,
       result.stop_reason == StopReason::Cancelled)
     return result;
   // A ragged loop asks for a finer fill next to it: once more at half the edge length.
-  FairingResult finer = fill_and_fair(V, F, mesh, holes, lengths, 0.5, options_after(options, spent));
+  FairingResult finer = fill_and_fair(V, F, edges, holes, lengths, 0.5, options_after(options, spent));
   const bool finer_ok = finer.converged && finer.new_folds == 0;
   if (finer_ok || (finer.converged && !result.converged)) {
     finer.message += "; filled at half the loops' edge length (at their own it did not " +

@@ -4,42 +4,63 @@
 #include "geofair/types.h"
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace geofair::hole_filling {
 
-/// The directed edges (a, b) of a mesh's triangles, each to the triangle's third vertex.
+/// The directed edges (a, b) of a mesh's triangles, each with its triangle, grouped by
+/// their first vertex (compressed rows: one pass over the triangles, no hashing, so that a
+/// small hole in a mesh of millions of triangles costs little). F must be valid
+/// (indices >= 0, each directed edge in one triangle: a consistently oriented manifold).
 class DirectedEdges {
  public:
   explicit DirectedEdges(const Triangles& F);
   /// The third vertex of the triangle with the directed edge a -> b, or -1.
   int third(int a, int b) const {
-    auto it = map_.find(key(a, b));
-    return it == map_.end() ? -1 : it->second;
+    const int k = slot(a, b);
+    return k < 0 ? -1 : third_[k];
   }
-  bool has(int a, int b) const { return map_.count(key(a, b)) != 0; }
+  bool has(int a, int b) const { return slot(a, b) >= 0; }
+  /// Calls f(t) for each triangle t (a row of F) with a corner at vertex v.
+  template <class Function>
+  void for_each_triangle_at(int v, Function f) const {
+    if (v < 0 || v + 1 >= int(offset_.size())) return;
+    for (int k = offset_[v]; k < offset_[v + 1]; ++k) f(triangle_[k]);
+  }
   /// Calls f(a, b) for each directed edge whose reverse is not an edge (a border edge).
   template <class Function>
   void for_each_border_edge(Function f) const {
-    for (const auto& [k, third] : map_) {
-      const int a = int(k >> 32), b = int(k & 0xffffffffu);
-      if (!has(b, a)) f(a, b);
-    }
+    for (int a = 0; a + 1 < int(offset_.size()); ++a)
+      for (int k = offset_[a]; k < offset_[a + 1]; ++k)
+        if (!has(to_[k], a)) f(a, to_[k]);
   }
 
  private:
-  static std::uint64_t key(int a, int b) {
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+  // The slot of edge a -> b in to_, third_ and triangle_, or -1.
+  int slot(int a, int b) const {
+    if (a < 0 || a + 1 >= int(offset_.size())) return -1;
+    for (int k = offset_[a]; k < offset_[a + 1]; ++k)
+      if (to_[k] == b) return k;
+    return -1;
   }
-  std::unordered_map<std::uint64_t, int> map_;
+  std::vector<int> offset_;  // edges from vertex a: slots offset_[a] .. offset_[a + 1] - 1
+  std::vector<int> to_, third_, triangle_;
 };
+
+/// The boundary loops of a valid F (checked before) from its directed edges, as
+/// boundary_loops returns them. \throw InvalidInputError, naming `caller`, where a vertex
+/// is on the border twice.
+std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller);
 
 /// The holes to fill: `loops` checked (boundary loops of F, oriented in the direction of
 /// the missing face, see boundary_loops), or every boundary loop of F when `loops` is empty.
 /// \throw InvalidInputError as fill_holes.
 std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
                                             const std::vector<std::vector<int>>& loops);
+/// The same from the directed edges of a valid F (checked before).
+std::vector<std::vector<int>> holes_to_fill(const Positions& V,
+                                            const std::vector<std::vector<int>>& loops,
+                                            const DirectedEdges& edges);
 
 /// Loops longer than this are not searched by Liepa's O(n³) triangulation: their patch is a
 /// fan around a vertex at the centroid (split_inner_edges).
