@@ -33,6 +33,32 @@ std::map<std::pair<int, int>, int> directed(const Triangles& F) {
   return e;
 }
 
+TEST(DirectedEdges, AgreeWithAMapOfTheTriangles) {
+  const testing::Mesh m = grid_with_hole(10, 0.45);
+  const hole_filling::DirectedEdges edges(m.F);
+  const auto reference = directed(m.F);
+  const int n = int(m.V.rows());
+  std::set<std::pair<int, int>> border;
+  edges.for_each_border_edge([&](int a, int b) { border.insert({a, b}); });
+  for (int a = 0; a < n; ++a) {
+    std::set<int> at;
+    edges.for_each_triangle_at(a, [&](int t) { at.insert(t); });
+    std::set<int> expected;
+    for (int f = 0; f < m.F.rows(); ++f)
+      if (m.F(f, 0) == a || m.F(f, 1) == a || m.F(f, 2) == a) expected.insert(f);
+    EXPECT_EQ(at, expected) << "vertex " << a;
+    for (int b = 0; b < n; ++b) {
+      const auto it = reference.find({a, b});
+      EXPECT_EQ(edges.third(a, b), it == reference.end() ? -1 : it->second);
+      EXPECT_EQ(edges.has(a, b), it != reference.end());
+      const bool is_border = it != reference.end() && !reference.count({b, a});
+      EXPECT_EQ(border.count({a, b}) == 1, is_border);
+    }
+  }
+  EXPECT_EQ(edges.third(-1, 0), -1);
+  EXPECT_EQ(edges.third(n, 0), -1);
+}
+
 TEST(BoundaryLoops, GridWithHoleHasOuterAndInnerLoop) {
   const testing::Mesh m = grid_with_hole(10, 0.45);
   const auto loops = boundary_loops(m.V, m.F);
