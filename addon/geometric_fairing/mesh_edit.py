@@ -438,19 +438,24 @@ def add_fill(obj, data, result):
     if np.any(np.diff(np.sort(new_faces, axis=1), axis=1) == 0):
         raise carry.CarryError("the solver returned degenerate faces; mesh unchanged")
     size = len(vertices)
-    tri_polygons = data.loop_total[data.triangle_face] == 3
-    keys, existing = carry.face_keys(new_faces, data.triangles[tri_polygons])
-    if len(np.unique(keys)) != len(keys) or np.isin(keys, existing).any():
-        raise carry.CarryError("the new faces repeat a face of the mesh; mesh unchanged")
     k = len(vertices) - n
     boundary_rows = np.unique(new_faces[new_faces < n])
+    # Only the mesh's triangles at the fill's old vertices can be repeated by a new face or lie
+    # across its boundary (a small set: the checks below do not scan a large mesh).
+    at_boundary = np.isin(data.triangles, boundary_rows)
+    repeatable = at_boundary.all(axis=1) & (data.loop_total[data.triangle_face] == 3)
+    keys, existing = carry.face_keys(new_faces, data.triangles[repeatable])
+    if len(np.unique(keys)) != len(keys) or np.isin(keys, existing).any():
+        raise carry.CarryError("the new faces repeat a face of the mesh; mesh unchanged")
     # Each boundary edge of the fill (an edge of a new face between two old vertices) and the
     # triangle across it: its corner data at the boundary vertices.
-    heads = data.triangles.ravel().astype(np.int64)
-    tails = data.triangles[:, [1, 2, 0]].ravel().astype(np.int64)
+    near = np.flatnonzero(at_boundary.any(axis=1))
+    heads = data.triangles[near].ravel().astype(np.int64)
+    tails = data.triangles[near][:, [1, 2, 0]].ravel().astype(np.int64)
+    halves = (3 * near[:, None] + np.arange(3)).ravel()  # their half-edges' indices in the mesh
     directed = {}
-    for index, key in enumerate((heads * size + tails).tolist()):
-        directed.setdefault(key, index)
+    for half, key in zip(halves.tolist(), (heads * size + tails).tolist(), strict=True):
+        directed.setdefault(key, half)
     boundary_half = []  # (a, b, half-edge of the triangle across)
     for tri in new_faces.tolist():
         for i in range(3):

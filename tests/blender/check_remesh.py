@@ -264,6 +264,19 @@ def fill_with_nan(result):
     return result
 
 
+def fill_repeating_a_new_face(result):
+    result.faces = np.vstack([result.faces, result.faces[-1:]])
+    return result
+
+
+def fill_repeating_a_pole_triangle(result):
+    """A new face equal to one of the UV sphere's triangles at its top pole, far from the hole."""
+    pole = int(np.argmax(result.vertices[:, 2]))
+    at_pole = np.flatnonzero((result.faces == pole).any(axis=1))
+    result.faces = np.vstack([result.faces, result.faces[at_pole[:1]]])
+    return result
+
+
 def check_bad_results(addon):
     """Results that do not fit the mesh (NaN, a wrong origin, a lost triangle): CANCELLED, mesh untouched."""
     obj = add_subdivided_suzanne()
@@ -293,17 +306,23 @@ def check_bad_results(addon):
 
 
 def check_bad_fill(addon):
-    """A fill that does not fit the mesh (NaN): CANCELLED, mesh untouched."""
+    """Fills that do not fit the mesh (NaN, a repeated face): CANCELLED, mesh untouched."""
     real = addon.native.geofair
     obj, _ = sphere_with_hole("Holed sphere (bad fill)", np.array([0.0, -1.0, 0.2]))
     before = edit_state(obj)
-    addon.native.geofair = CorruptingModule(real, fill_with_nan)
-    try:
-        result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
-    finally:
-        addon.native.geofair = real
-    assert result == {"CANCELLED"} and "invalid positions" in error and edit_state(obj) == before, error
-    print(f"ok: a fill with NaN: {error}; mesh unchanged")
+    cases = (
+        (fill_with_nan, "invalid positions"),
+        (fill_repeating_a_new_face, "repeat a face of the mesh"),
+        (fill_repeating_a_pole_triangle, "repeat a face of the mesh"),
+    )
+    for corrupt, expected in cases:
+        addon.native.geofair = CorruptingModule(real, corrupt)
+        try:
+            result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
+        finally:
+            addon.native.geofair = real
+        assert result == {"CANCELLED"} and expected in error and edit_state(obj) == before, error
+        print(f"ok: a {corrupt.__name__.replace('_', ' ')}: {error}; mesh unchanged")
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
 
