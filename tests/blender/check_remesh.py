@@ -277,6 +277,23 @@ def fill_repeating_a_pole_triangle(result):
     return result
 
 
+def check_refused(addon, obj, cases, operator, **properties):
+    """Each ``(corrupt, expected)`` of ``cases``: with the library's result changed by ``corrupt``, the
+    operator is CANCELLED with ``expected`` and "mesh unchanged" in its report, and ``obj``'s mesh is
+    untouched."""
+    real = addon.native.geofair
+    before = edit_state(obj)
+    for corrupt, expected in cases:
+        addon.native.geofair = CorruptingModule(real, corrupt)
+        try:
+            result, error = run(operator, **properties)
+        finally:
+            addon.native.geofair = real
+        assert result == {"CANCELLED"} and expected in error and "mesh unchanged" in error, error
+        assert edit_state(obj) == before, f"{corrupt.__name__}: the mesh changed"
+        print(f"ok: {corrupt.__name__.replace('_', ' ')}: {error}")
+
+
 def check_bad_results(addon):
     """Results that do not fit the mesh (NaN, a wrong origin, a lost triangle): CANCELLED, mesh untouched."""
     obj = add_subdivided_suzanne()
@@ -285,44 +302,25 @@ def check_bad_results(addon):
     co = np.array([v.co[:] for v in bm.verts])
     ear = co[np.argmax(co[:, 0])] - [0.15, 0.0, 0.0]
     select_face_mask(obj, [np.linalg.norm(np.array(f.calc_center_median()[:]) - ear) < 0.2 for f in bm.faces])
-    before = edit_state(obj)
-    real = addon.native.geofair
     cases = (
         (nan_at_new_vertex, "invalid positions"),
         (origin_out_of_range, "without a valid origin"),
         (lost_outside_triangle, "lost triangles outside the region"),
     )
-    for corrupt, expected in cases:
-        addon.native.geofair = CorruptingModule(real, corrupt)
-        try:
-            result, error = run(bpy.ops.mesh.geometric_fairing, remesh="always", keep_unconverged=True)
-        finally:
-            addon.native.geofair = real
-        assert result == {"CANCELLED"} and expected in error and "mesh unchanged" in error, error
-        assert edit_state(obj) == before, f"{corrupt.__name__}: the mesh changed"
-        print(f"ok: a remeshed result with {corrupt.__name__.replace('_', ' ')}: {error}; mesh unchanged")
+    check_refused(addon, obj, cases, bpy.ops.mesh.geometric_fairing, remesh="always", keep_unconverged=True)
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
 
 
 def check_bad_fill(addon):
     """Fills that do not fit the mesh (NaN, a repeated face): CANCELLED, mesh untouched."""
-    real = addon.native.geofair
     obj, _ = sphere_with_hole("Holed sphere (bad fill)", np.array([0.0, -1.0, 0.2]))
-    before = edit_state(obj)
     cases = (
         (fill_with_nan, "invalid positions"),
         (fill_repeating_a_new_face, "repeat a face of the mesh"),
         (fill_repeating_a_pole_triangle, "repeat a face of the mesh"),
     )
-    for corrupt, expected in cases:
-        addon.native.geofair = CorruptingModule(real, corrupt)
-        try:
-            result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
-        finally:
-            addon.native.geofair = real
-        assert result == {"CANCELLED"} and expected in error and edit_state(obj) == before, error
-        print(f"ok: a {corrupt.__name__.replace('_', ' ')}: {error}; mesh unchanged")
+    check_refused(addon, obj, cases, bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
 
