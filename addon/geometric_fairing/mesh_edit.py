@@ -450,8 +450,9 @@ def add_fill(obj, data, result):
     # Each boundary edge of the fill (an edge of a new face between two old vertices) and the
     # triangle across it: its corner data at the boundary vertices.
     near = np.flatnonzero(at_boundary.any(axis=1))
-    heads = data.triangles[near].ravel().astype(np.int64)
-    tails = data.triangles[near][:, [1, 2, 0]].ravel().astype(np.int64)
+    near_triangles = data.triangles[near].astype(np.int64)
+    heads = near_triangles.ravel()
+    tails = near_triangles[:, [1, 2, 0]].ravel()
     halves = (3 * near[:, None] + np.arange(3)).ravel()  # their half-edges' indices in the mesh
     directed = {}
     for half, key in zip(halves.tolist(), (heads * size + tails).tolist(), strict=True):
