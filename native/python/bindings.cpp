@@ -1,5 +1,6 @@
 // Python bindings of geofair: numpy in, numpy out. Converts types only; all checks of
 // content (indices, finiteness, topology) happen in the C++ library.
+#include "geofair/blas.h"
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "geofair/hole_filling.h"
@@ -18,6 +19,7 @@
 #include <limits>
 #include <optional>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <type_traits>
 
@@ -1148,9 +1150,44 @@ ValueError for invalid input (shapes, indices, no free vertex, a free vertex on 
 border, a region that is not a consistently oriented 2-manifold, invalid options).)doc");
 }
 
+// The OpenBLAS of a build that loads its BLAS at run time (geofair/blas.h): the file that
+// the environment variable GEOFAIR_BLAS names (the legacy add-on sets it to the copy beside
+// the module), else that of PyPI's scipy-openblas32, a dependency of the wheel.
+void load_openblas() {
+  if (!blas_loaded_at_run_time()) return;
+  std::string path;
+  if (const char* named = std::getenv("GEOFAIR_BLAS"); named && *named) {
+    path = named;
+  } else {
+    py::object package;
+    try {
+      package = py::module_::import("scipy_openblas32");
+    } catch (py::error_already_set& e) {
+      throw py::import_error(
+          "geofair needs OpenBLAS from the package scipy-openblas32 (pip install "
+          "scipy-openblas32), or GEOFAIR_BLAS set to an OpenBLAS library: " + std::string(e.what()));
+    }
+    const std::filesystem::path dir = package.attr("get_lib_dir")().cast<std::string>();
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+      const std::string name = entry.path().filename().string();
+      const std::string ext = entry.path().extension().string();
+      if (name.rfind("libscipy_openblas", 0) == 0 && (ext == ".so" || ext == ".dylib" || ext == ".dll"))
+        path = entry.path().string();
+    }
+    if (path.empty()) throw py::import_error("geofair: no OpenBLAS library in " + dir.string());
+  }
+  try {
+    load_blas(path);
+  } catch (const std::exception& e) {
+    throw py::import_error(std::string("geofair: ") + e.what());
+  }
+}
+
 }  // namespace
 
 PYBIND11_MODULE(geofair, m) {
+  load_openblas();
   m.doc() =
       "Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary conditions\n"
       "(Schneider & Kobbelt, Geometric fairing of irregular meshes for free-form surface\n"

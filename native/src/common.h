@@ -48,8 +48,4 @@ inline FairingOptions options_after(const FairingOptions& options, double spent)
   return rest;
 }
 
-/// Loops over fewer vertices than this run on one thread (with OpenMP): below it the
-/// threads' start-up costs more than they save (docs/DESIGN_NOTES.md).
-constexpr int kParallelMin = 2500;
-
 }  // namespace geofair

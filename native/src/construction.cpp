@@ -3,6 +3,7 @@
 
 #include "common.h"
 #include "mean_curvature.h"
+#include "parallel.h"
 #include "surface_projection.h"
 #include "vertex_update.h"
 
@@ -53,21 +54,17 @@ void Construction::curvatures(const Positions& X, Positions& N, Eigen::VectorXd&
   // G0: H = 0 prescribed on the boundary; its tangent planes, which only the spiral samples
   // of free neighbours read, follow the surface (Max's weights, as on coarse levels).
   const bool g0 = region_.boundary == BoundaryCondition::G0;
-#pragma omp parallel if (n > kParallelMin)
-  {
-#pragma omp for schedule(static)
-    for (int i = 0; i < nf; ++i) N.row(i) = vertex_normal(rings, X, i, w);
-    if (g0) {
-#pragma omp for schedule(static)
-      for (int i = nf; i < n; ++i) {
-        const Vec3 normal = vertex_normal(rings, X, i, NormalWeighting::Max);
-        if (normal.squaredNorm() > 0.0) N.row(i) = normal;
-      }
-    }
-#pragma omp for schedule(static)
-    for (int i = 0; i < (g0 ? nf : n); ++i)
-      H(i) = moreton_sequin(rings, X, N, i, X.row(i), N.row(i), needs_spiral_samples(rings, i)).H;
+  const bool parallel = n > kParallelMin;
+  parallel_for(nf, parallel, [&](int i) { N.row(i) = vertex_normal(rings, X, i, w); });
+  if (g0) {
+    parallel_for(n - nf, parallel, [&](int k) {
+      const Vec3 normal = vertex_normal(rings, X, nf + k, NormalWeighting::Max);
+      if (normal.squaredNorm() > 0.0) N.row(nf + k) = normal;
+    });
   }
+  parallel_for(g0 ? nf : n, parallel, [&](int i) {
+    H(i) = moreton_sequin(rings, X, N, i, X.row(i), N.row(i), needs_spiral_samples(rings, i)).H;
+  });
   if (g0) H.tail(n - nf).setZero();
 }
 

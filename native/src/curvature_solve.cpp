@@ -1,6 +1,8 @@
 // Local (Gauss–Seidel) and global (preconditioned CG) steps of section 7.1.
 #include "curvature_solve.h"
 
+#include "parallel.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -20,8 +22,7 @@ void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eige
   };
   Eigen::VectorXd start;
   if (blocks > 1) start = x;  // one block reads only its own rows
-#pragma omp parallel for schedule(static, 1) if (blocks > 1)
-  for (int block = 0; block < blocks; ++block) {
+  parallel_for(blocks, blocks > 1, [&](int block) {
     const int lo = first_row(block), hi = first_row(block + 1);
     auto relax_row = [&](int r) {
       double sum = b(r), diagonal = 0.0;
@@ -38,7 +39,7 @@ void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eige
       for (int r = lo; r < hi; ++r) relax_row(r);
     else
       for (int r = hi; r-- > lo;) relax_row(r);
-  }
+  });
 }
 
 CurvatureSolver::CurvatureSolver(int iterations) {

@@ -5,15 +5,13 @@
 #include "common.h"
 #include "inner_fairness.h"
 #include "nested_iteration.h"
+#include "parallel.h"
 #include "region.h"
 #include "remesh.h"
 #include "schedule.h"
 #include "sparse_lu.h"
 
 #include <algorithm>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,15 +37,12 @@ void check_options(const FairingOptions& o) {
   validate_tuning(o.tuning);
 }
 
-#ifdef _OPENMP
-// The threads of one solve: OpenMP's maximum (OMP_NUM_THREADS, else the cores) less the
-// cores that other processes keep busy now (the runnable tasks of /proc/loadavg, not
-// counting this process's own). On a busy machine the threads of a parallel loop wait for
-// each other at every barrier, so a core taken by another process is left to it; libgomp's
-// dynamic adjustment also counted this process's own earlier solves (docs/DESIGN_NOTES.md,
-// "Threads of a solve").
+// The threads of one solve: max_threads() less the cores that other processes keep busy
+// now (the runnable tasks of /proc/loadavg, not counting this process's own; none known
+// where there is no /proc). On a busy machine the threads of a parallel loop wait for each
+// other at every barrier, so a core taken by another process is left to it
+// (docs/DESIGN_NOTES.md, "Threads of a solve").
 int solve_threads() {
-  static const int max_threads = omp_get_max_threads();  // before the first call sets it
   int runnable = 0, own = 0;
   if (FILE* f = std::fopen("/proc/loadavg", "r")) {
     if (std::fscanf(f, "%*f %*f %*f %d", &runnable) != 1) runnable = 0;
@@ -65,9 +60,8 @@ int solve_threads() {
     }
   }
   const int busy_elsewhere = std::max(0, runnable - std::max(own, 1));
-  return std::clamp(omp_get_num_procs() - busy_elsewhere, 1, max_threads);
+  return std::clamp(machine_cores() - busy_elsewhere, 1, max_threads());
 }
-#endif
 
 std::string scientific(double x) {
   char text[32];
@@ -188,10 +182,7 @@ double input_residual(const Positions& V, const Triangles& F, const std::vector<
 FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                     const Positions* boundary_normals, const FairingOptions& options,
                     const std::vector<int>* polygon_ids) {
-#ifdef _OPENMP
-  omp_set_dynamic(0);
-  omp_set_num_threads(solve_threads());
-#endif
+  set_loop_threads(solve_threads());
   const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
   const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids,
                                               options.boundary);

@@ -6,6 +6,7 @@
 #include "curvature_solve.h"
 #include "intrinsic_delaunay.h"
 #include "laplace_beltrami.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cstdint>

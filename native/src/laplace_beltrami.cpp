@@ -2,11 +2,13 @@
 #include "laplace_beltrami.h"
 
 #include "common.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <cstdlib>
+#include <vector>
 
 namespace geofair {
 namespace {
@@ -95,8 +97,7 @@ void DirichletMatrix::assemble(const Positions& X) {
   std::fill(values, values + S_.nonZeros(), 0.0);
   const int nf = region_.n_free;
   // Row i of S and the slots of vertex i are written by vertex i alone.
-#pragma omp parallel for schedule(static) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i) {
+  parallel_for(nf, nf > kParallelMin, [&](int i) {
     cotangent_weights(r, X, i, slot_weight_.data() + r.offset[i]);
     double diag = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
@@ -104,17 +105,17 @@ void DirichletMatrix::assemble(const Positions& X) {
       if (slot_value_[k] >= 0) values[slot_value_[k]] -= slot_weight_[k];
     }
     values[diag_value_[i]] += diag;
-  }
+  });
 }
 
 Eigen::VectorXd DirichletMatrix::rhs(const Eigen::VectorXd& H) const {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(nf);
-#pragma omp parallel for schedule(static) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i)
+  parallel_for(nf, nf > kParallelMin, [&](int i) {
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       if (r.ring[k] >= nf) b(i) += slot_weight_[k] * H(r.ring[k]);
+  });
   return b;
 }
 
@@ -122,13 +123,12 @@ Eigen::VectorXd DirichletMatrix::defects(const Eigen::VectorXd& H) const {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
   Eigen::VectorXd d(nf);
-#pragma omp parallel for schedule(static) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i) {
+  parallel_for(nf, nf > kParallelMin, [&](int i) {
     double sum = 0.0;
     for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
       sum += slot_weight_[k] * (H(i) - H(r.ring[k]));
     d(i) = sum;
-  }
+  });
   return d;
 }
 
@@ -136,21 +136,28 @@ double DirichletMatrix::max_mean_deviation(const Eigen::VectorXd& H,
                                            const Eigen::VectorXd* source) const {
   const OneRings& r = region_.rings;
   const int nf = region_.n_free;
-  double worst = 0.0;
-  bool nan = false;
-#pragma omp parallel for schedule(static) reduction(max : worst) reduction(|| : nan) if (nf > kParallelMin)
-  for (int i = 0; i < nf; ++i) {
-    double sum = 0.0, sum_w = 0.0;
-    for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
-      sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
-      sum_w += slot_weight_[k];
+  // Each chunk's largest deviation (NaN if it met one), combined after: max is order-free.
+  std::vector<double> chunk_worst(std::size_t(loop_threads()), 0.0);
+  parallel_chunks(nf, nf > kParallelMin, [&](int t, int first, int last) {
+    double worst = 0.0;
+    for (int i = first; i < last && !std::isnan(worst); ++i) {
+      double sum = 0.0, sum_w = 0.0;
+      for (int k = r.offset[i]; k < r.offset[i + 1]; ++k) {
+        sum += slot_weight_[k] * (H(r.ring[k]) - H(i));
+        sum_w += slot_weight_[k];
+      }
+      if (source) sum += (*source)(i);
+      const double deviation = std::abs(sum) / std::max(sum_w, 1e-300);
+      worst = std::isnan(deviation) ? deviation : std::max(worst, deviation);
     }
-    if (source) sum += (*source)(i);
-    const double deviation = std::abs(sum) / std::max(sum_w, 1e-300);
-    if (std::isnan(deviation)) nan = true;
-    worst = std::max(worst, deviation);
+    chunk_worst[std::size_t(t)] = worst;
+  });
+  double worst = 0.0;
+  for (const double w : chunk_worst) {
+    if (std::isnan(w)) return std::numeric_limits<double>::quiet_NaN();
+    worst = std::max(worst, w);
   }
-  return nan ? std::numeric_limits<double>::quiet_NaN() : worst;
+  return worst;
 }
 
 }  // namespace geofair

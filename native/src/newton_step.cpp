@@ -3,6 +3,7 @@
 
 #include "common.h"
 #include "mean_curvature.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,11 +69,9 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
     const Vec3 estimate = k < nf ? vertex_normal(r, Y, k, weighting_) : Vec3(Vec3::Zero());
     return estimate.squaredNorm() > 0.0 ? estimate : Vec3(N.row(k).transpose());
   };
-#pragma omp parallel if (nf > kParallelMin)
-  {
+  parallel_chunks(nf, nf > kParallelMin, [&](int, int first, int last) {
     Positions Y = X;
-#pragma omp for schedule(static)
-    for (int m = 0; m < nf; ++m) {
+    for (int m = first; m < last; ++m) {
       const int begin = r.offset[m], end = r.offset[m + 1];
       const double h = 1e-6 * r.mean_neighbour_distance(X, m);
       Y.row(m) = X.row(m) + h * N.row(m);
@@ -90,7 +89,7 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
       }
       Y.row(m) = X.row(m);
     }
-  }
+  });
   // A = D J, row i: Σ_j w_ij (J(i, ·) − J(j, ·)) over the ring j of i (terms in the
   // constructor's order).
   double* value = A_.valuePtr();
