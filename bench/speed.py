@@ -12,6 +12,14 @@ vertices) of both.
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
         [--iteration auto|newton|paper] [--phases] [--caps irregular|regular|random|icosphere]
         [--seeds 1,2,3] [--cache DIR] [--timeout SECONDS]
+        [--module [LABEL=]this|FOLDER|WHEEL ...] [--rounds R]
+
+``--module`` (repeatable) names the geofair to time: ``this`` (the default: whatever
+``import geofair`` finds), a folder with the compiled module (``build/python``), or a wheel
+file, installed with its dependencies into a venv of its own (geofair_dev.modules) as a user
+would install it. With several modules and ``--rounds R`` the solves are interleaved (each
+case: every module, then CGAL, R times) and each time is the median of the rounds, with
+their range.
 
 Scenes: ``geofair_dev.scenes.sphere_cap(n_free, irregular=True, seed=1, boundary_rings=2)``,
 disturbed by ``disturbed(seed=2, amplitude=0.1)``; with ``--regular`` the same with
@@ -42,11 +50,11 @@ import argparse
 import json
 import os
 import subprocess
-import sys
 import time
 
 import numpy as np
 
+from geofair_dev import modules
 from geofair_dev.caps import load_scene
 
 
@@ -110,14 +118,16 @@ def child(args):
     )
 
 
-def run_ours(args, n, seed):
-    cmd = [sys.executable, os.path.abspath(__file__), "--child", str(n), "--seed", str(seed)]
+def run_ours(args, n, seed, spec):
+    """One solve of the module ``spec`` (geofair_dev.modules) in a child process: its JSON report."""
+    python, env = modules.command(spec)
+    cmd = [python, os.path.abspath(__file__), "--child", str(n), "--seed", str(seed)]
     cmd += ["--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
     cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
     cmd += ["--caps", args.caps]
     try:
-        run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
+        run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout, env=env)
     except subprocess.TimeoutExpired:
         return None
     if run.returncode != 0:
@@ -136,6 +146,22 @@ def slope(ns, ts):
     return float(np.polyfit(x, y, 1)[0])
 
 
+def span(values):
+    """Median of the values, with their range when there are several: '0.512 (0.50-0.53)'."""
+    values = sorted(values)
+    median = float(np.median(values))
+    return f"{median:.3f}" if len(values) == 1 else f"{median:.3f} ({values[0]:.3f}-{values[-1]:.3f})"
+
+
+def describe(r):
+    """The solve's path, residual and error: 'newton 3/1/2, 2.5e-08, err 9.0e-08, 127 MiB'."""
+    its = r["iteration"] + " " + "/".join(map(str, r["iterations"]))
+    if r["iteration"] == "paper" and r["newton_iterations"]:
+        its = f"newton {r['newton_iterations']}, " + its
+    mark = "" if r["converged"] else " NOT CONVERGED"
+    return f"{its}, residual {r['residual']:.1e}{mark}, err {r['error']:.1e}, peak {r['peak_mib']:.0f} MiB"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[2000, 13000, 100000, 1000000])
@@ -148,6 +174,15 @@ def main():
     parser.add_argument("--caps", default="irregular", choices=sorted(CAPS), help="the caps' construction")
     parser.add_argument("--regular", action="store_true", help="the same as --caps regular")
     parser.add_argument("--seeds", default="1", help="comma-separated seeds of the caps (default 1)")
+    parser.add_argument(
+        "--module",
+        action="append",
+        metavar="[LABEL=]SPEC",
+        help="a geofair to time: 'this' (default: what import geofair finds), a folder with the compiled "
+        "module (build/python), or a wheel (installed into a venv of its own); repeat to compare, "
+        "the solves interleaved",
+    )
+    parser.add_argument("--rounds", type=int, default=1, help="interleaved rounds; times are their median")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
@@ -162,63 +197,67 @@ def main():
     from geofair_dev import cgal_fair
 
     use_cgal = not args.no_cgal and cgal_fair.available()
+    specs = [modules.parse(m) for m in (args.module or ["this"])]
     print(
         f"# {CAPS[args.caps]}; geofair.fair: iteration={args.iteration}, "
         f"normal_weighting={args.normal_weighting}, "
         f"inner_fairness={args.inner}, "
         f"default tolerance and levels; {os.cpu_count()} cores, load average "
-        f"{os.getloadavg()[0]:.1f}"
+        f"{os.getloadavg()[0]:.1f}; {args.rounds} round(s), each solve in its own process"
     )
-    print(
-        f"{'free':>8} {'seed':>4} {'time [s]':>9} {'iterations per level':>30} {'residual':>9} {'max err':>9} "
-        f"{'peak MiB':>9} {'solve MiB':>9} | {'CGAL [s]':>9} {'CGAL MiB':>9} {'CGAL err':>9} "
-        f"{'ours/CGAL':>9}"
-    )
-    ns, ours_t, cgal_t = [], [], []
-    seeds = [int(s) for s in args.seeds.split(",") if s.strip()]
-    for n, seed in [(n, seed) for n in args.sizes for seed in seeds]:
-        load_scene(args.cache, n, args.caps, seed)  # generate outside the timed children
-        r = run_ours(args, n, seed)
-        failed = r.pop("failed", None) if r else None
-        if failed:
-            print(f"# {n} (seed {seed}): {failed}", flush=True)
-            r = None
-        c = None
-        if use_cgal:
-            v, f, free, _ = load_scene(args.cache, n, args.caps, seed)
-            c = cgal_fair.cgal_fair(v, f, free)
-            c_err = radial_error(c.vertices, free)
-            n_free = int(free.sum())
+    for label, spec in specs:
+        print(f"# {label}: {spec}")
+    cases = [(n, seed) for n in args.sizes for seed in (int(s) for s in args.seeds.split(",") if s.strip())]
+    times = {(case, label): [] for case in cases for label, _ in specs + [("CGAL", None)]}
+    last, n_free, cgal_err = {}, {}, {}
+    for _ in range(args.rounds):
+        for case in cases:
+            n, seed = case
+            v, f, free, _ = load_scene(args.cache, n, args.caps, seed)  # generated outside the timed children
+            n_free[case] = int(free.sum())
+            for label, spec in specs:
+                r = run_ours(args, n, seed, spec)
+                last[case, label] = r
+                if r and "failed" not in r:
+                    times[case, label].append(r["seconds"])
+            if use_cgal:
+                c = cgal_fair.cgal_fair(v, f, free)
+                last[case, "CGAL"] = c
+                cgal_err[case] = radial_error(c.vertices, free)
+                if c.success:
+                    times[case, "CGAL"].append(c.seconds)
             del v, f, free
-        else:
-            n_free = r["n_free"] if r else n
-        ns.append(n_free)
-        ours_t.append(r["seconds"] if r else None)
-        cgal_t.append(c.seconds if c and c.success else None)
-        if r:
-            its = r["iteration"] + " " + "/".join(map(str, r["iterations"]))
-            if r["iteration"] == "paper" and r["newton_iterations"]:
-                its = f"newton {r['newton_iterations']}, " + its
-            mark = "" if r["converged"] else "*"
-            ours = (
-                f"{r['seconds']:>9.3f} {its:>30} {r['residual']:>8.1e}{mark:1} {r['error']:>9.1e} "
-                f"{r['peak_mib']:>9.0f} {r['solve_mib']:>9.0f}"
-            )
-        else:
-            what = "failed" if failed else "timeout"
-            ours = f"{what:>9} {'':>30} {'':>9} {'':>9} {'':>9} {'':>9}"
-        if c:
-            ok = "" if c.success else " (failed)"
-            ratio = f"{r['seconds'] / c.seconds:>9.2f}" if r and c.seconds > 0 else f"{'':>9}"
-            theirs = f"{c.seconds:>9.3f} {c.peak_mib:>9.0f} {c_err:>9.1e} {ratio}{ok}"
-        else:
-            theirs = "(CGAL not run)"
-        print(f"{n_free:>8} {seed:>4} {ours} | {theirs}", flush=True)
-        if args.phases and r:
-            print("#   phases [s]: " + ", ".join(f"{name} {t:.3f}" for name, t in r["phases"]), flush=True)
-    print(f"time exponent (log-log slope over the sizes): ours {slope(ns, ours_t):.2f}", end="")
-    print(f", CGAL {slope(ns, cgal_t):.2f}" if use_cgal else "")
-    print("(* = not converged within max_iterations)")
+    labels = [label for label, _ in specs]
+    first = labels[0]
+    for case in cases:
+        n, seed = case
+        print(f"{n_free[case]:>9,} free (seed {seed})")
+        cgal = times[case, "CGAL"]
+        for label in labels + (["CGAL"] if use_cgal else []):
+            r, ts = last.get((case, label)), times[case, label]
+            if label == "CGAL":
+                c = r
+                detail = f"err {cgal_err[case]:.1e}, peak {c.peak_mib:.0f} MiB" + ("" if c.success else " (failed)")
+            elif r is None:
+                print(f"    {label:>24}: timeout")
+                continue
+            elif "failed" in r:
+                print(f"    {label:>24}: failed: {r['failed']}")
+                continue
+            else:
+                detail = describe(r)
+            ratios = []
+            if ts and label != first and times[case, first]:
+                ratios.append(f"{np.median(ts) / np.median(times[case, first]):.2f}x {first}")
+            if ts and label != "CGAL" and cgal:
+                ratios.append(f"{np.median(ts) / np.median(cgal):.2f}x CGAL")
+            print(f"    {label:>24}: {span(ts) if ts else '-':>22} s  {', '.join(ratios):<28} {detail}")
+            if args.phases and label != "CGAL":
+                print("    " + " " * 26 + "phases [s]: " + ", ".join(f"{p} {t:.3f}" for p, t in r["phases"]))
+    for label in labels + (["CGAL"] if use_cgal else []):
+        ns = [n_free[c] for c in cases if times[c, label]]
+        ts = [float(np.median(times[c, label])) for c in cases if times[c, label]]
+        print(f"time exponent (log-log slope over the sizes), {label}: {slope(ns, ts):.2f}")
 
 
 if __name__ == "__main__":

@@ -5,12 +5,14 @@
 #
 # GEOFAIR_WHEEL=manylinux_2_28 (default): the wheels that are shipped. zig (PyPI `ziglang`)
 #   compiles for glibc 2.28 (Blender's own Linux builds, EL8, the VFX Reference Platform) with
-#   LLVM's libc++ linked in statically; the portable dependency set (Eigen's sparse solvers,
-#   no SuiteSparse, BLAS or OpenMP) and OpenMesh built from source and linked statically, so
-#   the module needs nothing but glibc. auditwheel repair checks and tags it.
-# GEOFAIR_WHEEL=system: this machine's GCC, SuiteSparse, OpenBLAS and OpenMP (faster on large
-#   regions, docs/PACKAGING.md); auditwheel copies those libraries into geofair.libs/ and the
-#   tag follows this machine's glibc (manylinux_2_35 on Debian 12).
+#   LLVM's libc++ linked in statically; OpenMesh and SuiteSparse (CHOLMOD, UMFPACK, METIS)
+#   are built once from checksummed sources by cmake/deps into build/deps-manylinux_2_28 and
+#   linked statically; the BLAS is PyPI's scipy-openblas32, a dependency of the wheel that the
+#   module loads at import. The module needs nothing but glibc; auditwheel repair checks and
+#   tags it.
+# GEOFAIR_WHEEL=system: this machine's GCC, SuiteSparse and OpenBLAS (Debian's),
+#   copied into geofair.libs/ by auditwheel; the tag follows this machine's glibc
+#   (manylinux_2_35 on Debian 12).
 #
 #   pip wheel .        scikit-build-core over the CMake build (pyproject.toml)
 #   auditwheel repair  the manylinux tag, every library beyond the allow-list in geofair.libs/
@@ -35,12 +37,37 @@ case "$KIND" in
     zig=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "zig"))')
     zig_dir="$PWD/build/zig"
     mkdir -p "$zig_dir"
+    # zig caches a compilation (keyed on its arguments, the source and every header it reads)
+    # only when no depfile is asked for: the wrappers drop CMake's -MD -MT -MF and write an
+    # empty depfile (the object's source is in the build rule). Each wheel is built in a fresh
+    # folder (below),
+    # so no object outlives a change of a header, and the library's sources compile once for
+    # all three wheels; only the bindings compile per Python.
     for tool in cc c++; do
-      printf '#!/bin/sh\nexec "%s" %s -target x86_64-linux-gnu.2.28 "$@"\n' "$zig" "$tool" > "$zig_dir/$tool"
+      cat > "$zig_dir/$tool" <<WRAPPER
+#!/usr/bin/env bash
+args=() depfile="" target=""
+while [ \$# -gt 0 ]; do
+  case "\$1" in
+    -MD) ;;
+    -MT) target="\$2"; shift ;;
+    -MF) depfile="\$2"; shift ;;
+    *) args+=("\$1") ;;
+  esac
+  shift
+done
+"$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" || exit
+if [ -n "\$depfile" ]; then echo "\$target:" > "\$depfile"; fi
+WRAPPER
       chmod +x "$zig_dir/$tool"
     done
+    # The static dependencies, once (a later run finds them built).
+    deps="$PWD/build/deps-$KIND"
+    cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
+      -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
+    cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 || { tail -40 "$deps/build.log"; exit 1; }
     export CMAKE_ARGS="-DCMAKE_C_COMPILER=$zig_dir/cc -DCMAKE_CXX_COMPILER=$zig_dir/c++ \
--DGEOFAIR_PORTABLE=ON -DGEOFAIR_FETCH_OPENMESH=ON -DGEOFAIR_OPENMP=OFF"
+-DGEOFAIR_DEPS_PREFIX=$deps/prefix"
     plat=(--plat manylinux_2_28_x86_64 --only-plat)
     ;;
   system)
@@ -57,6 +84,7 @@ rm -f dist/geofair-*.whl
 for python in $PYTHONS; do
   tag=$("$python" -c 'import sys; print(f"cp{sys.version_info[0]}{sys.version_info[1]}")')
   echo "== $KIND $tag: $python"
+  rm -rf "build/wheel-$KIND-$tag"
   "$python" -m pip wheel . --no-deps -w dist/raw -Cbuild-dir="build/wheel-$KIND-$tag"
 done
 # auditwheel and the licence step run in the default python3 for every wheel.
@@ -69,7 +97,12 @@ for wheel in dist/geofair-*.whl; do
   if [ "$KIND" = manylinux_2_28 ]; then
     tag=$(basename "$wheel" | cut -d- -f3)
     zig_lib=$(python3 -c 'import os, ziglang; print(os.path.dirname(ziglang.__file__))')/lib
-    compiled_in=("OpenMesh=build/wheel-$KIND-$tag/_deps/openmesh-src/OpenMesh/LICENSE"
+    sources="build/deps-$KIND"
+    suitesparse="$sources/suitesparse-prefix/src/suitesparse"
+    compiled_in=("OpenMesh=$sources/openmesh-prefix/src/openmesh/OpenMesh/LICENSE"
+      "SuiteSparse=$suitesparse/LICENSE.txt" "CHOLMOD=$suitesparse/CHOLMOD/Doc/License.txt"
+      "UMFPACK=$suitesparse/UMFPACK/Doc/License.txt" "AMD=$suitesparse/AMD/Doc/License.txt"
+      "COLAMD=$suitesparse/COLAMD/Doc/License.txt" "METIS=$suitesparse/CHOLMOD/SuiteSparse_metis/LICENSE.txt"
       "libcxx=$zig_lib/libcxx/LICENSE.TXT" "libcxxabi=$zig_lib/libcxxabi/LICENSE.TXT"
       "libunwind=$zig_lib/libunwind/LICENSE.TXT")
   fi

@@ -9,8 +9,9 @@ them from PyPI; never build/python: PYTHONPATH is cleared); then
   pass against it (conftest.py leaves build/python off sys.path with GEOFAIR_TEST_INSTALLED=1);
 - its extension module (ldd, objdump): every library it loads is on the manylinux_2_28
   allow-list (auditwheel's policy), no glibc symbol is newer than 2.28, nothing is bundled
-  beside it (the C++ runtime, OpenMesh and the solvers are linked in), and the licences of
-  what is linked in are in the wheel;
+  beside it (the C++ runtime, OpenMesh and SuiteSparse are linked in), and the licences of
+  what is linked in are in the wheel; at import it loads the OpenBLAS of its dependency
+  scipy-openblas32, and says so when that is missing;
 - auditwheel show finds the wheel consistent with its platform tag or an older glibc's;
 - the stubs and py.typed are installed and mypy's stubtest finds them consistent with the
   module (tests/stubtest_allowlist.txt: what every pybind11 module differs in).
@@ -92,8 +93,9 @@ def venv(request, tmp_path_factory):
             check=True,
             env=clean_env(),
         )
+    # With its dependencies, as a user installs it (numpy, and scipy-openblas32: the BLAS).
     subprocess.run(
-        [python, "-m", "pip", "install", "-q", "--no-deps", "--no-index", "--disable-pip-version-check", wheel],
+        [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", wheel],
         check=True,
         env=clean_env(),
     )
@@ -166,8 +168,8 @@ def glibc_versions(path):
 def test_the_module_needs_nothing_but_glibc_2_28(venv):
     """The shipped wheel (scripts/build_wheel.sh's default, zig for glibc 2.28): the module loads
     only manylinux_2_28 system libraries, needs no glibc symbol newer than 2.28, links its C++
-    runtime, OpenMesh and the solvers statically (no geofair.libs/, no libstdc++, libgomp,
-    SuiteSparse or BLAS), and the wheel carries the compiled-in libraries' licences."""
+    runtime, OpenMesh and SuiteSparse statically (no geofair.libs/, no libstdc++, libgomp,
+    SuiteSparse or BLAS library), and the wheel carries the compiled-in libraries' licences."""
     _, package, wheel = venv
     tag = re.search(r"-(manylinux_\d+_\d+_x86_64)\.whl$", wheel.name).group(1)
     assert tag == "manylinux_2_28_x86_64", wheel.name
@@ -185,6 +187,39 @@ def test_the_module_needs_nothing_but_glibc_2_28(venv):
     (licenses,) = package.parent.glob("geofair-*.dist-info/licenses")
     for name in ("LICENSE", "OpenMesh.LICENSE", "libcxx.LICENSE", "libcxxabi.LICENSE", "libunwind.LICENSE"):
         assert (licenses / name).is_file(), sorted(p.name for p in licenses.iterdir())
+    for name in ("SuiteSparse", "CHOLMOD", "UMFPACK", "AMD", "COLAMD", "METIS"):
+        assert (licenses / f"{name}.LICENSE").is_file(), sorted(p.name for p in licenses.iterdir())
+
+
+def test_the_module_loads_openblas_from_scipy_openblas32(venv):
+    """The wheel's SuiteSparse runs on the OpenBLAS of its dependency scipy-openblas32, which
+    the module loads at import; without it (or with GEOFAIR_BLAS naming no library) the import
+    fails with an ImportError that says what to install, never at the first solve."""
+    python, _, _ = venv
+    probe = (
+        "import numpy as np, geofair\n"
+        "v = np.array([[0,0,0],[1,0,0],[0,1,0],[1,1,0],[.5,.5,.3]], float)\n"
+        "f = np.array([[0,1,4],[1,3,4],[3,2,4],[2,0,4]])\n"
+        "r = geofair.fair(v, f, np.arange(5) == 4, boundary='g0')\n"
+        "print(r.converged, abs(r.vertices[4, 2]) < 1e-6)\n"
+        "import scipy_openblas32, pathlib\n"
+        "maps = pathlib.Path('/proc/self/maps').read_text()\n"
+        "print(scipy_openblas32.get_lib_dir() in maps)"
+    )
+    done = subprocess.run([python, "-c", probe], capture_output=True, text=True, env=clean_env(), cwd="/")
+    assert done.stdout.split() == ["True", "True", "True"], done.stdout + done.stderr
+    blocked = "import sys; sys.modules['scipy_openblas32'] = None; import geofair"
+    failed = subprocess.run([python, "-c", blocked], capture_output=True, text=True, env=clean_env(), cwd="/")
+    assert failed.returncode != 0 and "ImportError" in failed.stderr, failed.stderr
+    assert "pip install scipy-openblas32" in failed.stderr, failed.stderr
+    wrong = subprocess.run(
+        [python, "-c", "import geofair"],
+        capture_output=True,
+        text=True,
+        env=clean_env(GEOFAIR_BLAS="/nonexistent/libopenblas.so"),
+        cwd="/",
+    )
+    assert wrong.returncode != 0 and "/nonexistent/libopenblas.so" in wrong.stderr, wrong.stderr
 
 
 @pytest.mark.parametrize("python_tag", TAGS)

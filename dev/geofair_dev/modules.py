@@ -1,0 +1,61 @@
+"""Which ``geofair`` a benchmark's child process imports: this environment's, a build folder's,
+or an installed wheel's (bench/speed.py ``--module``).
+
+A module is named by a spec: ``this`` (whatever ``import geofair`` finds here), a folder
+holding the compiled module (``build/python``; put first on PYTHONPATH), or a wheel file,
+installed with its dependencies (numpy, scipy-openblas32) into a venv of its own under
+``~/.cache/geofair/bench-venvs/`` (made once per wheel, by its file name and size; the venv
+sees this Python's site-packages for numpy and geofair_dev, as a user's would see theirs).
+"""
+
+import os
+import pathlib
+import subprocess
+import sys
+
+VENVS = pathlib.Path(os.environ.get("XDG_CACHE_HOME") or pathlib.Path.home() / ".cache") / "geofair" / "bench-venvs"
+
+
+def parse(spec):
+    """``(label, spec)`` of ``LABEL=SPEC`` or ``SPEC`` (the label then derived from it)."""
+    label, sep, rest = spec.partition("=")
+    if sep and not os.path.exists(spec):
+        return label, rest
+    if spec == "this":
+        return "this", spec
+    path = pathlib.Path(spec)
+    if path.suffix == ".whl":
+        return "wheel " + path.name.split("-")[2], spec
+    return str(path), spec
+
+
+def _venv_for(wheel):
+    """The venv with ``wheel`` installed (made on first use)."""
+    wheel = pathlib.Path(wheel).resolve()
+    if not wheel.is_file():
+        raise FileNotFoundError(f"no wheel {wheel}")
+    folder = VENVS / f"{wheel.stem}-{wheel.stat().st_size}"
+    python = folder / "bin" / "python"
+    if not python.exists():
+        subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(folder)], check=True)
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        subprocess.run(
+            [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheel)], check=True, env=env
+        )
+    return python
+
+
+def command(spec):
+    """``(python executable, environment)`` under which a child process imports the module of ``spec``."""
+    env = dict(os.environ)
+    if spec == "this":
+        return sys.executable, env
+    path = pathlib.Path(spec)
+    if path.suffix == ".whl":
+        env.pop("PYTHONPATH", None)
+        env.pop("GEOFAIR_BUILD", None)
+        return str(_venv_for(path)), env
+    if not path.is_dir():
+        raise FileNotFoundError(f"--module {spec}: neither a folder, a .whl file nor 'this'")
+    env["PYTHONPATH"] = str(path.resolve()) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    return sys.executable, env
