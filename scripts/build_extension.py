@@ -5,9 +5,11 @@
 Stages build/extension/geometric_fairing/: the add-on's Python files and its
 blender_manifest.toml as the CMake build stamped them (build/addon/geometric_fairing/, so
 ``cmake --build build`` first), without the compiled module and the OpenMesh libraries,
-plus the self-contained wheels (scripts/build_wheel.sh) in wheels/, listed in the manifest
-as ``wheels = [...]``: by default the cp311 wheel (Blender 4.2 to 5.0) and, if built, the
-cp313 one (Blender 5.1 and later); Blender installs the one of its Python. Then runs what
+plus the wheels (scripts/build_wheel.sh) in wheels/, listed in the manifest as
+``wheels = [...]``: by default the cp311 wheel (Blender 4.2 to 5.0) and, if built, the
+cp313 one (Blender 5.1 and later), Blender installing the one of its Python, and for each
+platform the wheel of their dependency scipy-openblas32 (the OpenBLAS the module loads),
+downloaded from PyPI. Then runs what
 ``blender --command extension build --split-platforms``
 and ``... validate`` run, Blender's bl_pkg command line, here through the bpy module from
 PyPI (no Blender binary of 4.2+ needed), and writes one zip per platform of the wheels,
@@ -24,7 +26,9 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 import tomllib
+import zipfile
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 VERSION = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
@@ -66,6 +70,38 @@ def blender_platform(wheel):
     raise SystemExit(f"{wheel.name}: no Blender platform for the wheel tag {tag}")
 
 
+# The OpenBLAS the module loads at import (a dependency of the wheel, which Blender does not
+# resolve): its wheel for each platform goes into the extension beside geofair's.
+SCIPY_OPENBLAS = "scipy-openblas32==0.3.34.481.3"
+PIP_PLATFORMS = {
+    "linux-x64": "manylinux_2_28_x86_64",
+    "linux-arm64": "manylinux_2_28_aarch64",
+    "macos-arm64": "macosx_11_0_arm64",
+    "macos-x64": "macosx_11_0_x86_64",
+    "windows-x64": "win_amd64",
+}
+
+
+def dependency_wheels(platforms, folder=REPO / "build" / "extension-deps"):
+    """The scipy-openblas32 wheel of each Blender platform, from PyPI (cached in ``folder``)."""
+    wheels = []
+    for platform in platforms:
+        target = folder / platform
+        found = sorted(target.glob("scipy_openblas32-*.whl"))
+        if not found:
+            subprocess.run(
+                [sys.executable, "-m", "pip", "download", "-q", "--disable-pip-version-check", "--no-deps",
+                 "--only-binary=:all:", "--platform", PIP_PLATFORMS[platform], "--python-version", "3.11",
+                 "-d", str(target), SCIPY_OPENBLAS],
+                check=True,
+            )  # fmt: skip
+            found = sorted(target.glob("scipy_openblas32-*.whl"))
+        if len(found) != 1 or blender_platform(found[0]) != platform:
+            raise SystemExit(f"expected one scipy-openblas32 wheel for {platform} in {target}, found {found}")
+        wheels += found
+    return wheels
+
+
 def stage(addon, wheels, folder):
     """Copy the add-on without compiled files and the wheels to ``folder``; list the wheels in its manifest."""
     shutil.rmtree(folder, ignore_errors=True)
@@ -88,6 +124,53 @@ def stage(addon, wheels, folder):
     assert tomllib.loads(text)["wheels"] == listed
 
 
+def legacy_addon(addon, wheels, out):
+    """The legacy add-on zip (Blender 3.4 to 4.1: Preferences › Add-ons › Install) of the Linux
+    x86-64 wheels of Python 3.10 and 3.11 among ``wheels``: the add-on's files, each wheel's
+    compiled module as ``geofair.cpython-3XY-x86_64-linux-gnu.so`` and the OpenBLAS library of
+    the scipy-openblas32 wheel beside them (native.py points the module at it), and the
+    licences of what they compile in; written to ``out``/geometric_fairing-<version>-legacy_linux_x64.zip.
+    """
+    modules = [w for w in wheels if w.name.split("-")[2] in ("cp310", "cp311") and blender_platform(w) == "linux-x64"]
+    if not modules:
+        print("no cp310 or cp311 Linux x86-64 wheel: no legacy add-on")
+        return None
+    (openblas,) = [w for w in wheels if w.name.startswith("scipy_openblas32-") and blender_platform(w) == "linux-x64"]
+    folder = pathlib.Path(tempfile.mkdtemp()) / "geometric_fairing"
+    folder.mkdir()
+    for file in sorted(addon.iterdir()):
+        if file.is_file() and file.suffix in (".py", ".toml"):
+            shutil.copy(file, folder / file.name)
+    for wheel in modules:
+        with zipfile.ZipFile(wheel) as archive:
+            (name,) = [n for n in archive.namelist() if re.fullmatch(r"geofair/__init__\.cpython-3\d+-.*\.so", n)]
+            target = folder / pathlib.PurePosixPath(name).name.replace("__init__", "geofair")
+            target.write_bytes(archive.read(name))
+            target.chmod(0o755)
+            # The licences of what the module compiles in (the wheel's), in licenses/.
+            for name in archive.namelist():
+                if re.fullmatch(r"geofair-[^/]+\.dist-info/licenses/[^/]+", name):
+                    licence = folder / "licenses" / pathlib.PurePosixPath(name).name
+                    licence.parent.mkdir(exist_ok=True)
+                    licence.write_bytes(archive.read(name))
+    with zipfile.ZipFile(openblas) as archive:
+        (name,) = [n for n in archive.namelist() if re.fullmatch(r"scipy_openblas32/lib/libscipy_openblas[^/]*\.so", n)]
+        (folder / pathlib.PurePosixPath(name).name).write_bytes(archive.read(name))
+        for name in archive.namelist():
+            if re.fullmatch(r"scipy_openblas32-[^/]+\.dist-info/licenses/[^/]+", name):
+                licence = folder / "licenses" / ("OpenBLAS-" + pathlib.PurePosixPath(name).name)
+                licence.parent.mkdir(exist_ok=True)
+                licence.write_bytes(archive.read(name))
+    legacy = out.resolve() / f"geometric_fairing-{VERSION}-legacy_linux_x64.zip"
+    with zipfile.ZipFile(legacy, "w", zipfile.ZIP_DEFLATED) as archive:
+        for file in sorted(folder.rglob("*")):
+            if file.is_file():
+                archive.write(file, f"geometric_fairing/{file.relative_to(folder).as_posix()}")
+    shutil.rmtree(folder.parent)
+    print(f"wrote {legacy} (modules: {', '.join(w.name.split('-')[2] for w in modules)})")
+    return legacy
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument(
@@ -102,15 +185,22 @@ def main():
     wheels = args.wheel
     if wheels is None:
         wheels = []
-        for tag in ("cp311", "cp313"):
-            found = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-*manylinux*.whl"))
+        for tag in ("cp310", "cp311", "cp313"):
+            folder = REPO / ("build/legacy-wheels" if tag == "cp310" else "dist")  # cp310: scripts/build_wheel.sh
+            found = sorted(folder.glob(f"geofair-{VERSION}-{tag}-{tag}-*manylinux*.whl"))
             if len(found) > 1 or (tag == "cp311" and not found):
                 raise SystemExit(
                     f"expected one dist/geofair-{VERSION}-{tag}-*manylinux*.whl, found {found}: scripts/build_wheel.sh"
                 )
             wheels += found
+    wheels = [wheel.resolve() for wheel in wheels]
+    wheels += dependency_wheels(sorted({blender_platform(wheel) for wheel in wheels}))
+    args.out.mkdir(parents=True, exist_ok=True)
+    legacy_addon(args.addon, wheels, args.out)
+    # The extension: Blender 4.2 and later run Python 3.11 or newer.
+    wheels = [w for w in wheels if w.name.split("-")[2] != "cp310"]
     folder = REPO / "build" / "extension" / "geometric_fairing"
-    stage(args.addon, [wheel.resolve() for wheel in wheels], folder)
+    stage(args.addon, wheels, folder)
     args.out.mkdir(parents=True, exist_ok=True)
     # One zip per platform (Blender's --split-platforms), each with that platform's wheels.
     platforms = sorted({blender_platform(wheel) for wheel in wheels})

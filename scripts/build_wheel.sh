@@ -24,7 +24,7 @@ KIND="${GEOFAIR_WHEEL:-manylinux_2_28}"
 if [ -z "${PYTHONS:-}" ]; then
   PYTHONS="python3"
   PYENV_ROOT="${PYENV_ROOT:-$HOME/.pyenv}"
-  for minor in 12 13; do
+  for minor in 10 12 13; do
     candidate=$(ls -d "$PYENV_ROOT"/versions/3."$minor".*/bin/python3."$minor" 2>/dev/null | sort -V | tail -1 || true)
     if [ -n "$candidate" ]; then PYTHONS="$PYTHONS $candidate"; fi
   done
@@ -85,14 +85,21 @@ for python in $PYTHONS; do
   tag=$("$python" -c 'import sys; print(f"cp{sys.version_info[0]}{sys.version_info[1]}")')
   echo "== $KIND $tag: $python"
   rm -rf "build/wheel-$KIND-$tag"
-  "$python" -m pip wheel . --no-deps -w dist/raw -Cbuild-dir="build/wheel-$KIND-$tag"
+  # cp310 only for the legacy add-on of Blender 3.x and 4.0 (Python 3.10;
+  # scripts/build_extension.py): not a wheel of the package, which needs Python 3.11.
+  ignore=()
+  if [ "$tag" = cp310 ]; then ignore=(--ignore-requires-python); fi
+  "$python" -m pip wheel . --no-deps "${ignore[@]}" -w dist/raw --config-settings=build-dir="build/wheel-$KIND-$tag"
 done
 # auditwheel and the licence step run in the default python3 for every wheel.
+rm -rf build/legacy-wheels
 for raw in dist/raw/geofair-*.whl; do
-  python3 -m auditwheel repair "${plat[@]}" -w dist "$raw"
+  out=dist
+  case "$raw" in *-cp310-*) out=build/legacy-wheels ;; esac
+  python3 -m auditwheel repair "${plat[@]}" -w "$out" "$raw"
 done
 rm -rf dist/raw
-for wheel in dist/geofair-*.whl; do
+for wheel in dist/geofair-*.whl build/legacy-wheels/geofair-*.whl; do
   compiled_in=()
   if [ "$KIND" = manylinux_2_28 ]; then
     tag=$(basename "$wheel" | cut -d- -f3)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what geofair needs on Debian 12 (apt-get, pip) and builds it: build/ (CMake: the
-# module, the legacy add-on zip), dist/ (the manylinux_2_28 wheels and the Blender extension
-# zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs the tests use. Run as root or with sudo available.
+# development module and add-on), dist/ (the manylinux_2_28 wheels, the Blender extension zip
+# and the legacy add-on zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs the tests use. Run as root or with sudo available.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
@@ -45,9 +45,9 @@ fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
-# The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS), whose module the tests
-# also run against (scripts/run_tests.sh), and its legacy add-on zip (no SuiteSparse, no BLAS).
+# The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS: a source build where
+# no SuiteSparse is found), whose module the solver tests also run against (scripts/run_tests.sh).
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
-cmake --build build-portable -j"$(nproc)" --target geofair addon
+cmake --build build-portable -j"$(nproc)" --target geofair
 bash scripts/build_wheel.sh
 python3 scripts/build_extension.py

@@ -17,16 +17,20 @@ but fails when the environment variable CI is set.
 - check_remesh.py: Remesh Always / If Needed on Suzanne's ear (no UV flip, the rest byte-identical),
   Fill Holes on a UV sphere's hole (back onto the sphere, manifold, UVs), its errors, undo.
 - check_packaging.py: installs as a legacy add-on, and as an extension in Blender 4.2+; the
-  portable build's legacy add-on in Blender 3.4, without SuiteSparse or BLAS.
+  legacy zip built from the shipped wheels in Blender 3.4 (nothing but glibc needed), its
+  cp310 module in Python 3.10.
 - examples/fair_object.py: the documented script runs.
 - check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.
 """
 
 import importlib.util
 import os
+import pathlib
 import shutil
 import subprocess
 import sys
+import tomllib
+import zipfile
 
 import pytest
 
@@ -134,24 +138,78 @@ def test_packaging(variant, tmp_path):
     assert "check_packaging: all checks passed" in output, output
 
 
-def test_portable_legacy_addon_needs_no_suitesparse(tmp_path):
-    # The legacy zip of the portable build (scripts/setup.sh: build-portable/, Eigen's sparse
-    # solvers) loads no SuiteSparse, METIS or BLAS, and installs and fairs in Blender 3.4.
-    addon = REPO / "build-portable" / "addon"
-    modules = list((addon / "geometric_fairing").glob("geofair*.so"))
-    if not modules:
-        unavailable(f"no portable build's add-on in {addon}: scripts/setup.sh builds it")
-    needed = subprocess.run(["ldd", str(modules[0])], capture_output=True, text=True, check=True).stdout
-    for library in ("umfpack", "cholmod", "metis", "blas", "lapack", "suitesparse"):
-        assert library not in needed.lower(), needed
+GLIBC = ("libc.so", "libm.so", "libpthread.so", "libdl.so", "librt.so", "ld-linux", "linux-vdso")
+
+
+@pytest.fixture(scope="module")
+def legacy(tmp_path_factory):
+    """The legacy zip of dist/ (scripts/build_extension.py) unpacked: ``(folder, modules, OpenBLAS)``."""
+    version = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["version"]
+    archive = REPO / "dist" / f"geometric_fairing-{version}-legacy_linux_x64.zip"
+    if not archive.is_file():
+        unavailable(f"no {archive}: scripts/setup.sh builds it (scripts/build_extension.py)")
+    folder = tmp_path_factory.mktemp("legacy")
+    with zipfile.ZipFile(archive) as zipped:
+        zipped.extractall(folder)
+    package = folder / "geometric_fairing"
+    for module in package.glob("*.so"):
+        module.chmod(0o755)
+    modules = sorted(package.glob("geofair.cpython-3*.so"))
+    blas = sorted(package.glob("libscipy_openblas*.so"))
+    assert modules and blas, sorted(p.name for p in package.iterdir())
+    return folder, modules, blas
+
+
+def test_legacy_addon_needs_nothing_but_glibc(legacy, tmp_path):
+    # The legacy zip for Blender 3.4 to 4.1, built from the shipped wheels' modules (cp310,
+    # cp311) with scipy-openblas32's OpenBLAS beside them: they load nothing from the build
+    # machine but glibc, and the add-on installs and fairs in Blender 3.4.
+    folder, modules, blas = legacy
+    assert {m.name.split(".")[1] for m in modules} >= {"cpython-310-x86_64-linux-gnu", "cpython-311-x86_64-linux-gnu"}
+    for library in modules + blas:
+        needed = subprocess.run(["ldd", str(library)], capture_output=True, text=True, check=True).stdout
+        for line in needed.strip().splitlines():
+            soname = os.path.basename(line.split()[0])
+            assert "not found" not in line and soname.startswith(GLIBC), (library.name, line)
     user = {
         "BLENDER_USER_RESOURCES": str(tmp_path),
         "BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
         "BLENDER_USER_CONFIG": str(tmp_path / "config"),
     }
     command = _blender_command(CHECKS / "check_packaging.py")
-    output = _run([*command, "--", str(addon)], env=user)
+    output = _run([*command, "--", str(folder)], env=user)
     assert "check_packaging: all checks passed" in output, output
+
+
+def test_legacy_addon_cp310_module_fairs_in_python_3_10(legacy, tmp_path):
+    # Blender 3.x and 4.0 run Python 3.10: the legacy zip's cp310 module loads there (with the
+    # OpenBLAS beside it) and fairs a pyramid's apex into its base plane (G0, a minimal surface).
+    folder, modules, blas = legacy
+    assert any("cpython-310" in m.name for m in modules), modules
+    pythons = sorted(
+        (pathlib.Path(os.environ.get("PYENV_ROOT") or pathlib.Path.home() / ".pyenv")).glob(
+            "versions/3.10.*/bin/python3.10"
+        )
+    )
+    if not pythons:
+        unavailable("no Python 3.10 under pyenv")
+    subprocess.run([pythons[-1], "-m", "venv", str(tmp_path / "venv")], check=True)
+    python = tmp_path / "venv" / "bin" / "python"
+    subprocess.run([python, "-m", "pip", "install", "-q", "--disable-pip-version-check", "numpy"], check=True)
+    probe = (
+        "import sys; sys.path.insert(0, sys.argv[1]); import numpy as np, geofair\n"
+        "v = np.array([[0,0,0],[1,0,0],[0,1,0],[1,1,0],[.5,.5,.3]], float)\n"
+        "f = np.array([[0,1,4],[1,3,4],[3,2,4],[2,0,4]])\n"
+        "r = geofair.fair(v, f, np.arange(5) == 4, boundary='g0')\n"
+        "print(geofair.__file__, r.converged, abs(r.vertices[4, 2]) < 1e-6)"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["GEOFAIR_BLAS"] = str(blas[0])  # as the add-on's native.py sets it
+    done = subprocess.run(
+        [python, "-c", probe, str(folder / "geometric_fairing")], capture_output=True, text=True, env=env, cwd=tmp_path
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split()[1:] == ["True", "True"] and "cpython-310" in done.stdout, done.stdout
 
 
 @pytest.mark.parametrize("variant", COMMANDS)

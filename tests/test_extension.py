@@ -98,12 +98,15 @@ def test_the_zip_holds_the_wheels_and_a_complete_manifest(extension_zip):
         for wheel in wheels:
             assert zipped.read(f"wheels/{wheel.name}") == wheel.read_bytes()
     assert manifest["version"] == VERSION and manifest["id"] == "geometric_fairing"
-    assert manifest["wheels"] == [f"./wheels/{wheel.name}" for wheel in wheels]
+    # geofair's wheels, and the OpenBLAS they load (their dependency, which Blender does not resolve).
+    (openblas,) = [w for w in manifest["wheels"] if w.startswith("./wheels/scipy_openblas32-")]
+    assert "manylinux" in openblas and "x86_64" in openblas, openblas
+    assert [w for w in manifest["wheels"] if w != openblas] == [f"./wheels/{wheel.name}" for wheel in wheels]
     assert manifest["blender_version_min"] == "4.2.0"
     assert manifest["platforms"] == ["linux-x64"] and manifest["license"] == ["SPDX:GPL-3.0-or-later"]
     assert set(manifest["permissions"]) == {"files"}
     credited = " ".join(manifest["copyright"])
-    for library in ("OpenMesh", "libc++", "libunwind", "Eigen", "pybind11"):  # what the wheels compile in
+    for library in ("OpenMesh", "SuiteSparse", "METIS", "libc++", "libunwind", "Eigen", "pybind11", "OpenBLAS"):
         assert library in credited, library
     assert "__init__.py" in names and "native.py" in names
     assert not [n for n in names if n.endswith(".so") or ".so." in n], names  # the module comes from the wheel
@@ -126,8 +129,10 @@ def test_one_zip_per_platform_of_the_wheels(extension_zip, tmp_path):
     addon = BUILD / "addon" / "geometric_fairing"
     run([sys.executable, REPO / "scripts" / "build_extension.py", *arguments, "--out", out, "--addon", addon])
     expected = {"linux-x64": "manylinux", "macos-arm64": "macosx_11_0_arm64", "windows-x64": "win_amd64"}
+    # (and the legacy add-on of the Linux wheels, tests/test_blender.py)
     assert sorted(p.name for p in out.glob("*.zip")) == sorted(
-        f"geometric_fairing-{VERSION}-{platform.replace('-', '_')}.zip" for platform in expected
+        [f"geometric_fairing-{VERSION}-{platform.replace('-', '_')}.zip" for platform in expected]
+        + [f"geometric_fairing-{VERSION}-legacy_linux_x64.zip"]
     )
     for platform, marker in expected.items():
         with zipfile.ZipFile(out / f"geometric_fairing-{VERSION}-{platform.replace('-', '_')}.zip") as zipped:
@@ -136,7 +141,9 @@ def test_one_zip_per_platform_of_the_wheels(extension_zip, tmp_path):
         # Blender's build writes each zip's own platform and wheels under [build.generated].
         generated = manifest["build"]["generated"]
         assert generated["platforms"] == [platform]
-        assert len(packed) == 2 and all(marker in n for n in packed), packed
+        # cp311, cp313 and the platform's scipy-openblas32
+        assert len(packed) == 3 and all(marker in n for n in packed), packed
+        assert sum("scipy_openblas32" in n for n in packed) == 1, packed
         assert sorted(generated["wheels"]) == sorted(f"./{n}" for n in packed)
 
 

@@ -1,7 +1,10 @@
 """The compiled module ``geofair``, in this package or from the wheel, and a clear message when it cannot load.
 
-The legacy zip (build/geometric_fairing.zip) puts ``geofair.cpython-3XY-<platform>.so``
-(or ``.pyd``) next to this file. The extension (scripts/build_extension.sh) has none here:
+The legacy zip (dist/geometric_fairing-<version>-legacy_linux_x64.zip, scripts/build_extension.py;
+a development build's build/geometric_fairing.zip) puts ``geofair.cpython-3XY-<platform>.so``
+(or ``.pyd``) next to this file, and in the legacy zip the OpenBLAS it loads at import
+(``libscipy_openblas.so``, named to the module by the environment variable GEOFAIR_BLAS;
+the wheel loads it from its dependency scipy-openblas32). The extension has none here:
 Blender 4.2+ installs the wheel its manifest lists into the extensions' site-packages,
 and ``import geofair`` finds it there. A module built for another Python than Blender's
 does not import; the message then names both versions instead of Python's "No module named".
@@ -9,6 +12,7 @@ No bpy here.
 """
 
 import importlib
+import os
 import pathlib
 import re
 import sys
@@ -65,6 +69,9 @@ def load():
     try:
         if not module_files():  # the extension: the module comes from its wheel
             return importlib.import_module("geofair"), None
+        bundled_blas = sorted(PACKAGE_DIR.glob("libscipy_openblas*.so"))
+        if bundled_blas:
+            os.environ.setdefault("GEOFAIR_BLAS", str(bundled_blas[0]))
         return importlib.import_module(".geofair", __package__), None
     except ImportError as error:
         # pybind11 registers its types once per process: a second copy of the module (the add-on
