@@ -4,8 +4,10 @@ Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary condit
 design, CAGD 18, 2001).
 """
 from __future__ import annotations
+import collections.abc
 import numpy
 import numpy.typing
+import scipy.sparse
 import typing
 __all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
@@ -34,7 +36,7 @@ class FairingResult:
         Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves, or keep them from a folded input; .message then says so.
         """
     @property
-    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+    def free(self) -> numpy.typing.NDArray[numpy.bool_]:
         """
         (n',) bool: the result's free vertices (the input's mask unless .remeshed; fill_holes: exactly the new vertices).
         """
@@ -125,7 +127,7 @@ class RemeshedRegion:
         (m', 3) int32 triangles: the input faces without a free vertex (unchanged, in input order), then the region's new triangles.
         """
     @property
-    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+    def free(self) -> numpy.typing.NDArray[numpy.bool_]:
         """
         (n',) bool: True exactly at the new region's free vertices.
         """
@@ -149,7 +151,7 @@ class RemeshedRegion:
         """
         (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
         """
-def boundary_loops(vertices, faces):
+def boundary_loops(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
     The boundary loops (holes) of a triangle mesh.
     
@@ -167,7 +169,7 @@ def boundary_loops(vertices, faces):
     ------
     geofair.InvalidInputError (a ValueError) for invalid triangles or a vertex on two loops (holes that touch).
     """
-def boundary_normals(vertices, faces, free, *, method = 'quadric'):
+def boundary_normals(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, method: typing.Literal['quadric', 'area'] = 'quadric') -> numpy.typing.NDArray[numpy.float64]:
     """
     The unit normals fair() prescribes at the G1 boundary when it is given no
     boundary_normals: estimated from the fixed surface around the free region (beyond the
@@ -205,7 +207,7 @@ def boundary_normals(vertices, faces, free, *, method = 'quadric'):
     non-finite vertex of a
     surrounding triangle).
     """
-def cotangent_laplacian(vertices, faces):
+def cotangent_laplacian(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> scipy.sparse.csr_matrix:
     """
     The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
     2001, eqs. (5)-(7)) as an (n, n) scipy.sparse CSR matrix (needs scipy).
@@ -217,7 +219,7 @@ def cotangent_laplacian(vertices, faces):
     
     Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def defaults():
+def defaults() -> dict[str, typing.Any]:
     """
     The defaults of geofair.fair's keyword arguments, the library's one source of them:
     geofair.fair(vertices, faces, free, **geofair.defaults()) is fair's default call.
@@ -233,7 +235,7 @@ def defaults():
     "schedule.time_limit_base" (seconds; the automatic time limit's figures), which fair's
     tuning=None means (units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices, faces, free, *, remesh = False, boundary = 'g1', boundary_normals = None, polygon_ids = None, inner_fairness = 'uniform', outer_fairness = 'intrinsic', normal_weighting = 'quadric', tolerance = 0.0001, max_iterations = 20000, damping = 0.9, cg_iterations = 10, levels = 0, iteration = 'auto', progress = None, time_limit = None, tuning = None):
+def fair(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, remesh: bool | typing.Literal['off', 'always', 'if_needed'] = False, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
     (Schneider & Kobbelt 2001, eqs. (4) and (12), solved as in section 7) with the G1 boundary
@@ -312,7 +314,7 @@ def fair(vertices, faces, free, *, remesh = False, boundary = 'g1', boundary_nor
         never returned.
     TypeError: an unknown keyword argument, or an argument of the wrong type.
     """
-def fill_holes(vertices, faces, loops = None, *, target_edge_length = None, boundary = 'g1', inner_fairness = 'uniform', outer_fairness = 'intrinsic', normal_weighting = 'quadric', tolerance = 0.0001, max_iterations = 20000, damping = 0.9, cg_iterations = 10, levels = 0, iteration = 'auto', progress = None, time_limit = None, tuning = None):
+def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
     """
     Fill holes of a triangle mesh with intrinsically faired patches: each hole's
     loop keeps its positions and takes its unit normals from the faces around it (the G1
@@ -361,7 +363,7 @@ def fill_holes(vertices, faces, loops = None, *, target_edge_length = None, boun
     fair refuses (the message names the problem and the vertex or face); geofair.SolverError (a
     RuntimeError) as fair.
     """
-def intrinsic_delaunay(vertices, faces):
+def intrinsic_delaunay(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float64], int]:
     """
     Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
     2006; Bobenko & Springborn 2007): same vertices, same surface, other edges (geodesics on
@@ -377,7 +379,7 @@ def intrinsic_delaunay(vertices, faces):
     Raises geofair.InvalidInputError (a ValueError) for invalid input, geofair.SolverError (a
     RuntimeError) if round-off made the flips cycle.
     """
-def intrinsic_delaunay_laplacian(vertices, faces):
+def intrinsic_delaunay_laplacian(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> scipy.sparse.csr_matrix:
     """
     The cotangent Laplacian of the intrinsic Delaunay triangulation (Bobenko &
     Springborn 2007) as an (n, n) scipy.sparse CSR matrix, with the conventions of
@@ -388,7 +390,7 @@ def intrinsic_delaunay_laplacian(vertices, faces):
     
     Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def mean_curvature(vertices, faces, normals = None, normal_weighting = 'quadric'):
+def mean_curvature(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], normals: numpy.typing.NDArray[numpy.float64] | None = None, normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric') -> numpy.typing.NDArray[numpy.float64]:
     """
     Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
     2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
@@ -412,7 +414,7 @@ def mean_curvature(vertices, faces, normals = None, normal_weighting = 'quadric'
     ------
     geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def progressive_mesh(vertices, faces, free, levels = 1, coarsen_boundary = False):
+def progressive_mesh(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], levels: typing.SupportsInt | typing.SupportsIndex = 1, coarsen_boundary: bool = False) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
     The progressive-mesh hierarchy that fair() uses for its multigrid (Schneider &
     Kobbelt 2001, section 7.4): a list of (m_l, 3) int32 triangle arrays in the input's vertex
@@ -433,7 +435,7 @@ def progressive_mesh(vertices, faces, free, levels = 1, coarsen_boundary = False
     
     Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def relax_inner_fairness(vertices, faces, free, normals, inner_fairness = 'uniform', tangent_planes = 'turning', polygon_ids = None):
+def relax_inner_fairness(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], normals: numpy.typing.NDArray[numpy.float64], inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', tangent_planes: typing.Literal['fixed', 'turning'] = 'turning', polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None) -> tuple[numpy.typing.NDArray[numpy.float64], float]:
     """
     One global tangential solve of inner fairness, the step fair()'s Newton iteration
     repeats (Schneider & Kobbelt 2001, section 7.3's condition, linearized for all free
@@ -468,7 +470,7 @@ def relax_inner_fairness(vertices, faces, free, normals, inner_fairness = 'unifo
     RuntimeError) if the system is
     singular.
     """
-def remesh_region(vertices, faces, free, *, target_edge_length = None, iterations = 5):
+def remesh_region(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, iterations: typing.SupportsInt | typing.SupportsIndex = 5) -> RemeshedRegion:
     """
     Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
     remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
