@@ -74,6 +74,18 @@ def test_option_names_are_the_librarys():
     assert "time_limit" in names and geofair.defaults()["time_limit"] is None  # the property's 0
 
 
+def test_fair_object_takes_every_keyword_of_fair():
+    # The panel's options, remesh (mapped), the options only scripts give, and the arguments
+    # fair_object takes per element of the object (boundary_normals, polygon_ids) or itself (progress).
+    names = [
+        *literal("LIBRARY_OPTION_NAMES"),
+        "remesh",
+        *literal("SCRIPT_OPTION_NAMES"),
+        *literal("MESH_ARGUMENT_NAMES"),
+    ]
+    assert sorted(names) == sorted(fair_keywords())
+
+
 def test_time_limit_zero_is_automatic_in_the_library_and_the_addon():
     # The Time Limit property holds 0 for automatic; the library takes 0 as None, the automatic limit.
     mapping = definitions("LIBRARY_OPTION_NAMES", "OPTION_NAMES", "property_value", "option_values")

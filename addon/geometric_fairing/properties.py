@@ -142,6 +142,11 @@ LIBRARY_OPTION_NAMES = (
     "time_limit",
 )
 OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "remesh", "region_group", "pin_group", "use_hidden")
+# geofair.fair's options that no property holds: scripts pass them (fair_object, fill_holes); the
+# operators and the panel leave them at the library's defaults.
+SCRIPT_OPTION_NAMES = ("normal_weighting", "damping", "cg_iterations", "tuning")
+# geofair.fair's arguments that fair_object takes per element of the object, not as options.
+MESH_ARGUMENT_NAMES = ("boundary_normals", "polygon_ids", "progress")
 
 
 def property_value(name, value):
