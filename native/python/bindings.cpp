@@ -174,6 +174,8 @@ class Signature {
   void add(const py::kw_only&) { keyword_only_ = true; }
   void add(const char* doc) { doc_ = doc; }
 
+  const std::string& doc() const { return doc_; }
+
   void set_types(const std::vector<Converter>& types) {
     if (types.size() != parameters_.size())
       throw std::logic_error(function_ + ": py::arg count differs from the C++ parameters");
@@ -275,8 +277,6 @@ class Signature {
   std::string function_;
   std::vector<Parameter> parameters_;
   bool keyword_only_ = false;
-
- public:
   std::string doc_;
 };
 
@@ -289,7 +289,7 @@ void def_checked(py::module_& m, const char* name, Function&& f, const Extra&...
   (signature->add(extra), ...);
   signature->set_types(ParameterTypes<std::decay_t<Function>>::get());
   const py::object inner = py::cpp_function(std::forward<Function>(f), py::name(name), extra...);
-  const std::string docstring = name + signature->text() + "\n--\n\n" + signature->doc_;
+  const std::string docstring = name + signature->text() + "\n--\n\n" + signature->doc();
   py::options options;
   options.disable_function_signatures();
   m.def(
