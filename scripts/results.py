@@ -22,6 +22,7 @@ seeded; only the timings vary between runs.
 from __future__ import annotations
 
 import argparse
+import inspect
 import os
 import platform
 import subprocess
@@ -499,7 +500,7 @@ def main():
         "library's defaults unless a row names a setting. The defaults of this build:",
         "",
         "```",
-        geofair.fair.__doc__.splitlines()[0],
+        f"fair{inspect.signature(geofair.fair)}",
         "```",
         "",
     )

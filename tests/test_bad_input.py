@@ -1,6 +1,7 @@
 """Bad input and hard meshes: geofair answers with a faired mesh or a clear ValueError or
 RuntimeError, never a crash, NaN, or a changed fixed vertex."""
 
+import inspect
 import time
 
 import numpy as np
@@ -56,13 +57,81 @@ def test_wrong_shapes_and_dtypes(cap, mutate, message):
 
 
 def test_indices_out_of_range(cap):
-    f = cap.faces.copy()
-    f[7, 1] = len(cap.vertices)
-    with pytest.raises(ValueError, match="triangle 7 has vertex index"):
-        geofair.fair(cap.vertices, f, cap.free, boundary_normals=cap.normals)
-    f[7, 1] = -1
-    with pytest.raises(ValueError, match=r"faces\[7\] has vertex index -1"):
-        geofair.fair(cap.vertices, f, cap.free, boundary_normals=cap.normals)
+    # One wording for every function and every index, too large, negative or beyond int32.
+    n = len(cap.vertices)
+    calls = {
+        "fair": lambda f: geofair.fair(cap.vertices, f, cap.free, boundary_normals=cap.normals),
+        "fill_holes": lambda f: geofair.fill_holes(cap.vertices, f),
+        "mean_curvature": lambda f: geofair.mean_curvature(cap.vertices, f),
+        "boundary_normals": lambda f: geofair.boundary_normals(cap.vertices, f, cap.free),
+        "cotangent_laplacian": lambda f: geofair.cotangent_laplacian(cap.vertices, f),
+        "remesh_region": lambda f: geofair.remesh_region(cap.vertices, f, cap.free),
+    }
+    for index in (n, -1, 2**40):
+        f = cap.faces.astype(np.int64)
+        f[7, 1] = index
+        for name, call in calls.items():
+            with pytest.raises(geofair.InvalidInputError) as error:
+                call(f)
+            assert str(error.value) == f"{name}: triangle 7 has vertex index {index}, out of range [0, {n})"
+
+
+MODULE_FUNCTIONS = [
+    name for name in dir(geofair) if callable(getattr(geofair, name)) and not isinstance(getattr(geofair, name), type)
+]
+
+
+def test_every_module_function_has_a_signature():
+    assert len(MODULE_FUNCTIONS) == 12, MODULE_FUNCTIONS
+    for name in MODULE_FUNCTIONS:
+        signature = inspect.signature(getattr(geofair, name))
+        assert all(p.kind is not p.VAR_KEYWORD for p in signature.parameters.values()), name
+
+
+@pytest.mark.parametrize("name", [f for f in MODULE_FUNCTIONS if f != "defaults"])
+def test_unknown_keyword_is_named_with_the_nearest(cap, name):
+    # A short TypeError naming the keyword and the nearest valid one, not pybind11's signature
+    # and the repr of every input array.
+    function = getattr(geofair, name)
+    parameters = list(inspect.signature(function).parameters)
+    misspelt = parameters[-1][:-1] + "x" + parameters[-1][-1]
+    with pytest.raises(TypeError) as error:
+        function(cap.vertices, cap.faces, **{misspelt: 1})
+    message = str(error.value)
+    assert message.startswith(f"{name}() got an unexpected keyword argument '{misspelt}'"), message
+    assert f"did you mean '{parameters[-1]}'?" in message and len(message.splitlines()) < 5, message
+
+
+def test_argument_errors_are_short(cap):
+    args = (cap.vertices, cap.faces, cap.free)
+    unexpected = "fair() got an unexpected keyword argument"
+    cases = [
+        (lambda: geofair.fair(*args, tolerence=1e-3), f"{unexpected} 'tolerence'; did you mean 'tolerance'?"),
+        (lambda: geofair.fair(*args, xyz=1), f"{unexpected} 'xyz' (its arguments: vertices, faces, free, remesh,"),
+        (lambda: geofair.fair(*args, tolerance="1e-3"), "fair(): tolerance must be a number, got str '1e-3'"),
+        (lambda: geofair.fair(*args, max_iterations=2.5), "fair(): max_iterations must be an int, got float 2.5"),
+        (lambda: geofair.fair(*args, inner_fairness=None), "fair(): inner_fairness must be a str, got None"),
+        (lambda: geofair.fair(*args, "g0"), "fair() takes 3 positional arguments but 4 were given (the others are"),
+        (lambda: geofair.fair(*args[:2]), "fair() missing required argument 'free'"),
+        (lambda: geofair.fair(*args, faces=cap.faces), "fair() got multiple values for argument 'faces'"),
+        (lambda: geofair.defaults(1), "defaults() takes 0 positional arguments but 1 were given"),
+    ]
+    for call, expected in cases:
+        with pytest.raises(TypeError) as error:
+            call()
+        assert str(error.value).startswith(expected), str(error.value)
+        assert len(str(error.value)) < 400, str(error.value)
+
+
+def test_arguments_convert_as_before(cap):
+    # By keyword or position, numpy scalars and Python ints for numbers: the same result.
+    reference = geofair.fair(cap.vertices, cap.faces, cap.free, boundary_normals=cap.normals, tolerance=1e-4)
+    for kw in (
+        dict(tolerance=np.float64(1e-4), max_iterations=np.int64(20000), levels=np.int32(0)),
+        dict(damping=0.9, cg_iterations=10, time_limit=None),
+    ):
+        r = geofair.fair(vertices=cap.vertices, faces=cap.faces, free=cap.free, boundary_normals=cap.normals, **kw)
+        assert np.array_equal(r.vertices, reference.vertices)
 
 
 def test_non_finite_input(cap):

@@ -1,6 +1,6 @@
 """geofair.defaults(): the one source of fair's option defaults (FairingOptions in types.h)."""
 
-import re
+import inspect
 
 import numpy as np
 import pytest
@@ -9,35 +9,40 @@ import geofair
 from geofair_dev import scenes
 
 
-def signature_defaults():
-    """The defaults in fair's signature line, as Python values."""
-    line = geofair.fair.__doc__.splitlines()[0]
-    return {m[0]: eval(m[1]) for m in re.findall(r"(\w+): [^=,]+ = ('[^']*'|[-+.\deE]+|None)", line)}  # noqa: S307
+def keyword_defaults(function):
+    """The keyword-only parameters of ``function`` and their defaults, from inspect.signature."""
+    parameters = inspect.signature(function).parameters.values()
+    return {p.name: p.default for p in parameters if p.kind is inspect.Parameter.KEYWORD_ONLY}
 
 
-def test_signature_uses_the_library_defaults():
+def test_defaults_are_exactly_fairs_keyword_arguments():
+    # The same names in the same order, the same values; tuning=None means the tuning spelled out.
     defaults = geofair.defaults()
-    signature = signature_defaults()
-    for name in (
-        "inner_fairness",
-        "outer_fairness",
-        "normal_weighting",
-        "tolerance",
-        "max_iterations",
-        "damping",
-        "cg_iterations",
-        "levels",
-        "iteration",
-        "boundary",
-        "time_limit",
-    ):
-        assert signature[name] == defaults[name], name
+    signature = keyword_defaults(geofair.fair)
+    assert list(defaults) == list(signature)
+    assert signature.pop("tuning") is None and isinstance(defaults.pop("tuning"), dict)
+    for name, value in signature.items():
+        assert defaults[name] == value and type(defaults[name]) is type(value), name
+    positional = [p.name for p in inspect.signature(geofair.fair).parameters.values() if p.default is p.empty]
+    assert positional == ["vertices", "faces", "free"]
+
+
+def test_default_call_converges():
+    # fair(V, F, free, **geofair.defaults()) is fair's default call: a sphere cap with fixed rings
+    # around (its G1 normals estimated from them) converges, to the same bits as fair(V, F, free).
+    scene = scenes.sphere_cap(n_free=150, irregular=True, seed=13, boundary_rings=3)
+    args = (scene.vertices, scene.faces, scene.free)
+    result = geofair.fair(*args, **geofair.defaults())
+    assert result.converged and result.stop_reason == "converged", result.message
+    assert np.array_equal(result.vertices, geofair.fair(*args).vertices)
+    assert np.array_equal(result.vertices[~scene.free], scene.vertices[~scene.free])
 
 
 def test_docstring_states_the_automatic_time_limit():
-    d = geofair.defaults()
+    tuning = geofair.defaults()["tuning"]
     text = " ".join(geofair.fair.__doc__.split())
-    assert f"{d['time_limit_base']:g} s plus {d['time_limit_per_free_vertex'] * 1e3:g} ms per free vertex" in text
+    base, per_vertex = tuning["schedule.time_limit_base"], tuning["schedule.time_limit_per_free_vertex"]
+    assert f"{base:g} s plus {per_vertex * 1e3:g} ms per free vertex" in text
 
 
 def test_defaults_are_a_fresh_dict():
@@ -49,8 +54,8 @@ def test_defaults_are_a_fresh_dict():
 def test_defaults_fair_a_mesh():
     """Every default is accepted by fair itself (as keyword arguments)."""
     scene = scenes.sphere_cap(n_free=300, irregular=True, seed=13)
-    options = {k: v for k, v in geofair.defaults().items() if not k.startswith("time_limit_")}
-    result = geofair.fair(scene.vertices, scene.faces, scene.free, boundary_normals=scene.normals, **options)
+    options = dict(geofair.defaults(), boundary_normals=scene.normals)
+    result = geofair.fair(scene.vertices, scene.faces, scene.free, **options)
     assert result.converged
     assert np.array_equal(result.vertices[~scene.free], scene.vertices[~scene.free])
 
@@ -64,7 +69,7 @@ def test_tuning_defaults_name_every_field_once():
     tuning = geofair.defaults()["tuning"]
     assert len(tuning) == 55
     assert tuning["newton.patience"] == 20 and isinstance(tuning["newton.patience"], int)
-    assert tuning["schedule.time_limit_base"] == geofair.defaults()["time_limit_base"]
+    assert not any(name.startswith("time_limit_") for name in geofair.defaults())  # only in the tuning
     assert {name.split(".")[0] for name in tuning} == {
         "paper", "newton", "tangential", "multigrid", "hierarchy", "bilaplacian", "schedule"
     }  # fmt: skip

@@ -136,8 +136,8 @@ def test_a_folded_planar_input_is_faired_to_a_fold_free_plane(inner):
     assert r.converged, r.message
     assert np.abs(r.vertices[:, 2]).max() < 1e-12
     assert r.folds == r.new_folds == new_folds(None, r.vertices, faces, free) == 0
-    # The input itself as the result (time_limit=0): every fold counted, none new.
-    r = geofair.fair(folded, faces, free, inner_fairness=inner, time_limit=0.0)
+    # The input itself as the result (a time limit spent at once): every fold counted, none new.
+    r = geofair.fair(folded, faces, free, inner_fairness=inner, time_limit=1e-9)
     assert r.folds == new_folds(None, folded, faces, free) and r.new_folds == 0
     assert f"{r.folds} edges fold over (triangles flipped), 0 of them not in the input" in r.message
 
@@ -157,23 +157,39 @@ def test_time_limit_stops_unconverged(iteration):
 
 
 @pytest.mark.parametrize("levels", [1, 2])
-def test_time_limit_zero_returns_the_input(levels):
+def test_time_limit_spent_at_once_returns_the_input(levels):
     # Spent before the first level starts: the input, with its own residual (the polls between
     # the steps that report no progress; FairingOptions::stop_requested).
     s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
     v = s.disturbed(seed=7, amplitude=0.1)
-    r = fair(s, vertices=v, time_limit=0.0, levels=levels)
+    r = fair(s, vertices=v, time_limit=1e-9, levels=levels)
     assert not r.converged and "time limit" in r.message and r.stop_reason == "time_limit"
     assert np.array_equal(r.vertices, v)
     assert r.iterations == 0 and r.newton_iterations == 0
     assert r.residual > 1.0  # the disturbed input's (44), not that of a solver's iterate
 
 
-@pytest.mark.parametrize("limit", [-1.0, float("nan")])
+@pytest.mark.parametrize("limit", [-1.0, -1e-300, float("nan"), float("-inf"), "10"])
 def test_bad_time_limit(limit):
     s = scenes.sphere_cap(n_free=50, seed=1)
-    with pytest.raises(ValueError, match="time_limit"):
+    expected = "time_limit must be None or 0 .automatic. or a number of seconds > 0"
+    with pytest.raises(geofair.InvalidInputError, match=expected):
         geofair.fair(s.vertices, s.faces, s.free, boundary_normals=s.normals, time_limit=limit)
+
+
+def test_time_limit_zero_is_automatic():
+    # 0 means what None means (the add-on's Time Limit property holds 0 for it): the automatic limit,
+    # bit-identical results; a disturbed cap that converges in well under the automatic limit.
+    s = scenes.sphere_cap(n_free=300, irregular=True, seed=17)
+    v = s.disturbed(seed=7, amplitude=0.1)
+    automatic = fair(s, vertices=v, time_limit=None)
+    assert automatic.converged and automatic.stop_reason == "converged"
+    for zero in (0, 0.0, -0.0):
+        r = fair(s, vertices=v, time_limit=zero)
+        assert r.converged and r.stop_reason == "converged" and np.array_equal(r.vertices, automatic.vertices)
+    # Under iteration="paper" the automatic limit is none at all: 0 too runs to convergence.
+    r = fair(s, vertices=v, time_limit=0, iteration="paper")
+    assert r.converged, r.message
 
 
 def test_progress_callback_can_stop():

@@ -23,6 +23,7 @@ checked: the library reads none, and a region that reaches the open mesh border
 needs none there either.
 """
 
+import difflib
 import math
 import threading
 import time
@@ -40,9 +41,12 @@ class FairingOptions:
     """Options of a run: ``geofair.fair``'s by its names and values (the library checks them), defaults
     from ``geofair.defaults()``, then the add-on's own.
 
-    ``time_limit`` None is automatic (the library's). The upper-case values earlier versions of the
-    add-on took ("UNIFORM", "CONFORMAL", "INTRINSIC", "BILAPLACIAN", "AUTO", "NEWTON", "PAPER") are
-    still accepted: a string value is taken in lower case (so is "G0" for ``boundary``).
+    ``time_limit`` None (or 0) is automatic (the library's). The options no property holds
+    (``properties.SCRIPT_OPTION_NAMES``: ``normal_weighting``, ``damping``, ``cg_iterations``,
+    ``tuning``) are None unless a script gives them: None is not passed, so the library's default
+    applies. The upper-case values earlier versions of the add-on took ("UNIFORM", "CONFORMAL",
+    "INTRINSIC", "BILAPLACIAN", "AUTO", "NEWTON", "PAPER") are still accepted: a string value is
+    taken in lower case (so is "G0" for ``boundary``).
     """
 
     inner_fairness: str = properties.DEFAULTS["inner_fairness"]
@@ -53,6 +57,10 @@ class FairingOptions:
     levels: int = properties.DEFAULTS["levels"]
     iteration: str = properties.DEFAULTS["iteration"]
     time_limit: float | None = properties.DEFAULTS["time_limit"]
+    normal_weighting: str | None = None
+    damping: float | None = None
+    cg_iterations: int | None = None
+    tuning: dict | None = None
     remesh: str = "off"
     region_group: str = ""
     pin_group: str = ""
@@ -72,8 +80,11 @@ class FairingOptions:
 
     def library_options(self):
         """The keyword arguments of ``geofair.fair`` these options give (``remesh`` only when it is not off,
-        so that the default run is the library's default call)."""
+        a script's option only when given, so that the default run is the library's default call)."""
         options = {name: getattr(self, name) for name in properties.LIBRARY_OPTION_NAMES}
+        for name in properties.SCRIPT_OPTION_NAMES:
+            if getattr(self, name) is not None:
+                options[name] = getattr(self, name)
         if self.remesh != "off":
             options["remesh"] = properties.REMESH_VALUES[self.remesh]
         return options
@@ -273,6 +284,9 @@ class NotConvergedError(RuntimeError):
         )
 
 
+# FairingRun's polygon_ids by default: each face of the mesh is a polygon.
+_FACES = object()
+
 # The result of a run that never got to solve (cancelled first): nothing to write.
 _NOT_SOLVED = types.SimpleNamespace(
     converged=False, iterations=0, residual=float("nan"), iterations_per_level=[], vertices_per_level=[], iteration=""
@@ -311,16 +325,23 @@ class FairingRun(_WorkerThread):
             ``options.region_group`` if set, else the selected faces.
         progress: optional ``callable(iteration, residual)``, called about every
             0.1 s from the thread that solves; returning False cancels.
+        boundary_normals: ``(V, 3)`` float unit normals over the mesh's vertices, read at
+            the G1 boundary vertices (``geofair.fair``'s), or None: estimated from the
+            faces around (and at pinned vertices, their own normal).
+        polygon_ids: ``(P,)`` integer array, the polygon each face of the mesh belongs to
+            (uniform inner fairness runs over the polygons' edges); None: each triangle
+            of the tessellation is a polygon (its diagonals count as edges). Default: each
+            face is a polygon.
 
     Raises:
         ValueError: no usable region (:class:`region.RegionError`), a missing
-            vertex group, a wrong mask.
+            vertex group, a wrong mask or polygon_ids.
         RuntimeError: the compiled module cannot be loaded.
     """
 
     remesh_hint = REMESH_SCRIPT_HINT  # added to a solver failure with Remesh off (the operator's: REMESH_HINT)
 
-    def __init__(self, obj, options, faces=None, progress=None):
+    def __init__(self, obj, options, faces=None, progress=None, boundary_normals=None, polygon_ids=_FACES):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
         if obj is None or obj.type != "MESH":
@@ -362,10 +383,24 @@ class FairingRun(_WorkerThread):
                 "shape-key positions): use Remesh Off"
             )
         self.boundary_normals = None  # G0: positions only, the library reads no normals
-        if options.boundary != "g0":
+        if options.boundary != "g0" and boundary_normals is not None:
+            self.boundary_normals = np.asarray(boundary_normals, dtype=np.float64)
+        elif options.boundary != "g0":
             self.boundary_normals = region.boundary_normals(
                 self.region, mesh.vertices, mesh.triangles[self.present_triangles], native.geofair.boundary_normals
             )
+        # Uniform inner fairness over the polygons' edges, not the tessellation's diagonals.
+        self.polygon_ids = mesh.triangle_face[self.present_triangles]
+        if polygon_ids is None:
+            self.polygon_ids = None
+        elif polygon_ids is not _FACES:
+            polygon_ids = np.asarray(polygon_ids)
+            if polygon_ids.shape != (len(mesh.loop_start),) or polygon_ids.dtype.kind not in "iu":
+                raise ValueError(
+                    f"polygon_ids must be an integer array with one entry per face ({len(mesh.loop_start)}), "
+                    f"not {polygon_ids.dtype} {polygon_ids.shape}"
+                )
+            self.polygon_ids = polygon_ids[self.polygon_ids]
         self.changed_triangles = region.region_triangles(mesh.triangles, self.region.free)
         self.timings["region"] = time.perf_counter() - clock
         clock = time.perf_counter()
@@ -395,8 +430,7 @@ class FairingRun(_WorkerThread):
                 mesh.triangles[self.present_triangles],
                 fairing_region.free,
                 boundary_normals=self.boundary_normals,
-                # Uniform inner fairness over the polygons' edges, not the tessellation's diagonals.
-                polygon_ids=mesh.triangle_face[self.present_triangles],
+                polygon_ids=self.polygon_ids,
                 progress=self._progress,
                 **options.library_options(),
             )
@@ -622,6 +656,17 @@ def default_options(context, **given):
     return FairingOptions(**given)
 
 
+def check_option_names(function, options, names):
+    """Raise a TypeError naming the first of ``options`` that is not in ``names`` (nor ``keep_unconverged``,
+    nor one of ``properties.MESH_ARGUMENT_NAMES`` for fair_object), with the nearest valid name."""
+    valid = (*names, "keep_unconverged", *(properties.MESH_ARGUMENT_NAMES if function == "fair_object" else ()))
+    for name in options:
+        if name not in valid:
+            close = difflib.get_close_matches(name, valid, n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else f" (its options: {', '.join(valid)})"
+            raise TypeError(f"{function}: unknown option {name!r}{hint}")
+
+
 def fair_object(obj, region=None, *, progress=None, context=None, **options):
     """Fair a region of a mesh object, from a script, in Object Mode or Edit Mode.
 
@@ -638,21 +683,27 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
             0.1 s; returning False cancels the run and leaves the mesh unchanged.
         context: ``bpy.context`` by default; only its scene is read, for the
             defaults of options not given.
-        **options: ``geofair.fair``'s options by its names and values: ``inner_fairness``
-            ("uniform", "conformal" or "conformal_intrinsic"), ``outer_fairness``
-            ("intrinsic" or "bilaplacian"), ``boundary`` ("g1": positions and the tangent
-            planes of the surface around, the default; "g0": positions only, the minimal
-            surface spanned by the boundary, no normals needed), ``tolerance``, ``max_iterations``, ``levels``,
-            ``iteration`` ("auto", "newton" or "paper": the solver), ``time_limit``
-            (seconds, or None: automatic); the upper-case values of earlier versions
-            ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
+        **options: every keyword argument of ``geofair.fair``, by its names and values
+            (``help(geofair.fair)``), passed through: ``inner_fairness`` ("uniform",
+            "conformal" or "conformal_intrinsic"), ``outer_fairness`` ("intrinsic" or
+            "bilaplacian"), ``boundary`` ("g1": positions and the tangent planes of the
+            surface around, the default; "g0": positions only, the minimal surface spanned by
+            the boundary, no normals needed), ``normal_weighting``, ``tolerance``,
+            ``max_iterations``, ``damping``, ``cg_iterations``, ``levels``, ``iteration``
+            ("auto", "newton" or "paper": the solver), ``time_limit`` (seconds; None or 0:
+            automatic), ``tuning``; ``boundary_normals`` (``(V, 3)`` over the mesh's
+            vertices; default: estimated from the faces around) and ``polygon_ids``
+            (``(P,)``, the polygon each face of the mesh belongs to; default: each face its
+            own; None: the triangles' edges, diagonals included). The upper-case values of
+            earlier versions ("CONFORMAL") still work. The add-on's: ``pin_group`` (vertex group name),
             ``use_hidden`` (False: hidden faces take no part, their vertices never move),
             ``remesh`` ("off", the default: only positions change; "if_needed" or "always":
             the region's triangles may be replaced, with UVs, colours and vertex groups
             interpolated onto the new ones, see :class:`FairingReport` ``remeshed`` and
             ``notes``; ``geofair.fair``'s False and True work too).
             Not given: the Fairing panel's settings, which follow the add-on
-            preferences. ``keep_unconverged`` (default False): write the result
+            preferences (the library's defaults for the options the panel does not
+            show). ``keep_unconverged`` (default False): write the result
             even if the solve stops unconverged.
 
     Returns:
@@ -668,9 +719,8 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         RuntimeError: the solver failed, or the compiled module is missing.
     """
     context = context or bpy.context
-    unknown = set(options) - {*properties.OPTION_NAMES, "keep_unconverged"}
-    if unknown:
-        raise TypeError(f"fair_object: unknown options {', '.join(sorted(unknown))}")
+    check_option_names("fair_object", options, (*properties.OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES))
+    mesh_arguments = {name: options.pop(name) for name in ("boundary_normals", "polygon_ids") if name in options}
     faces = None
     if isinstance(region, str):
         options["region_group"] = region
@@ -681,7 +731,7 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         options.setdefault("region_group", "")  # not the panel's: region=None means the selected faces
     run_options = default_options(context, **options)
     try:
-        run = FairingRun(obj, run_options, faces=faces, progress=progress)
+        run = FairingRun(obj, run_options, faces=faces, progress=progress, **mesh_arguments)
         run.solve()
         report = run.finish()
         if report.discarded:

@@ -165,7 +165,7 @@ def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, c
         progress: optional ``callable(iteration, residual)``; returning False cancels.
         context: ``bpy.context`` by default (its scene's panel settings are the defaults).
         **options: ``geofair.fill_holes``'s fairing options (``inner_fairness``, ``boundary``,
-            ``tolerance``, ``time_limit``, ...), and ``keep_unconverged``.
+            ``normal_weighting``, ``tolerance``, ``time_limit``, ``tuning``, ...), and ``keep_unconverged``.
 
     Returns:
         :class:`fairing.FairingReport` (``holes``, ``free_vertices`` the new vertices,
@@ -181,9 +181,7 @@ def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, c
     import bpy
 
     context = context or bpy.context
-    unknown = set(options) - {*FILL_OPTION_NAMES, "keep_unconverged"}
-    if unknown:
-        raise TypeError(f"fill_holes: unknown options {', '.join(sorted(unknown))}")
+    fairing.check_option_names("fill_holes", options, (*FILL_OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES))
     run_options = fairing.default_options(context, **options)
     run = FillRun(obj, run_options, all_holes=all_holes, target_edge_length=target_edge_length, progress=progress)
     run.solve()

@@ -7,8 +7,9 @@ it is not given from the panel. So the preferences are the defaults of both.
 The options are ``geofair.fair``'s, by its names and values: an enum's
 identifiers are the library's strings ("uniform", "conformal", ...), and its
 defaults come from ``geofair.defaults()``. The one value a Blender property
-cannot hold as it is: the automatic time limit, None in the library, 0 in the
-Time Limit property (:func:`property_value`, :func:`option_values`).
+cannot hold as it is: the automatic time limit, None in the library (which
+takes 0 as automatic too), 0 in the Time Limit property (:func:`property_value`,
+:func:`option_values`).
 """
 
 from collections.abc import Callable
@@ -141,11 +142,16 @@ LIBRARY_OPTION_NAMES = (
     "time_limit",
 )
 OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "remesh", "region_group", "pin_group", "use_hidden")
+# geofair.fair's options that no property holds: scripts pass them (fair_object, fill_holes); the
+# operators and the panel leave them at the library's defaults.
+SCRIPT_OPTION_NAMES = ("normal_weighting", "damping", "cg_iterations", "tuning")
+# geofair.fair's arguments that fair_object takes per element of the object, not as options.
+MESH_ARGUMENT_NAMES = ("boundary_normals", "polygon_ids", "progress")
 
 
 def property_value(name, value):
     """The value of option ``name`` as its Blender property holds it: the library's, but 0 for
-    time_limit=None (automatic), which a FloatProperty cannot hold."""
+    time_limit=None (automatic, as 0 is for the library), which a FloatProperty cannot hold."""
     return 0.0 if name == "time_limit" and value is None else value
 
 
@@ -233,21 +239,26 @@ def _iteration(**options):
     )
 
 
-_AUTOMATIC_TIME_LIMIT = (
-    f"the residual not halved in {_LIBRARY['time_limit_base']:g} s plus "
-    f"{_LIBRARY['time_limit_per_free_vertex'] * 1e3:g} ms per free vertex, the whole solve at most "
-    f"{_LIBRARY['time_limit_hard_factor']:g} times that"
-    if "time_limit_base" in _LIBRARY
-    else "see geofair.fair"
-)
+def _automatic_time_limit(tuning):
+    """The automatic time limit in words, from the library's tuning (``geofair.defaults()["tuning"]``)."""
+    try:
+        base, per_vertex, factor = (
+            tuning[f"schedule.time_limit_{name}"] for name in ("base", "per_free_vertex", "hard_factor")
+        )
+    except KeyError:
+        return "see geofair.fair"
+    return (
+        f"the residual not halved in {base:g} s plus {per_vertex * 1e3:g} ms per free vertex, the whole solve at "
+        f"most {factor:g} times that"
+    )
 
 
 def _time_limit(**options):
     return FloatProperty(
         name="Time Limit",
         description="Seconds the solve may take; once spent, the run stops and is reported as not converged. "
-        f"0: automatic: with the Auto solver a limit on time without progress ({_AUTOMATIC_TIME_LIMIT}); "
-        "Newton and Paper run to Max Iterations",
+        "0: automatic (as geofair.fair's time_limit None or 0): with the Auto solver a limit on time without "
+        f"progress ({_automatic_time_limit(_LIBRARY.get('tuning', {}))}); Newton and Paper run to Max Iterations",
         default=property_value("time_limit", DEFAULTS["time_limit"]),
         min=0.0,
         soft_max=600.0,

@@ -16,12 +16,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <optional>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace py = pybind11;
 using namespace geofair;
@@ -61,7 +64,9 @@ py::array_t<long long> integer_array(const py::array& a, const char* name) {
   return py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 
-Triangles to_triangles(const py::handle& obj) {
+// The (m, 3) faces of `caller`'s mesh of n vertices; an index outside [0, n) is reported as
+// the library reports it ("fair: triangle 7 has vertex index -1, out of range [0, 162)").
+Triangles to_triangles(const py::handle& obj, const char* caller, Eigen::Index n) {
   const py::array a = as_array(obj, "faces");
   if (a.ndim() != 2 || a.shape(1) != 3)
     throw InvalidInputError("faces must have shape (m, 3) (triangles), got " + shape_of(a));
@@ -69,9 +74,10 @@ Triangles to_triangles(const py::handle& obj) {
   Triangles F(c.shape(0), 3);
   const long long* p = c.data();
   for (py::ssize_t i = 0; i < 3 * c.shape(0); ++i) {
-    if (p[i] < 0 || p[i] > std::numeric_limits<int>::max())
-      throw InvalidInputError("faces[" + std::to_string(i / 3) + "] has vertex index " +
-                              std::to_string(p[i]) + ", out of range");
+    if (p[i] < 0 || p[i] >= n)
+      throw InvalidInputError(std::string(caller) + ": triangle " + std::to_string(i / 3) +
+                              " has vertex index " + std::to_string(p[i]) + ", out of range [0, " +
+                              std::to_string(n) + ")");
     F.data()[i] = int(p[i]);
   }
   return F;
@@ -117,6 +123,181 @@ py::array_t<int> int_array(const std::vector<int>& v) {
   py::array_t<int> a(py::ssize_t(v.size()));
   std::copy(v.begin(), v.end(), a.mutable_data());
   return a;
+}
+
+// Whether pybind11 converts `value` to the C++ parameter type T, as a call does (convert mode).
+template <class T>
+bool converts(py::handle value) {
+  py::detail::make_caster<T> caster;
+  return caster.load(value, true);
+}
+
+// T in the words of a wrong-type message; nullptr for py::object (anything converts).
+template <class T>
+const char* type_words() {
+  using U = std::decay_t<T>;
+  if constexpr (std::is_same_v<U, double>) return "a number";
+  if constexpr (std::is_same_v<U, int>) return "an int";
+  if constexpr (std::is_same_v<U, bool>) return "a bool";
+  if constexpr (std::is_same_v<U, std::string>) return "a str";
+  return nullptr;
+}
+
+// The C++ parameter types of a function pointer or lambda, as converters.
+struct Converter {
+  bool (*converts)(py::handle);
+  const char* words;
+};
+template <class F>
+struct ParameterTypes : ParameterTypes<decltype(&F::operator())> {};
+template <class R, class... A>
+struct ParameterTypes<R (*)(A...)> {
+  static std::vector<Converter> get() { return {Converter{&converts<A>, type_words<A>()}...}; }
+};
+template <class R, class C, class... A>
+struct ParameterTypes<R (C::*)(A...) const> : ParameterTypes<R (*)(A...)> {};
+template <class R, class C, class... A>
+struct ParameterTypes<R (C::*)(A...)> : ParameterTypes<R (*)(A...)> {};
+
+// A module function's parameters as its py::arg extras declare them: the source of its text
+// signature (CPython's __text_signature__, so inspect.signature works) and of the checks that
+// give a wrong call a short TypeError naming the argument (pybind11's own lists the signature
+// and the repr of every argument, input arrays included).
+class Signature {
+ public:
+  explicit Signature(std::string function) : function_(std::move(function)) {}
+
+  void add(const py::arg_v& a) {
+    parameters_.push_back({a.name, std::string(py::repr(a.value)), keyword_only_, {}});
+  }
+  void add(const py::arg& a) { parameters_.push_back({a.name, std::nullopt, keyword_only_, {}}); }
+  void add(const py::kw_only&) { keyword_only_ = true; }
+  void add(const char* doc) { doc_ = doc; }
+
+  const std::string& doc() const { return doc_; }
+
+  void set_types(const std::vector<Converter>& types) {
+    if (types.size() != parameters_.size())
+      throw std::logic_error(function_ + ": py::arg count differs from the C++ parameters");
+    for (std::size_t i = 0; i < types.size(); ++i) parameters_[i].type = types[i];
+  }
+
+  // "(vertices, faces, free, *, remesh=False, ...)": Python literals as defaults.
+  std::string text() const {
+    std::string t = "(";
+    bool star = false;
+    for (const auto& p : parameters_) {
+      if (t.size() > 1) t += ", ";
+      if (p.keyword_only && !star) {
+        t += "*, ";
+        star = true;
+      }
+      t += p.name + (p.default_value ? "=" + *p.default_value : "");
+    }
+    return t + ")";
+  }
+
+  // Checks a call's arguments as CPython does for a Python function (count, names, missing,
+  // repeated; an unknown keyword with the nearest valid name), and their types as pybind11
+  // converts them; then calls `inner`.
+  py::object call(const py::object& inner, const py::args& args, const py::kwargs& kwargs) const {
+    std::size_t positional = 0;
+    while (positional < parameters_.size() && !parameters_[positional].keyword_only) ++positional;
+    if (args.size() > positional)
+      throw py::type_error(function_ + "() takes " + std::to_string(positional) +
+                           " positional argument" + (positional == 1 ? "" : "s") + " but " +
+                           std::to_string(args.size()) + " were given" +
+                           (positional < parameters_.size() ? " (the others are keyword-only)" : ""));
+    std::vector<bool> given(parameters_.size(), false);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      given[i] = true;
+      check_type(parameters_[i], args[i]);
+    }
+    for (const auto& [key, value] : kwargs) {
+      const std::string name = py::str(key);
+      const auto at = std::find_if(parameters_.begin(), parameters_.end(),
+                                   [&](const Parameter& p) { return p.name == name; });
+      if (at == parameters_.end()) throw unknown_keyword(name);
+      const std::size_t i = std::size_t(at - parameters_.begin());
+      if (given[i])
+        throw py::type_error(function_ + "() got multiple values for argument '" + name + "'");
+      given[i] = true;
+      check_type(*at, value);
+    }
+    for (std::size_t i = 0; i < parameters_.size(); ++i)
+      if (!given[i] && !parameters_[i].default_value)
+        throw py::type_error(function_ + "() missing required argument '" + parameters_[i].name +
+                             "'");
+    try {
+      return inner(*args, **kwargs);
+    } catch (py::error_already_set& e) {
+      // A conversion the checks above did not foresee: pybind11's message without its lists.
+      if (e.matches(PyExc_TypeError) &&
+          std::string(e.what()).find("incompatible function arguments") != std::string::npos)
+        throw py::type_error(function_ + "(): incompatible function arguments; help(geofair." +
+                             function_ + ") gives the signature");
+      throw;
+    }
+  }
+
+ private:
+  struct Parameter {
+    std::string name;
+    std::optional<std::string> default_value;  // a Python literal; none: required
+    bool keyword_only;
+    Converter type;
+  };
+
+  void check_type(const Parameter& p, py::handle value) const {
+    if (!p.type.words || p.type.converts(value)) return;
+    std::string got = "None";
+    if (!value.is_none()) {
+      got = py::str(py::type::of(value).attr("__name__"));
+      const std::string repr = py::repr(value);
+      if (repr.size() <= 40) got += " " + repr;  // not an array's
+    }
+    throw py::type_error(function_ + "(): " + p.name + " must be " + p.type.words + ", got " + got);
+  }
+
+  py::type_error unknown_keyword(const std::string& name) const {
+    py::list names;
+    std::string all;
+    for (const auto& p : parameters_) {
+      names.append(p.name);
+      all += (all.empty() ? "" : ", ") + p.name;
+    }
+    const py::list close =
+        py::module_::import("difflib").attr("get_close_matches")(name, names, 1);
+    const std::string hint = close.empty()
+                                 ? " (its arguments: " + all + ")"
+                                 : "; did you mean '" + py::str(close[0]).cast<std::string>() + "'?";
+    return py::type_error(function_ + "() got an unexpected keyword argument '" + name + "'" + hint);
+  }
+
+  std::string function_;
+  std::vector<Parameter> parameters_;
+  bool keyword_only_ = false;
+  std::string doc_;
+};
+
+// Defines geofair.<name>(...) = f as m.def(name, f, extra...) would, `extra` being py::arg,
+// py::arg_v, py::kw_only and the docstring: pybind11 converts the arguments as it would, after
+// the checks of Signature, and CPython reads the signature from the docstring's first line.
+template <class Function, class... Extra>
+void def_checked(py::module_& m, const char* name, Function&& f, const Extra&... extra) {
+  auto signature = std::make_shared<Signature>(name);
+  (signature->add(extra), ...);
+  signature->set_types(ParameterTypes<std::decay_t<Function>>::get());
+  const py::object inner = py::cpp_function(std::forward<Function>(f), py::name(name), extra...);
+  const std::string docstring = name + signature->text() + "\n--\n\n" + signature->doc();
+  py::options options;
+  options.disable_function_signatures();
+  m.def(
+      name,
+      [signature, inner](const py::args& args, const py::kwargs& kwargs) {
+        return signature->call(inner, args, kwargs);
+      },
+      docstring.c_str());
 }
 
 // The Python names of the options' values, one table per enum: parse() reads them, name()
@@ -214,10 +395,15 @@ void set_tuning(const py::object& tuning, SolverTuning& t) {
   }
 }
 
-// The defaults of fair's options: FairingOptions{}, the one source (types.h).
+// The defaults of fair's keyword arguments, in its signature's order: FairingOptions{}, the
+// one source (types.h); "tuning" spelled out (None in the signature means these).
 py::dict defaults_py() {
   const FairingOptions o;
   py::dict d;
+  d["remesh"] = remesh_value(o.remesh);
+  d["boundary"] = name(o.boundary, kBoundaryNames);
+  d["boundary_normals"] = py::none();
+  d["polygon_ids"] = py::none();
   d["inner_fairness"] = name(o.inner_fairness, kInnerFairnessNames);
   d["outer_fairness"] = name(o.outer_fairness, kOuterFairnessNames);
   d["normal_weighting"] = name(o.normal_weighting, kNormalWeightingNames);
@@ -227,12 +413,8 @@ py::dict defaults_py() {
   d["cg_iterations"] = o.cg_iterations;
   d["levels"] = o.levels;
   d["iteration"] = name(o.iteration, kIterationNames);
-  d["boundary"] = name(o.boundary, kBoundaryNames);
-  d["remesh"] = remesh_value(o.remesh);
+  d["progress"] = py::none();
   d["time_limit"] = py::none();
-  d["time_limit_base"] = o.tuning.schedule.time_limit_base;
-  d["time_limit_per_free_vertex"] = o.tuning.schedule.time_limit_per_free_vertex;
-  d["time_limit_hard_factor"] = o.tuning.schedule.time_limit_hard_factor;
   py::dict tuning;
   for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
                                       bool) { tuning[key] = value; });
@@ -240,8 +422,8 @@ py::dict defaults_py() {
   return d;
 }
 
-// fair's and fill_holes' docstrings with the figures of the automatic time limit, of Newton's
-// method (the default tuning, tuning.h) and of fill_holes' size cap filled in.
+// fair's and fill_holes' docstrings with the figures of the automatic time limit (the default
+// tuning, tuning.h), of fair's numerical defaults and of fill_holes' size cap filled in.
 std::string fair_doc(std::string doc) {
   const auto replace = [&doc](const std::string& key, const std::string& value) {
     for (std::size_t at; (at = doc.find(key)) != std::string::npos;) doc.replace(at, key.size(), value);
@@ -255,20 +437,12 @@ std::string fair_doc(std::string doc) {
   replace("{time_limit_base}", number(t.schedule.time_limit_base));
   replace("{time_limit_per_free_ms}", number(t.schedule.time_limit_per_free_vertex * 1e3));
   replace("{time_limit_hard_factor}", number(t.schedule.time_limit_hard_factor));
-  replace("{newton_step}", number(t.newton.max_step));
-  replace("{polished_move}", number(t.newton.polished_move));
-  replace("{polishes}", number(t.newton.polishes));
-  replace("{patience}", number(t.newton.patience));
-  replace("{coarse_patience}", number(t.newton.coarse_patience));
-  replace("{coarse_merit}", number(t.newton.coarse_merit));
-  replace("{min_base_free}", number(t.schedule.newton_min_base_free));
-  replace("{retry_min_free}", number(t.schedule.newton_retry_min_free));
-  replace("{membrane_first}", number(t.schedule.membrane_first_irregularity));
+  const FairingOptions o;
+  replace("{tolerance}", number(o.tolerance));
+  replace("{max_iterations}", std::to_string(o.max_iterations));
+  replace("{damping}", number(o.damping));
+  replace("{cg_iterations}", std::to_string(o.cg_iterations));
   replace("{max_fill_vertices}", std::to_string(kMaxFillVertices));
-  replace("{attempt_first}", number(t.schedule.newton_attempt_first));
-  replace("{attempt_first_2}", number(2 * t.schedule.newton_attempt_first));
-  replace("{attempt_first_4}", number(4 * t.schedule.newton_attempt_first));
-  replace("{attempt_steps}", number(t.schedule.newton_attempt_steps));
   return doc;
 }
 
@@ -291,12 +465,22 @@ FairingOptions fairing_options(const std::string& boundary, const std::string& i
   options.damping = damping;
   options.cg_iterations = cg_iterations;
   options.levels = levels;
+  // None and 0: the automatic limit (FairingOptions' negative), so that the add-on's Time Limit
+  // property, which cannot hold None, means the same with 0.
   if (!time_limit.is_none()) {
-    options.time_limit = time_limit.cast<double>();
-    if (!(options.time_limit >= 0.0))
-      throw InvalidInputError(std::string(caller) +
-                              ": time_limit must be None or a number >= 0 (seconds), got " +
-                              std::string(py::str(time_limit)));
+    const auto bad = [&] {
+      return InvalidInputError(std::string(caller) +
+                               ": time_limit must be None or 0 (automatic) or a number of seconds "
+                               "> 0, got " + std::string(py::str(py::repr(time_limit))));
+    };
+    double seconds = 0.0;
+    try {
+      seconds = time_limit.cast<double>();
+    } catch (const py::cast_error&) {
+      throw bad();
+    }
+    if (!(seconds >= 0.0)) throw bad();  // negative or NaN
+    if (seconds > 0.0) options.time_limit = seconds;
   }
   if (!tuning.is_none()) set_tuning(tuning, options.tuning);
   return options;
@@ -344,7 +528,7 @@ FairingResult fair_py(const py::object& vertices, const py::object& faces, const
                       int levels, const std::string& iteration, const py::object& progress,
                       const py::object& time_limit, const py::object& tuning) {
   const Positions V = to_positions(vertices, "vertices");
-  const Triangles F = to_triangles(faces);
+  const Triangles F = to_triangles(faces, "fair", V.rows());
   const std::vector<bool> mask = to_mask(free, V.rows());
   std::optional<std::vector<int>> polygons;
   if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
@@ -412,7 +596,7 @@ FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
                             const std::string& iteration, const py::object& progress,
                             const py::object& time_limit, const py::object& tuning) {
   const Positions V = to_positions(vertices, "vertices");
-  const Triangles F = to_triangles(faces);
+  const Triangles F = to_triangles(faces, "fill_holes", V.rows());
   const std::vector<std::vector<int>> holes = to_loops(loops);
   double length = 0.0;
   if (!target_edge_length.is_none()) {
@@ -432,7 +616,7 @@ FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
 Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
                                   const py::object& normals, const std::string& weighting) {
   const Positions V = to_positions(vertices, "vertices");
-  const Triangles F = to_triangles(faces);
+  const Triangles F = to_triangles(faces, "mean_curvature", V.rows());
   std::optional<Positions> N;
   if (!normals.is_none()) N = to_positions(normals, "normals");
   const NormalWeighting w = parse_weighting(weighting);
@@ -443,10 +627,10 @@ Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& 
 // A binding of f(V, F) taking (vertices, faces) arrays: converts and checks them, then runs
 // f without the GIL.
 template <class Function>
-auto on_mesh(Function f) {
-  return [f](const py::object& vertices, const py::object& faces) {
+auto on_mesh(const char* name, Function f) {
+  return [name, f](const py::object& vertices, const py::object& faces) {
     const Positions V = to_positions(vertices, "vertices");
-    const Triangles F = to_triangles(faces);
+    const Triangles F = to_triangles(faces, name, V.rows());
     py::gil_scoped_release release;
     return f(V, F);
   };
@@ -551,7 +735,7 @@ template <class Function, class... Own>
 void def_solve(py::module_& m, const char* python_name, Function&& f, const char* doc,
                Own&&... own) {
   const FairingOptions d;
-  m.def(python_name, std::forward<Function>(f), std::forward<Own>(own)...,
+  def_checked(m, python_name, std::forward<Function>(f), std::forward<Own>(own)...,
         py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
         py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
         py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
@@ -565,183 +749,98 @@ void def_solve(py::module_& m, const char* python_name, Function&& f, const char
 
 // geofair.defaults and geofair.fair.
 void bind_fair(py::module_& m) {
-  m.def("defaults", &defaults_py,
-        R"doc(The defaults of geofair.fair's options, the library's one source of them.
+  def_checked(m, "defaults", &defaults_py,
+        R"doc(The defaults of geofair.fair's keyword arguments, the library's one source of them:
+geofair.fair(vertices, faces, free, **geofair.defaults()) is fair's default call.
 
 Returns
 -------
-dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
-"tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-"damping" (float), "remesh" (False, True or "if_needed"), "time_limit" (None: automatic),
-the automatic time limit of iteration="auto" (time without a halving of the residual),
-"time_limit_base" (seconds) plus
-"time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
-"time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
-dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).)doc");
+dict, a new one per call, in the order of fair's signature: "remesh" (False),
+"boundary", "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
+"boundary_normals", "polygon_ids", "progress", "time_limit" (None; None or 0 is the
+automatic time limit), "tolerance" (float, dimensionless), "max_iterations",
+"cg_iterations", "levels" (int), "damping" (float), and "tuning": a dict of the solvers'
+numerical choices beyond the paper by dotted name, e.g. "newton.patience" or
+"schedule.time_limit_base" (seconds; the automatic time limit's figures), which fair's
+tuning=None means (units and ranges: native/include/geofair/tuning.h).)doc");
 
   const FairingOptions d;
   static const std::string fair_docstring = fair_doc(R"doc(Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
-(Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
-condition (fixed positions and unit normals) at the fixed vertices next to free ones, or
-with boundary="g0" the G0 condition (fixed positions, H = 0).
+(Schneider & Kobbelt 2001, eqs. (4) and (12), solved as in section 7) with the G1 boundary
+condition (fixed positions and unit normals) at the fixed vertices next to free ones, or with
+boundary="g0" the G0 condition (fixed positions, H = 0). Every option in detail:
+docs/REFERENCE.md, "The options of geofair.fair".
 
 Parameters
 ----------
 vertices : (n, 3) float64 array, positions in mesh units.
-faces : (m, 3) integer array, triangles, consistently oriented (counter-clockwise seen from
-    the normal side), manifold around the free region.
-free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
-    by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
-    vertex form the boundary.
-remesh : False (default; also "off"), True (also "always") or "if_needed". False: the
-    connectivity is kept (the paper's setting). True: the region's triangles (those with a
-    free vertex) are first replaced by geofair.remesh_region's isotropic remesh at the mean
-    length of the region's border edges (fixed vertices and the region's border edges
-    kept; the G1 normals taken from the input), then faired. "if_needed": faired with the
-    connectivity kept first; where that does not converge or folds triangles over that
-    were not folded, remeshed and faired again: the remeshed result is returned if it
-    converged without new folds, else the better of the two (converged first, then fewer
-    new folds, then the smaller residual); .message says which. A remeshed result has
-    other vertices and faces: n' rows (fixed rows keep index and position, the input's free
-    rows are reused, extra rows appended; .unreferenced lists free rows left over), its
-    .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
-    the input surface (to carry UVs over); its .folds and .new_folds count its own
-    triangles (new: not folded in the remesh before fairing). polygon_ids do not apply to
-    the new triangles. An explicit time_limit covers the whole call; the automatic one
-    applies to each solve.
-boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
-    normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
-    surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
-    on the boundary; Δ_B H = 0 then gives H ≡ 0, the minimal surface spanned by the
-    boundary (a plane for a planar loop, a catenoid between two coaxial circles close
-    enough together; the intrinsic counterpart of Blender's Fair Positions and CGAL's fair
-    with continuity 0). With "g0" boundary_normals is ignored (not read, not checked),
-    nothing is estimated from the surface around the region, so the region may reach the
-    mesh border, and the linear initial mesh (and outer_fairness="bilaplacian") is the
-    membrane Δf = 0: Δ²f = 0 with Δf = 0 at the boundary, the linear counterpart of H = 0.
-    H is signed as in geofair.mean_curvature (H = 1/r on a sphere with outward normals);
-    with "g0" its sign does not matter, it vanishes on the boundary and in the result.
-boundary_normals : (n, 3) float64 array or None, read with boundary="g1" only. Rows at
-    G1 boundary vertices are the prescribed unit normals (other rows are ignored); one
-    whose dot product with the estimate of geofair.boundary_normals is negative is
-    rejected (flipped normals or faces). None: geofair.boundary_normals(vertices, faces,
-    free), the tangent plane of a least-squares quadric through the fixed vertices around
-    it (error O(h²); earlier releases took the one-sided area-weighted normal, O(h)).
-polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
-    triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
-    whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
-    an edge of the mesh. Read by inner_fairness="uniform" only (beyond the paper): its
-    umbrella runs over the polygon mesh's edges, so the vertex distribution of a quad mesh
-    does not depend on which diagonal split each quad. A free vertex left with fewer than
-    three such neighbours (a G1 boundary vertex: with none) keeps its whole ring.
-    The surface (Δ_B H, mean curvature, normals) is always that of the triangles.
-inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
-    vertex distribution; along the polygons' edges with polygon_ids); "conformal" (the
-    discrete harmonic map with the cotangent weights of the input mesh: discrete-conformal
-    to it, keeps texture distortion low; weights that obtuse triangles make negative are
-    clamped to 0, and a vertex whose remaining neighbours do not surround it, at a sharp
-    cone point of the input, takes the mean value weights of its ring); or
-    "conformal_intrinsic" (the discrete harmonic map with the cotangent weights of the
-    intrinsic Delaunay triangulation of the input, Bobenko & Springborn 2007: never
-    negative, nothing clamped, so vertices land where the harmonic map puts them also on
-    meshes of obtuse triangles; identical to "conformal" on a mesh that needs no intrinsic
-    flip. On rough inputs (noise as large as the features) it can stall where "conformal"
-    converges; see docs/ACCURACY_AND_SPEED.md, "Negative cotangent weights").
-outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
-    of section 7.4 alone, for comparison).
-normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent
-    plane of a least-squares quadric through the one-ring, consistent on irregular meshes),
-    "area" (the paper's choice, section 6: sum of face cross products), "angle" (Thürmer &
-    Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in docs/ACCURACY_AND_SPEED.md.
-tolerance : stop when the residual is at most this (dimensionless). The residual is
-    L * max_i |Hbar_i - H_i| over the free vertices: how far the mean curvature H_i
-    deviates from the cotangent-weighted mean Hbar_i = Σ_j w_ij H_j / Σ_j w_ij of its
-    neighbours (the Jacobi-scaled residual of eq. (12), about h**2 |Δ_B H| for edge length
-    h), with L the bounding-box diagonal of the region. Invariant under scaling, and it
-    asks the same local smoothness of H on a coarse and a fine mesh (L**3 |Δ_B H| would
-    ask (L/h)**2 times more of the fine one). Measured on disturbed sphere caps with Max's
-    normals (the sphere is the exact discrete solution): 1e-4 leaves a max radial error of
-    1e-6 (2000 free vertices) to 6e-6 (13000), below the discretization error of area
-    normals there (1e-3 to 3e-4).
-max_iterations : upper bound on the iterations spent solving each level (iterations that
-    the multigrid cycles of a finer level run on a coarser one are not counted), and on
-    the Newton steps.
-iteration : how eq. (12) is solved; all choices solve the same discrete equations.
-    "newton" (beyond the paper): Newton's method on the normal offsets of all free
-    vertices at once, level by level on the progressive mesh (section 7.4's nested
-    iteration; levels): the base level from the linear initial mesh, each finer level from
-    the prolongation of the coarser solution, each brought to inner fairness first by
-    tangential solves. Per step one inexact Newton step: GMRES on the products of the
-    exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
-    recomputed; forward differences), preconditioned by the sparse LU factorization of a
-    fixed-normal Jacobian of an earlier step; steps limited to {newton_step} mean neighbour distances
-    per vertex. At convergence of the finest level tangential solves restore inner
-    fairness (linearized with the turn of the tangent planes, so that repeated solves
-    converge quadratically; above the base level by GMRES on a two-grid preconditioner with
-    the next coarser level, three-grid with the next two, without a factorization at the
-    level's size), repeated while the next one would move a vertex by more than {polished_move} mean
-    neighbour distances (predicted from the last move by the quadratic convergence), at
-    most {polishes} times (the steps go on where one raised the residual). A level stops when the
-    residual has not halved in {patience} steps (a coarse level in {coarse_patience}). Where Newton's
-    method fails on the base level from its linear initial mesh, the base level runs
-    {attempt_first} iterations of the paper's iteration and one Newton attempt from there; a
-    coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
-    most {coarse_merit} still starts the next, and a coarse level above the base stops once its
-    merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
-    again with other coarse weights (uniform inner fairness: from the membrane of the
-    finest weights, its hierarchy decimated on the smoothed input and then on the membrane,
-    then each level's own uniform weights), then the finest level alone; the membrane's
-    weights go first where at least {membrane_first} of the free vertices have a valence
-    other than 6 (an irregular connectivity), its hierarchy decimated on the membrane;
-    a region solved as one level (fewer than 4 × {min_base_free} free vertices) with at least
-    {retry_min_free} free vertices tries two levels where the one fails.
-    "paper": the local/global iteration of section 7 with multigrid cycles (levels).
-    "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
-    start, with Newton's method tried from the paper's iterate after {attempt_first},
-    {attempt_first_2}, {attempt_first_4}, ... iterations of the finest level (at most
-    {attempt_steps} steps or {patience} without halving the residual each); the
-    first attempt that converges ends the solve (.message says after how many). The LU
-    factors of the Newton steps take memory, growing faster than the vertex count; the
-    README's speed table gives the steps per level and the peak memory
-    (bench/speed.py).
-damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
-cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
-levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
-    free vertices per level: 1 solves the whole region as one level; 0 (default) picks
-    them from the region. For "newton": as many as keep at least {min_base_free} free vertices on the
-    base level (its hierarchy coarsens the G1 boundary too, see progressive_mesh); for
-    "paper": one level up to 1000 free vertices and
-    about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
-    multigrid cycles on the coarser ones.
-time_limit : seconds (float) the whole call may take, or None (default): automatic with
-    iteration="auto", a limit on time without progress: Newton's attempts end by their own rule
-    (see iteration), the paper's iteration once its residual has not halved for {time_limit_base} s
-    plus {time_limit_per_free_ms} ms per free vertex, and the whole call in any case after {time_limit_hard_factor} times that; no limit with
-    "newton" or "paper" (they run to max_iterations); float("inf") for no limit. Once spent,
-    the result is returned with converged=False and a message saying so (the input
-    positions if no level finished).
-progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
-    returning False stops the run early (converged is then False).
-tuning : dict or None (default): overrides of the solvers' numerical choices beyond the
-    paper, from dotted names such as "newton.patience" to numbers; the names and defaults:
-    geofair.defaults()["tuning"], units and valid ranges: native/include/geofair/tuning.h.
-    An unknown name, a value of the wrong type or out of range raises ValueError.
+faces : (m, 3) integer array, triangles counter-clockwise seen from the normal side, a
+    consistently oriented manifold around the free region.
+free : (n,) bool array, True where a vertex may move (not on the mesh border). The fixed
+    vertices that share a triangle with a free one form the boundary.
+remesh : False (default; also "off"): the triangles are kept. True (also "always"): the
+    region's triangles are first replaced by geofair.remesh_region's isotropic remesh.
+    "if_needed": remeshed and faired again only where the kept triangles do not converge
+    or fold over.
+boundary : "g1" (default): positions and unit normals prescribed (section 4). "g0":
+    positions only and H = 0: the minimal surface spanned by the boundary.
+boundary_normals : (n, 3) float64 unit normals, read at the G1 boundary vertices, oriented
+    like the faces; None (default): geofair.boundary_normals(vertices, faces, free).
+polygon_ids : (m,) integer array, the polygon each triangle was cut from: "uniform" inner
+    fairness runs over the polygons' edges; None (default): over the triangles' edges.
+inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (default,
+    a regular distribution), "conformal" (the input's cotangent weights: low UV distortion)
+    or "conformal_intrinsic" (those of the input's intrinsic Delaunay triangulation).
+outer_fairness : "intrinsic" (default, Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0
+    initial mesh of section 7.4 alone).
+normal_weighting : the free vertices' normals (section 6): "quadric" (default, the tangent
+    plane of a least-squares quadric), "area" (the paper's), "angle" or "max".
+tolerance : stop once the residual is at most this (default {tolerance}, dimensionless): the
+    residual is L max_i |Hbar_i - H_i| over the free vertices, Hbar_i the cotangent-weighted
+    mean of the neighbours' H (eq. (12) scaled), L the region's bounding-box diagonal.
+max_iterations : iterations at most on each level, and Newton steps (default {max_iterations}).
+damping : s in q <- q~ + s t n (section 7.2), in (0, 1] (default {damping}).
+cg_iterations : conjugate-gradient iterations of a global step (section 7.1, default {cg_iterations}).
+levels : levels of the progressive-mesh multigrid (section 7.4): 0 (default) picks them from
+    the region, 1 solves the region as one level.
+iteration : how eq. (12) is solved, the same equations each: "auto" (default: "newton",
+    then "paper" where it stops unconverged), "newton" (Newton's method on all free vertices
+    at once, beyond the paper) or "paper" (section 7's iteration with multigrid cycles).
+progress : callable(iteration, residual) -> bool, or None; called at most every 0.1 s,
+    returning False stops the solve (stop_reason "cancelled").
+time_limit : None or 0 (default): automatic. With iteration="auto" the solve stops once the
+    residual has not halved for {time_limit_base} s plus {time_limit_per_free_ms} ms per free vertex, and after
+    {time_limit_hard_factor} times that in any case; "newton" and "paper" run to max_iterations. A number > 0:
+    the seconds the whole call may take (float("inf"): no limit).
+tuning : dict or None: numerical choices beyond the paper by dotted name, e.g.
+    "newton.patience": 40; the names and defaults: geofair.defaults()["tuning"].
 
 Returns
 -------
-FairingResult with .vertices (n', 3) float64 (n' = n unless remeshed), .faces (m', 3)
-int32, .free (n',) bool, .remeshed, .unreferenced, .origin_face and .origin_barycentric
-(see remesh; the input's faces and mask, -1 and zeros when not remeshed), .converged,
-.iterations (all levels),
-.residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-.iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
-triangles the result flips over, and those not folded in the input) and .phase_seconds
-(wall-clock seconds per phase, for profiling).
+FairingResult, whose fields are
+    vertices : (n', 3) float64, fixed rows bit-identical to the input; n' = n unless remeshed.
+    faces : (m', 3) int32 and free : (n',) bool, the input's unless remeshed.
+    remeshed : bool; unreferenced : (k,) int32, rows in no face; origin_face : (n',) int32
+        and origin_barycentric : (n', 3) float64, where each new free vertex lay on the
+        input (-1 and zeros for the other rows, and unless remeshed).
+    converged : bool, residual <= tolerance; residual : float, dimensionless.
+    message : str, how the solve ended: one sentence with the residual and the tolerance.
+    stop_reason : str, "converged", "max_iterations", "time_limit", "no_progress" (the
+        automatic limit), "cancelled" (progress returned False) or "diverged" (the input is
+        returned).
+    iterations : int, all levels; iterations_per_level, vertices_per_level : lists, coarsest
+        level first; iteration : "newton" or "paper"; newton_iterations : int.
+    folds : int, edges with a free vertex whose two triangles face apart; new_folds : int,
+        those not folded in the input.
+    phase_seconds : list of (phase, seconds), wall-clock time per phase.
 
 Raises
 ------
-ValueError for invalid input (the message names the problem and the vertex or face),
-RuntimeError if the computation fails or diverges. NaN or Inf is never returned.)doc");
+geofair.InvalidInputError (a ValueError): invalid input or option value; the message names
+    the problem and the vertex, face or option.
+geofair.SolverError (a RuntimeError): the computation failed or diverged. NaN or Inf is
+    never returned.
+TypeError: an unknown keyword argument, or an argument of the wrong type.)doc");
   def_solve(m, "fair", &fair_py, fair_docstring.c_str(), py::arg("vertices"), py::arg("faces"),
             py::arg("free"), py::kw_only(), py::arg("remesh") = remesh_value(d.remesh),
             py::arg("boundary") = name(d.boundary, kBoundaryNames),
@@ -750,9 +849,10 @@ RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
 
 // geofair.cotangent_laplacian, intrinsic_delaunay and intrinsic_delaunay_laplacian.
 void bind_laplacians(py::module_& m) {
-  m.def(
+  def_checked(m, 
       "cotangent_laplacian",
-      on_mesh([](const Positions& V, const Triangles& F) { return cotangent_laplacian(V, F); }),
+      on_mesh("cotangent_laplacian",
+              [](const Positions& V, const Triangles& F) { return cotangent_laplacian(V, F); }),
       py::arg("vertices"), py::arg("faces"),
       R"doc(The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
 2001, eqs. (5)-(7)) as an (n, n) scipy.sparse CSR matrix (needs scipy).
@@ -762,11 +862,11 @@ L[i, i] = -Σ_j L[i, j]: symmetric, L @ ones = 0. (L @ f)[i] = (2 A_i / 3) Δ_B 
 the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of eqs. (6),
 (7) is -L restricted to the free rows and columns.
 
-Raises ValueError for invalid input.)doc");
+Raises geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 
-  m.def(
+  def_checked(m, 
       "intrinsic_delaunay",
-      on_mesh([](const Positions& V, const Triangles& F) {
+      on_mesh("intrinsic_delaunay", [](const Positions& V, const Triangles& F) {
         IntrinsicTriangulation T = intrinsic_delaunay(V, F);
         return std::make_tuple(std::move(T.triangles), std::move(T.lengths), T.flips);
       }),
@@ -782,11 +882,12 @@ triangle may repeat a vertex), (m, 3) float64 edge lengths in mesh units (length
 from corner k to corner k+1 of triangle t), and the number of flips (0 if the mesh was
 intrinsically Delaunay).
 
-Raises ValueError for invalid input, RuntimeError if round-off made the flips cycle.)doc");
+Raises geofair.InvalidInputError (a ValueError) for invalid input, geofair.SolverError (a
+RuntimeError) if round-off made the flips cycle.)doc");
 
-  m.def(
+  def_checked(m, 
       "intrinsic_delaunay_laplacian",
-      on_mesh([](const Positions& V, const Triangles& F) {
+      on_mesh("intrinsic_delaunay_laplacian", [](const Positions& V, const Triangles& F) {
         return intrinsic_delaunay_laplacian(V, F);
       }),
       py::arg("vertices"), py::arg("faces"),
@@ -797,18 +898,18 @@ i and j, L[i, i] = -Σ_j L[i, j]. Every off-diagonal entry is >= 0 (to round-off
 the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_laplacian
 where the mesh is already intrinsically Delaunay.
 
-Raises ValueError for invalid input.)doc");
+Raises geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 }
 
 // geofair.relax_inner_fairness and progressive_mesh: steps of fair() on their own.
 void bind_solver_steps(py::module_& m) {
-  m.def(
+  def_checked(m, 
       "relax_inner_fairness",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
          const py::object& normals, const std::string& inner_fairness,
          const std::string& tangent_planes, const py::object& polygon_ids) {
         const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
+        const Triangles F = to_triangles(faces, "relax_inner_fairness", V.rows());
         const std::vector<bool> mask = to_mask(free, V.rows());
         std::optional<std::vector<int>> polygons;
         if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
@@ -857,15 +958,16 @@ Returns
 (vertices, scale): (n, 3) float64 positions (free rows moved, mesh units) and the scale in
 (0, 1] applied to the solved move.
 
-Raises ValueError for invalid input, RuntimeError (geofair.SolverError) if the system is
+Raises geofair.InvalidInputError (a ValueError) for invalid input, geofair.SolverError (a
+RuntimeError) if the system is
 singular.)doc");
 
-  m.def(
+  def_checked(m, 
       "progressive_mesh",
       [](const py::object& vertices, const py::object& faces, const py::object& free, int levels,
          bool coarsen_boundary) {
         const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
+        const Triangles F = to_triangles(faces, "progressive_mesh", V.rows());
         const std::vector<bool> mask = to_mask(free, V.rows());
         py::gil_scoped_release release;
         return progressive_mesh_levels(V, F, mask, levels, coarsen_boundary);
@@ -889,17 +991,17 @@ vertices keep valences 4..10, those of valence 3 and 4 collapse first, and level
 Measured on the input smoothed by 10 sweeps of the uniform Laplacian (fair() smooths with its
 inner fairness weights).
 
-Raises ValueError for invalid input.)doc");
+Raises geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 }
 
 // geofair.boundary_normals and mean_curvature.
 void bind_geometry(py::module_& m) {
-  m.def(
+  def_checked(m, 
       "boundary_normals",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
          const std::string& method) {
         const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
+        const Triangles F = to_triangles(faces, "boundary_normals", V.rows());
         const std::vector<bool> mask = to_mask(free, V.rows());
         const BoundaryNormalEstimate estimate = parse<BoundaryNormalEstimate>(
             method, "method",
@@ -948,10 +1050,11 @@ mesh border: fair() without boundary_normals raises there) or with only degenera
 
 Raises
 ------
-ValueError for invalid input (shapes, dtypes, indices, a non-finite vertex of a
+geofair.InvalidInputError (a ValueError) for invalid input (shapes, dtypes, indices, a
+non-finite vertex of a
 surrounding triangle).)doc");
 
-  m.def("mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
+  def_checked(m, "mean_curvature", &mean_curvature_py, py::arg("vertices"), py::arg("faces"),
         py::arg("normals") = py::none(), py::arg("normal_weighting") = "quadric",
         R"doc(Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
 2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
@@ -973,7 +1076,7 @@ oriented outward, 1/(2r) on a cylinder, 0 on a plane; 0 at vertices in no triang
 
 Raises
 ------
-ValueError for invalid input.)doc");
+geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 }
 
 // geofair.fill_holes and geofair.boundary_loops.
@@ -1020,19 +1123,20 @@ new vertices; .remeshed True (.origin_face -1: a fill has no input surface); .co
 
 Raises
 ------
-ValueError when loops is not a list of sequences of vertex indices, a loop is not a boundary
+geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex indices, a loop is not a boundary
 loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
 the mesh has no hole, a fill would take more than {max_fill_vertices} new vertices, or for the input
-fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.)doc");
+fair refuses (the message names the problem and the vertex or face); geofair.SolverError (a
+RuntimeError) as fair.)doc");
   def_solve(m, "fill_holes", &fill_holes_py, fill_holes_docstring.c_str(), py::arg("vertices"),
             py::arg("faces"), py::arg("loops") = py::none(), py::kw_only(),
             py::arg("target_edge_length") = py::none(),
             py::arg("boundary") = name(d.boundary, kBoundaryNames));
-  m.def(
+  def_checked(m, 
       "boundary_loops",
       [](const py::object& vertices, const py::object& faces) {
         const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
+        const Triangles F = to_triangles(faces, "boundary_loops", V.rows());
         std::vector<std::vector<int>> loops;
         {
           py::gil_scoped_release release;
@@ -1057,7 +1161,7 @@ added into the hole is oriented like its neighbours; empty for a closed mesh.
 
 Raises
 ------
-ValueError for invalid triangles or a vertex on two loops (holes that touch).)doc");
+geofair.InvalidInputError (a ValueError) for invalid triangles or a vertex on two loops (holes that touch).)doc");
 }
 
 // geofair.remesh_region and its result, geofair.RemeshedRegion.
@@ -1089,12 +1193,12 @@ void bind_remesh(py::module_& m) {
                ", free=" + std::to_string(std::count(r.free.begin(), r.free.end(), true)) + ")";
       });
 
-  m.def(
+  def_checked(m, 
       "remesh_region",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
          const py::object& target_edge_length, int iterations) {
         const Positions V = to_positions(vertices, "vertices");
-        const Triangles F = to_triangles(faces);
+        const Triangles F = to_triangles(faces, "remesh_region", V.rows());
         const std::vector<bool> mask = to_mask(free, V.rows());
         RemeshOptions options;
         options.iterations = iterations;
@@ -1146,7 +1250,7 @@ n' = max(n, #fixed + #new free); free rows left over are listed in .unreferenced
 
 Raises
 ------
-ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+geofair.InvalidInputError (a ValueError) for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
 border, a region that is not a consistently oriented 2-manifold, invalid options).)doc");
 }
 

@@ -100,10 +100,11 @@ void build_mesh(Mesh& mesh, int n_vertices, const Triangles& triangles, const ch
   for (int v = 0; v < n_vertices; ++v) mesh.add_vertex(Mesh::Point(0, 0, 0));
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
     const int a = triangles(f, 0), b = triangles(f, 1), c = triangles(f, 2);
-    if (a < 0 || b < 0 || c < 0 || a >= n_vertices || b >= n_vertices || c >= n_vertices)
-      throw InvalidInputError(prefix(caller) + "triangle " + std::to_string(name(f)) +
-                              " has a vertex index out of range [0, " +
-                              std::to_string(n_vertices) + ")");
+    for (const int v : {a, b, c})
+      if (v < 0 || v >= n_vertices)
+        throw InvalidInputError(prefix(caller) + "triangle " + std::to_string(name(f)) +
+                                " has vertex index " + std::to_string(v) + ", out of range [0, " +
+                                std::to_string(n_vertices) + ")");
     if (a == b || b == c || a == c)
       throw InvalidInputError(prefix(caller) + "triangle " + std::to_string(name(f)) +
                               " repeats a vertex");

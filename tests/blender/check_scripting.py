@@ -19,6 +19,7 @@ Runs in Blender 3.4+ and in the ``bpy`` module from PyPI (see dev/geofair_dev/bl
   circles of radius a cosh(h/a) narrows to the catenoid; no boundary normal is estimated.
 """
 
+import inspect
 import math
 import sys
 import time
@@ -94,12 +95,17 @@ def check_regions(addon, obj):
         print(f"ok: iteration={chosen}: solved by {report.iteration}, {report.iterations} iterations")
     expect_error(ValueError, "iteration must be one of", lambda: addon.fair_object(obj, iteration="multigrid"))
     check_library_options(addon, obj, mask)
+    check_every_fair_option(addon, obj, mask)
 
     expect_error(ValueError, "has no vertex group 'Missing'", lambda: addon.fair_object(obj, region="Missing"))
     expect_error(ValueError, "one entry per face", lambda: addon.fair_object(obj, region=np.ones(3, dtype=bool)))
     expect_error(ValueError, "No face is selected", lambda: addon.fair_object(obj, region=np.zeros(len(mask), bool)))
     expect_error(ValueError, "inner_fairness must be one of", lambda: addon.fair_object(obj, inner_fairness="x"))
-    expect_error(TypeError, "unknown options", lambda: addon.fair_object(obj, tolerence=1e-3))
+    expect_error(
+        TypeError,
+        "fair_object: unknown option 'tolerence'; did you mean 'tolerance'?",
+        lambda: addon.fair_object(obj, tolerence=1e-3),
+    )
     assert bpy.context.window_manager.geometric_fairing.last_run.status == "ERROR"
 
 
@@ -132,6 +138,73 @@ def check_library_options(addon, obj, mask):
     assert report.converged and not report.stopped_at_time_limit, report
     report = addon.fair_object(obj, region=mask, inner_fairness="conformal", time_limit=60.0)
     assert report.converged, report
+
+
+class RecordingModule:
+    """The loaded geofair module, recording the keyword arguments of each call of ``fair``."""
+
+    def __init__(self, real):
+        self.real = real
+        self.calls = []
+
+    def fair(self, *args, **kwargs):
+        self.calls.append(kwargs)
+        return self.real.fair(*args, **kwargs)
+
+    def __getattr__(self, name):
+        return getattr(self.real, name)
+
+
+def check_every_fair_option(addon, obj, mask):
+    """fair_object takes every keyword argument of geofair.fair and passes it through."""
+    real = addon.native.geofair
+    keywords = [p.name for p in inspect.signature(real.fair).parameters.values() if p.kind is p.KEYWORD_ONLY]
+    recording = addon.native.geofair = RecordingModule(real)
+    try:
+        report = addon.fair_object(obj, region=mask, inner_fairness="conformal", tolerance=1e-3)
+        assert report.converged, report
+        default_call = recording.calls[-1]
+        # The default call leaves the options no property holds to the library.
+        assert not {"normal_weighting", "damping", "cg_iterations", "tuning"} & set(default_call), default_call
+        mesh_faces = len(obj.data.polygons)
+        given = {
+            "normal_weighting": "area",
+            "damping": 0.8,
+            "cg_iterations": 12,
+            "tuning": {"newton.patience": 25},
+            "time_limit": 0,  # automatic, as for the library
+            "iteration": "auto",
+            "levels": 0,
+            "max_iterations": 20000,
+            "outer_fairness": "intrinsic",
+            "boundary": "g1",
+            "remesh": False,
+            "boundary_normals": default_call["boundary_normals"],  # the estimate, given back
+            "polygon_ids": np.arange(mesh_faces) // 2,  # pairs of faces as one polygon
+        }
+        missing = set(keywords) - set(given) - {"inner_fairness", "tolerance", "progress"}
+        assert not missing, missing
+        calls = []
+        report = addon.fair_object(
+            obj, region=mask, inner_fairness="uniform", tolerance=1e-3, progress=lambda *a: calls.append(a), **given
+        )
+        assert report.converged and report.stop_reason == "converged", report
+        passed = recording.calls[-1]
+        for name in ("normal_weighting", "damping", "cg_iterations", "tuning", "time_limit", "iteration", "levels"):
+            assert passed[name] == given[name], (name, passed[name])
+        assert passed["boundary_normals"] is given["boundary_normals"] or np.array_equal(
+            passed["boundary_normals"], given["boundary_normals"]
+        )
+        assert np.array_equal(passed["polygon_ids"], given["polygon_ids"][default_call["polygon_ids"]])
+        report = addon.fair_object(obj, region=mask, inner_fairness="conformal", tolerance=1e-3, polygon_ids=None)
+        assert report.converged and recording.calls[-1]["polygon_ids"] is None
+        expect_error(ValueError, "polygon_ids must be an integer array with one entry per face",
+                     lambda: addon.fair_object(obj, region=mask, polygon_ids=np.zeros(3, dtype=int)))  # fmt: skip
+        expect_error(ValueError, "normal_weighting must be one of",
+                     lambda: addon.fair_object(obj, region=mask, normal_weighting="mean"))  # fmt: skip
+    finally:
+        addon.native.geofair = real
+    print(f"ok: fair_object passes every option of geofair.fair through ({len(keywords)} keywords)")
 
 
 def check_cancel_by_callback(addon, obj):

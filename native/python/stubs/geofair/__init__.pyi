@@ -4,6 +4,7 @@ Intrinsic mesh fairing: discrete solutions of Δ_B H = 0 with G1 boundary condit
 design, CAGD 18, 2001).
 """
 from __future__ import annotations
+import collections.abc
 import numpy
 import numpy.typing
 import scipy.sparse
@@ -35,7 +36,7 @@ class FairingResult:
         Edges with a free vertex whose two triangles face apart (normals with a negative dot product) in .vertices: triangles the result flips over. A converged result can have them where the G1 data turn faster than the mesh resolves, or keep them from a folded input; .message then says so.
         """
     @property
-    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+    def free(self) -> numpy.typing.NDArray[numpy.bool_]:
         """
         (n',) bool: the result's free vertices (the input's mask unless .remeshed; fill_holes: exactly the new vertices).
         """
@@ -126,7 +127,7 @@ class RemeshedRegion:
         (m', 3) int32 triangles: the input faces without a free vertex (unchanged, in input order), then the region's new triangles.
         """
     @property
-    def free(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+    def free(self) -> numpy.typing.NDArray[numpy.bool_]:
         """
         (n',) bool: True exactly at the new region's free vertices.
         """
@@ -150,7 +151,7 @@ class RemeshedRegion:
         """
         (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
         """
-def boundary_loops(vertices: typing.Any, faces: typing.Any) -> list:
+def boundary_loops(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
     The boundary loops (holes) of a triangle mesh.
     
@@ -166,9 +167,9 @@ def boundary_loops(vertices: typing.Any, faces: typing.Any) -> list:
     
     Raises
     ------
-    ValueError for invalid triangles or a vertex on two loops (holes that touch).
+    geofair.InvalidInputError (a ValueError) for invalid triangles or a vertex on two loops (holes that touch).
     """
-def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, method: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+def boundary_normals(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, method: typing.Literal['quadric', 'area'] = 'quadric') -> numpy.typing.NDArray[numpy.float64]:
     """
     The unit normals fair() prescribes at the G1 boundary when it is given no
     boundary_normals: estimated from the fixed surface around the free region (beyond the
@@ -202,10 +203,11 @@ def boundary_normals(vertices: typing.Any, faces: typing.Any, free: typing.Any, 
     
     Raises
     ------
-    ValueError for invalid input (shapes, dtypes, indices, a non-finite vertex of a
+    geofair.InvalidInputError (a ValueError) for invalid input (shapes, dtypes, indices, a
+    non-finite vertex of a
     surrounding triangle).
     """
-def cotangent_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse.csr_matrix:
+def cotangent_laplacian(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> scipy.sparse.csr_matrix:
     """
     The cotangent Laplace–Beltrami matrix L of a triangle mesh (Schneider & Kobbelt
     2001, eqs. (5)-(7)) as an (n, n) scipy.sparse CSR matrix (needs scipy).
@@ -215,189 +217,104 @@ def cotangent_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse
     the area of the 1-disk, so L @ vertices = -(4 A_i / 3) H_i n_i; the matrix S of eqs. (6),
     (7) is -L restricted to the free rows and columns.
     
-    Raises ValueError for invalid input.
+    Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def defaults() -> dict:
+def defaults() -> dict[str, typing.Any]:
     """
-    The defaults of geofair.fair's options, the library's one source of them.
+    The defaults of geofair.fair's keyword arguments, the library's one source of them:
+    geofair.fair(vertices, faces, free, **geofair.defaults()) is fair's default call.
     
     Returns
     -------
-    dict: "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
-    "tolerance" (float, dimensionless), "max_iterations", "cg_iterations", "levels" (int),
-    "damping" (float), "remesh" (False, True or "if_needed"), "time_limit" (None: automatic),
-    the automatic time limit of iteration="auto" (time without a halving of the residual),
-    "time_limit_base" (seconds) plus
-    "time_limit_per_free_vertex" (seconds per free vertex), its hard cap as a multiple of that,
-    "time_limit_hard_factor", and "tuning" (dict: the solvers' numerical choices beyond the paper, by
-    dotted name, e.g. "newton.patience"; their units and ranges: native/include/geofair/tuning.h).
+    dict, a new one per call, in the order of fair's signature: "remesh" (False),
+    "boundary", "inner_fairness", "outer_fairness", "normal_weighting", "iteration" (str),
+    "boundary_normals", "polygon_ids", "progress", "time_limit" (None; None or 0 is the
+    automatic time limit), "tolerance" (float, dimensionless), "max_iterations",
+    "cg_iterations", "levels" (int), "damping" (float), and "tuning": a dict of the solvers'
+    numerical choices beyond the paper by dotted name, e.g. "newton.patience" or
+    "schedule.time_limit_base" (seconds; the automatic time limit's figures), which fair's
+    tuning=None means (units and ranges: native/include/geofair/tuning.h).
     """
-def fair(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, remesh: typing.Any = False, boundary: str = 'g1', boundary_normals: typing.Any = None, polygon_ids: typing.Any = None, inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fair(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, remesh: bool | typing.Literal['off', 'always', 'if_needed'] = False, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
     """
     Fair the free vertices of a triangle mesh: the discrete solution of Δ_B H = 0
-    (Schneider & Kobbelt 2001, eqs. (4), (12), construction of section 7) with the G1 boundary
-    condition (fixed positions and unit normals) at the fixed vertices next to free ones, or
-    with boundary="g0" the G0 condition (fixed positions, H = 0).
+    (Schneider & Kobbelt 2001, eqs. (4) and (12), solved as in section 7) with the G1 boundary
+    condition (fixed positions and unit normals) at the fixed vertices next to free ones, or with
+    boundary="g0" the G0 condition (fixed positions, H = 0). Every option in detail:
+    docs/REFERENCE.md, "The options of geofair.fair".
     
     Parameters
     ----------
     vertices : (n, 3) float64 array, positions in mesh units.
-    faces : (m, 3) integer array, triangles, consistently oriented (counter-clockwise seen from
-        the normal side), manifold around the free region.
-    free : (n,) bool array, True where a vertex may move. Each free vertex must be surrounded
-        by triangles (not on the mesh border). Fixed vertices that share a triangle with a free
-        vertex form the boundary.
-    remesh : False (default; also "off"), True (also "always") or "if_needed". False: the
-        connectivity is kept (the paper's setting). True: the region's triangles (those with a
-        free vertex) are first replaced by geofair.remesh_region's isotropic remesh at the mean
-        length of the region's border edges (fixed vertices and the region's border edges
-        kept; the G1 normals taken from the input), then faired. "if_needed": faired with the
-        connectivity kept first; where that does not converge or folds triangles over that
-        were not folded, remeshed and faired again: the remeshed result is returned if it
-        converged without new folds, else the better of the two (converged first, then fewer
-        new folds, then the smaller residual); .message says which. A remeshed result has
-        other vertices and faces: n' rows (fixed rows keep index and position, the input's free
-        rows are reused, extra rows appended; .unreferenced lists free rows left over), its
-        .faces, .free, and .origin_face / .origin_barycentric locating each new free vertex on
-        the input surface (to carry UVs over); its .folds and .new_folds count its own
-        triangles (new: not folded in the remesh before fairing). polygon_ids do not apply to
-        the new triangles. An explicit time_limit covers the whole call; the automatic one
-        applies to each solve.
-    boundary : "g1" (default) or "g0". "g1": the paper's G1 condition, positions and unit
-        normals (boundary_normals) prescribed at the boundary; spheres, cylinders and minimal
-        surfaces that fit the data are reproduced. "g0": positions only, with H = 0 prescribed
-        on the boundary; Δ_B H = 0 then gives H ≡ 0, the minimal surface spanned by the
-        boundary (a plane for a planar loop, a catenoid between two coaxial circles close
-        enough together; the intrinsic counterpart of Blender's Fair Positions and CGAL's fair
-        with continuity 0). With "g0" boundary_normals is ignored (not read, not checked),
-        nothing is estimated from the surface around the region, so the region may reach the
-        mesh border, and the linear initial mesh (and outer_fairness="bilaplacian") is the
-        membrane Δf = 0: Δ²f = 0 with Δf = 0 at the boundary, the linear counterpart of H = 0.
-        H is signed as in geofair.mean_curvature (H = 1/r on a sphere with outward normals);
-        with "g0" its sign does not matter, it vanishes on the boundary and in the result.
-    boundary_normals : (n, 3) float64 array or None, read with boundary="g1" only. Rows at
-        G1 boundary vertices are the prescribed unit normals (other rows are ignored); one
-        whose dot product with the estimate of geofair.boundary_normals is negative is
-        rejected (flipped normals or faces). None: geofair.boundary_normals(vertices, faces,
-        free), the tangent plane of a least-squares quadric through the fixed vertices around
-        it (error O(h²); earlier releases took the one-sided area-weighted normal, O(h)).
-    polygon_ids : (m,) integer array or None: the polygon of the caller's mesh that each
-        triangle was tessellated from (e.g. Blender's MeshLoopTriangle.polygon_index); an edge
-        whose two triangles carry the same id is a diagonal of a polygon. None: every edge is
-        an edge of the mesh. Read by inner_fairness="uniform" only (beyond the paper): its
-        umbrella runs over the polygon mesh's edges, so the vertex distribution of a quad mesh
-        does not depend on which diagonal split each quad. A free vertex left with fewer than
-        three such neighbours (a G1 boundary vertex: with none) keeps its whole ring.
-        The surface (Δ_B H, mean curvature, normals) is always that of the triangles.
-    inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (regular
-        vertex distribution; along the polygons' edges with polygon_ids); "conformal" (the
-        discrete harmonic map with the cotangent weights of the input mesh: discrete-conformal
-        to it, keeps texture distortion low; weights that obtuse triangles make negative are
-        clamped to 0, and a vertex whose remaining neighbours do not surround it, at a sharp
-        cone point of the input, takes the mean value weights of its ring); or
-        "conformal_intrinsic" (the discrete harmonic map with the cotangent weights of the
-        intrinsic Delaunay triangulation of the input, Bobenko & Springborn 2007: never
-        negative, nothing clamped, so vertices land where the harmonic map puts them also on
-        meshes of obtuse triangles; identical to "conformal" on a mesh that needs no intrinsic
-        flip. On rough inputs (noise as large as the features) it can stall where "conformal"
-        converges; see docs/ACCURACY_AND_SPEED.md, "Negative cotangent weights").
-    outer_fairness : "intrinsic" (Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0 initial mesh
-        of section 7.4 alone, for comparison).
-    normal_weighting : free-vertex normals: "quadric" (default, beyond the paper: the tangent
-        plane of a least-squares quadric through the one-ring, consistent on irregular meshes),
-        "area" (the paper's choice, section 6: sum of face cross products), "angle" (Thürmer &
-        Wüthrich 1998) or "max" (Max 1999, exact on spheres). Measured in docs/ACCURACY_AND_SPEED.md.
-    tolerance : stop when the residual is at most this (dimensionless). The residual is
-        L * max_i |Hbar_i - H_i| over the free vertices: how far the mean curvature H_i
-        deviates from the cotangent-weighted mean Hbar_i = Σ_j w_ij H_j / Σ_j w_ij of its
-        neighbours (the Jacobi-scaled residual of eq. (12), about h**2 |Δ_B H| for edge length
-        h), with L the bounding-box diagonal of the region. Invariant under scaling, and it
-        asks the same local smoothness of H on a coarse and a fine mesh (L**3 |Δ_B H| would
-        ask (L/h)**2 times more of the fine one). Measured on disturbed sphere caps with Max's
-        normals (the sphere is the exact discrete solution): 1e-4 leaves a max radial error of
-        1e-6 (2000 free vertices) to 6e-6 (13000), below the discretization error of area
-        normals there (1e-3 to 3e-4).
-    max_iterations : upper bound on the iterations spent solving each level (iterations that
-        the multigrid cycles of a finer level run on a coarser one are not counted), and on
-        the Newton steps.
-    iteration : how eq. (12) is solved; all choices solve the same discrete equations.
-        "newton" (beyond the paper): Newton's method on the normal offsets of all free
-        vertices at once, level by level on the progressive mesh (section 7.4's nested
-        iteration; levels): the base level from the linear initial mesh, each finer level from
-        the prolongation of the coarser solution, each brought to inner fairness first by
-        tangential solves. Per step one inexact Newton step: GMRES on the products of the
-        exact Jacobian of the defects (normals, Moreton–Séquin H and cotangent weights
-        recomputed; forward differences), preconditioned by the sparse LU factorization of a
-        fixed-normal Jacobian of an earlier step; steps limited to 4 mean neighbour distances
-        per vertex. At convergence of the finest level tangential solves restore inner
-        fairness (linearized with the turn of the tangent planes, so that repeated solves
-        converge quadratically; above the base level by GMRES on a two-grid preconditioner with
-        the next coarser level, three-grid with the next two, without a factorization at the
-        level's size), repeated while the next one would move a vertex by more than 0.001 mean
-        neighbour distances (predicted from the last move by the quadratic convergence), at
-        most 8 times (the steps go on where one raised the residual). A level stops when the
-        residual has not halved in 20 steps (a coarse level in 8). Where Newton's
-        method fails on the base level from its linear initial mesh, the base level runs
-        100 iterations of the paper's iteration and one Newton attempt from there; a
-        coarse level that stops unconverged with a merit (the RMS of the scaled defects) of at
-        most 0.01 still starts the next, and a coarse level above the base stops once its
-        merit is at most that and a step no longer halves it. Where a coarse level fails, the hierarchy is solved
-        again with other coarse weights (uniform inner fairness: from the membrane of the
-        finest weights, its hierarchy decimated on the smoothed input and then on the membrane,
-        then each level's own uniform weights), then the finest level alone; the membrane's
-        weights go first where at least 0.55 of the free vertices have a valence
-        other than 6 (an irregular connectivity), its hierarchy decimated on the membrane;
-        a region solved as one level (fewer than 4 × 400 free vertices) with at least
-        1400 free vertices tries two levels where the one fails.
-        "paper": the local/global iteration of section 7 with multigrid cycles (levels).
-        "auto" (default): "newton", and where it stops unconverged or fails, "paper" from the
-        start, with Newton's method tried from the paper's iterate after 100,
-        200, 400, ... iterations of the finest level (at most
-        60 steps or 20 without halving the residual each); the
-        first attempt that converges ends the solve (.message says after how many). The LU
-        factors of the Newton steps take memory, growing faster than the vertex count; the
-        README's speed table gives the steps per level and the peak memory
-        (bench/speed.py).
-    damping : s in q <- q~ + s t n (section 7.2), in (0, 1].
-    cg_iterations : conjugate-gradient iterations of a global step (section 7.1).
-    levels : levels of the progressive-mesh multigrid (section 7.4, Fig. 6), 4 times as many
-        free vertices per level: 1 solves the whole region as one level; 0 (default) picks
-        them from the region. For "newton": as many as keep at least 400 free vertices on the
-        base level (its hierarchy coarsens the G1 boundary too, see progressive_mesh); for
-        "paper": one level up to 1000 free vertices and
-        about log4(free vertices / 250) + 1 above, each finer level solved by nonlinear
-        multigrid cycles on the coarser ones.
-    time_limit : seconds (float) the whole call may take, or None (default): automatic with
-        iteration="auto", a limit on time without progress: Newton's attempts end by their own rule
-        (see iteration), the paper's iteration once its residual has not halved for 5 s
-        plus 0.2 ms per free vertex, and the whole call in any case after 5 times that; no limit with
-        "newton" or "paper" (they run to max_iterations); float("inf") for no limit. Once spent,
-        the result is returned with converged=False and a message saying so (the input
-        positions if no level finished).
-    progress : callable(iteration, residual) -> bool or None, called at most every 0.1 s;
-        returning False stops the run early (converged is then False).
-    tuning : dict or None (default): overrides of the solvers' numerical choices beyond the
-        paper, from dotted names such as "newton.patience" to numbers; the names and defaults:
-        geofair.defaults()["tuning"], units and valid ranges: native/include/geofair/tuning.h.
-        An unknown name, a value of the wrong type or out of range raises ValueError.
+    faces : (m, 3) integer array, triangles counter-clockwise seen from the normal side, a
+        consistently oriented manifold around the free region.
+    free : (n,) bool array, True where a vertex may move (not on the mesh border). The fixed
+        vertices that share a triangle with a free one form the boundary.
+    remesh : False (default; also "off"): the triangles are kept. True (also "always"): the
+        region's triangles are first replaced by geofair.remesh_region's isotropic remesh.
+        "if_needed": remeshed and faired again only where the kept triangles do not converge
+        or fold over.
+    boundary : "g1" (default): positions and unit normals prescribed (section 4). "g0":
+        positions only and H = 0: the minimal surface spanned by the boundary.
+    boundary_normals : (n, 3) float64 unit normals, read at the G1 boundary vertices, oriented
+        like the faces; None (default): geofair.boundary_normals(vertices, faces, free).
+    polygon_ids : (m,) integer array, the polygon each triangle was cut from: "uniform" inner
+        fairness runs over the polygons' edges; None (default): over the triangles' edges.
+    inner_fairness : where the vertices sit on the surface (section 7.3): "uniform" (default,
+        a regular distribution), "conformal" (the input's cotangent weights: low UV distortion)
+        or "conformal_intrinsic" (those of the input's intrinsic Delaunay triangulation).
+    outer_fairness : "intrinsic" (default, Δ_B H = 0) or "bilaplacian" (the linear Δ²f = 0
+        initial mesh of section 7.4 alone).
+    normal_weighting : the free vertices' normals (section 6): "quadric" (default, the tangent
+        plane of a least-squares quadric), "area" (the paper's), "angle" or "max".
+    tolerance : stop once the residual is at most this (default 0.0001, dimensionless): the
+        residual is L max_i |Hbar_i - H_i| over the free vertices, Hbar_i the cotangent-weighted
+        mean of the neighbours' H (eq. (12) scaled), L the region's bounding-box diagonal.
+    max_iterations : iterations at most on each level, and Newton steps (default 20000).
+    damping : s in q <- q~ + s t n (section 7.2), in (0, 1] (default 0.9).
+    cg_iterations : conjugate-gradient iterations of a global step (section 7.1, default 10).
+    levels : levels of the progressive-mesh multigrid (section 7.4): 0 (default) picks them from
+        the region, 1 solves the region as one level.
+    iteration : how eq. (12) is solved, the same equations each: "auto" (default: "newton",
+        then "paper" where it stops unconverged), "newton" (Newton's method on all free vertices
+        at once, beyond the paper) or "paper" (section 7's iteration with multigrid cycles).
+    progress : callable(iteration, residual) -> bool, or None; called at most every 0.1 s,
+        returning False stops the solve (stop_reason "cancelled").
+    time_limit : None or 0 (default): automatic. With iteration="auto" the solve stops once the
+        residual has not halved for 5 s plus 0.2 ms per free vertex, and after
+        5 times that in any case; "newton" and "paper" run to max_iterations. A number > 0:
+        the seconds the whole call may take (float("inf"): no limit).
+    tuning : dict or None: numerical choices beyond the paper by dotted name, e.g.
+        "newton.patience": 40; the names and defaults: geofair.defaults()["tuning"].
     
     Returns
     -------
-    FairingResult with .vertices (n', 3) float64 (n' = n unless remeshed), .faces (m', 3)
-    int32, .free (n',) bool, .remeshed, .unreferenced, .origin_face and .origin_barycentric
-    (see remesh; the input's faces and mask, -1 and zeros when not remeshed), .converged,
-    .iterations (all levels),
-    .residual, .iterations_per_level and .vertices_per_level (lists, coarsest level first),
-    .iteration ("newton" or "paper"), .newton_iterations, .folds and .new_folds (edges whose
-    triangles the result flips over, and those not folded in the input) and .phase_seconds
-    (wall-clock seconds per phase, for profiling).
+    FairingResult, whose fields are
+        vertices : (n', 3) float64, fixed rows bit-identical to the input; n' = n unless remeshed.
+        faces : (m', 3) int32 and free : (n',) bool, the input's unless remeshed.
+        remeshed : bool; unreferenced : (k,) int32, rows in no face; origin_face : (n',) int32
+            and origin_barycentric : (n', 3) float64, where each new free vertex lay on the
+            input (-1 and zeros for the other rows, and unless remeshed).
+        converged : bool, residual <= tolerance; residual : float, dimensionless.
+        message : str, how the solve ended: one sentence with the residual and the tolerance.
+        stop_reason : str, "converged", "max_iterations", "time_limit", "no_progress" (the
+            automatic limit), "cancelled" (progress returned False) or "diverged" (the input is
+            returned).
+        iterations : int, all levels; iterations_per_level, vertices_per_level : lists, coarsest
+            level first; iteration : "newton" or "paper"; newton_iterations : int.
+        folds : int, edges with a free vertex whose two triangles face apart; new_folds : int,
+            those not folded in the input.
+        phase_seconds : list of (phase, seconds), wall-clock time per phase.
     
     Raises
     ------
-    ValueError for invalid input (the message names the problem and the vertex or face),
-    RuntimeError if the computation fails or diverges. NaN or Inf is never returned.
+    geofair.InvalidInputError (a ValueError): invalid input or option value; the message names
+        the problem and the vertex, face or option.
+    geofair.SolverError (a RuntimeError): the computation failed or diverged. NaN or Inf is
+        never returned.
+    TypeError: an unknown keyword argument, or an argument of the wrong type.
     """
-def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None, *, target_edge_length: typing.Any = None, boundary: str = 'g1', inner_fairness: str = 'uniform', outer_fairness: str = 'intrinsic', normal_weighting: str = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: str = 'auto', progress: typing.Any = None, time_limit: typing.Any = None, tuning: typing.Any = None) -> FairingResult:
+def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
     """
     Fill holes of a triangle mesh with intrinsically faired patches: each hole's
     loop keeps its positions and takes its unit normals from the faces around it (the G1
@@ -440,12 +357,13 @@ def fill_holes(vertices: typing.Any, faces: typing.Any, loops: typing.Any = None
     
     Raises
     ------
-    ValueError when loops is not a list of sequences of vertex indices, a loop is not a boundary
+    geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex indices, a loop is not a boundary
     loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
     the mesh has no hole, a fill would take more than 2000000 new vertices, or for the input
-    fair refuses (the message names the problem and the vertex or face); RuntimeError as fair.
+    fair refuses (the message names the problem and the vertex or face); geofair.SolverError (a
+    RuntimeError) as fair.
     """
-def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], int]:
+def intrinsic_delaunay(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float64], int]:
     """
     Intrinsic Delaunay triangulation of a triangle mesh by edge flips (Fisher et al.
     2006; Bobenko & Springborn 2007): same vertices, same surface, other edges (geodesics on
@@ -458,9 +376,10 @@ def intrinsic_delaunay(vertices: typing.Any, faces: typing.Any) -> tuple[typing.
     from corner k to corner k+1 of triangle t), and the number of flips (0 if the mesh was
     intrinsically Delaunay).
     
-    Raises ValueError for invalid input, RuntimeError if round-off made the flips cycle.
+    Raises geofair.InvalidInputError (a ValueError) for invalid input, geofair.SolverError (a
+    RuntimeError) if round-off made the flips cycle.
     """
-def intrinsic_delaunay_laplacian(vertices: typing.Any, faces: typing.Any) -> scipy.sparse.csr_matrix:
+def intrinsic_delaunay_laplacian(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> scipy.sparse.csr_matrix:
     """
     The cotangent Laplacian of the intrinsic Delaunay triangulation (Bobenko &
     Springborn 2007) as an (n, n) scipy.sparse CSR matrix, with the conventions of
@@ -469,9 +388,9 @@ def intrinsic_delaunay_laplacian(vertices: typing.Any, faces: typing.Any) -> sci
     the cotangent Laplacian of a mesh with obtuse triangles; equal to cotangent_laplacian
     where the mesh is already intrinsically Delaunay.
     
-    Raises ValueError for invalid input.
+    Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def mean_curvature(vertices: typing.Any, faces: typing.Any, normals: typing.Any = None, normal_weighting: str = 'quadric') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def mean_curvature(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], normals: numpy.typing.NDArray[numpy.float64] | None = None, normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric') -> numpy.typing.NDArray[numpy.float64]:
     """
     Discrete mean curvature at every vertex by Moreton & Séquin (Schneider & Kobbelt
     2001, section 6, eqs. (8)-(11)), with the spiral samples of section 6.2 at vertices of
@@ -493,9 +412,9 @@ def mean_curvature(vertices: typing.Any, faces: typing.Any, normals: typing.Any 
     
     Raises
     ------
-    ValueError for invalid input.
+    geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def progressive_mesh(vertices: typing.Any, faces: typing.Any, free: typing.Any, levels: typing.SupportsInt | typing.SupportsIndex = 1, coarsen_boundary: bool = False) -> list[typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
+def progressive_mesh(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], levels: typing.SupportsInt | typing.SupportsIndex = 1, coarsen_boundary: bool = False) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
     The progressive-mesh hierarchy that fair() uses for its multigrid (Schneider &
     Kobbelt 2001, section 7.4): a list of (m_l, 3) int32 triangle arrays in the input's vertex
@@ -514,9 +433,9 @@ def progressive_mesh(vertices: typing.Any, faces: typing.Any, free: typing.Any, 
     Measured on the input smoothed by 10 sweeps of the uniform Laplacian (fair() smooths with its
     inner fairness weights).
     
-    Raises ValueError for invalid input.
+    Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
-def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.Any, normals: typing.Any, inner_fairness: str = 'uniform', tangent_planes: str = 'turning', polygon_ids: typing.Any = None) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], float]:
+def relax_inner_fairness(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], normals: numpy.typing.NDArray[numpy.float64], inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', tangent_planes: typing.Literal['fixed', 'turning'] = 'turning', polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None) -> tuple[numpy.typing.NDArray[numpy.float64], float]:
     """
     One global tangential solve of inner fairness, the step fair()'s Newton iteration
     repeats (Schneider & Kobbelt 2001, section 7.3's condition, linearized for all free
@@ -547,10 +466,11 @@ def relax_inner_fairness(vertices: typing.Any, faces: typing.Any, free: typing.A
     (vertices, scale): (n, 3) float64 positions (free rows moved, mesh units) and the scale in
     (0, 1] applied to the solved move.
     
-    Raises ValueError for invalid input, RuntimeError (geofair.SolverError) if the system is
+    Raises geofair.InvalidInputError (a ValueError) for invalid input, geofair.SolverError (a
+    RuntimeError) if the system is
     singular.
     """
-def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, target_edge_length: typing.Any = None, iterations: typing.SupportsInt | typing.SupportsIndex = 5) -> RemeshedRegion:
+def remesh_region(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, iterations: typing.SupportsInt | typing.SupportsIndex = 5) -> RemeshedRegion:
     """
     Isotropic remesh of a region of a triangle mesh (Botsch & Kobbelt 2004, "A
     remeshing approach to multiresolution modeling", section 4), the step fair(remesh=...)
@@ -588,7 +508,7 @@ def remesh_region(vertices: typing.Any, faces: typing.Any, free: typing.Any, *, 
     
     Raises
     ------
-    ValueError for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
+    geofair.InvalidInputError (a ValueError) for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
     border, a region that is not a consistently oriented 2-manifold, invalid options).
     """
 __version__: str
