@@ -367,10 +367,12 @@ HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEd
   for (size_t l = 0; l < loops.size(); ++l) {
     auto& loop = loops[l];
     std::string reason;
-    if (outer[l])
-      reason = "an outer border: it spans " + percent(spanned[l] / area[size_t(part[size_t(loop[0])])]) +
+    if (outer[l]) {
+      const double fraction = spanned[l] / area[size_t(part[size_t(loop[0])])];
+      reason = "an outer border: it spans " + percent(fraction) +
                " of the area of its part's triangles (a hole less than " +
                percent(kOuterBorderArea) + ")";
+    }
     if (reason.empty() && rule.max_hole_edges > 0 && int(loop.size()) > rule.max_hole_edges)
       reason = "more edges than max_hole_edges = " + std::to_string(rule.max_hole_edges);
     if (reason.empty())
