@@ -173,13 +173,31 @@ def test_choose_holes():
     loops = region.mesh_holes(triangles, n)
     inner = loops[1]
     edges = np.stack([inner, np.roll(inner, -1)], axis=1)
-    assert [len(loop) for loop in region.choose_holes(loops, n, edges, True)] == [8]
-    assert len(region.choose_holes(loops, n, edges[:0], False)) == 2  # nothing selected: every hole
-    assert len(region.choose_holes(loops, n, edges, True, all_holes=True)) == 2
+    assert [len(loop) for loop in region.choose_holes(loops, n, edges)] == [8]
     with pytest.raises(region.RegionError, match="close no hole"):
-        region.choose_holes(loops, n, edges[:3], True)
+        region.choose_holes(loops, n, edges[:3])
     with pytest.raises(region.NothingSelectedError, match="No hole is selected"):
-        region.choose_holes(loops, n, np.array([[0, 6]]), True)  # an inner edge, no boundary one
+        region.choose_holes(loops, n, np.array([[0, 6]]))  # an inner edge, no boundary one
     closed = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
     with pytest.raises(region.NothingSelectedError, match="'Tet' has no hole"):
-        region.choose_holes(region.mesh_holes(closed, 4), 4, np.zeros((0, 2)), False, name="Tet")
+        region.choose_holes(region.mesh_holes(closed, 4), 4, np.zeros((0, 2)), name="Tet")
+
+
+def test_every_hole_is_the_librarys_rule():
+    # Nothing selected: the library's holes (geofair.holes_to_fill), here the grid's hole and not its border.
+    geofair = pytest.importorskip("geofair")
+    vertices, triangles = grid(4, 4, skip={(1, 1), (2, 1), (1, 2), (2, 2)})
+    outer, inner = region.mesh_holes(triangles, len(vertices))
+    holes, left_open = region.every_hole(geofair, vertices, triangles, "Grid")
+    assert [sorted(loop.tolist()) for loop in holes] == [sorted(inner.tolist())]
+    ((loop, reason),) = left_open
+    assert sorted(loop.tolist()) == sorted(outer.tolist()) and reason.startswith("an outer border")
+    text = region.left_open_text(left_open)
+    assert text.startswith(f"the loop of 16 edges at vertex {loop[0]} is left open, an outer border: it spans")
+    plain, plain_triangles = grid(2, 2)
+    with pytest.raises(region.NothingSelectedError, match=r"'Plane' has no hole to fill: the loop of 8 edges"):
+        region.every_hole(geofair, plain, plain_triangles, "Plane")
+    closed = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    tet = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    with pytest.raises(region.NothingSelectedError, match="'Tet' has no hole: every edge has two faces"):
+        region.every_hole(geofair, tet, closed, "Tet")

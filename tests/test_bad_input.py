@@ -82,7 +82,7 @@ MODULE_FUNCTIONS = [
 
 
 def test_every_module_function_has_a_signature():
-    assert len(MODULE_FUNCTIONS) == 12, MODULE_FUNCTIONS
+    assert len(MODULE_FUNCTIONS) == 13, MODULE_FUNCTIONS
     for name in MODULE_FUNCTIONS:
         signature = inspect.signature(getattr(geofair, name))
         assert all(p.kind is not p.VAR_KEYWORD for p in signature.parameters.values()), name

@@ -124,7 +124,11 @@ def test_every_hole_without_loops_and_loops_in_either_direction():
     v2, f2, _ = cut(v, f, inside)
     loops = geofair.boundary_loops(v2, f2)
     assert len(loops) == 2
+    # A closed surface's holes, however many, are all holes (none is an outer border).
+    holes, left_open = geofair.holes_to_fill(v2, f2)
+    assert [h.tolist() for h in holes] == [loop.tolist() for loop in loops] and left_open == []
     everything = geofair.fill_holes(v2, f2)
+    assert "left open" not in everything.message
     assert everything.converged, everything.message
     check_fill(everything, v2, f2)
     reversed_loops = [list(reversed(loop)) for loop in loops]
@@ -178,3 +182,115 @@ def test_a_fill_finer_than_the_memory_allows_is_refused():
     v, f = sphere_with_hole()
     with pytest.raises(ValueError, match="new vertices at edge length"):
         geofair.fill_holes(v, f, target_edge_length=1e-5)
+
+
+def height_field(n=20, hole=0.18, centre=(0.45, 0.55)):
+    """An n×n grid of [0, 1]² lifted to z = height(x, y), the faces with a vertex within
+    `hole` of `centre` cut out: an open sheet with one interior hole."""
+    x, y = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    vertices = np.stack([x.ravel(), y.ravel(), height(x.ravel(), y.ravel())], axis=1)
+    a = (np.arange(n)[None, :] + (n + 1) * np.arange(n)[:, None]).ravel()
+    faces = np.concatenate([np.stack([a, a + 1, a + n + 2], 1), np.stack([a, a + n + 2, a + n + 1], 1)])
+    inside = np.hypot(vertices[:, 0] - centre[0], vertices[:, 1] - centre[1]) < hole
+    return vertices, faces[~inside[faces].any(axis=1)]
+
+
+def height(x, y):
+    return 0.15 * np.sin(2.5 * x) * np.cos(2 * y) + 0.1 * x * y
+
+
+def border_edges(faces):
+    directed = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    keys = set(map(tuple, directed.tolist()))
+    return {(a, b) for a, b in keys if (b, a) not in keys}
+
+
+def test_an_open_sheet_keeps_its_outer_border_and_gets_its_hole_filled():
+    v, f = height_field()
+    outer, inner = sorted(geofair.boundary_loops(v, f), key=len, reverse=True)
+    holes, left_open = geofair.holes_to_fill(v, f)
+    assert [h.tolist() for h in holes] == [inner.tolist()]
+    ((open_loop, reason),) = left_open
+    assert open_loop.tolist() == outer.tolist() and reason.startswith("an outer border"), reason
+    r = geofair.fill_holes(v, f)
+    assert r.converged, r.message
+    check_fill(r, v, f)
+    assert r.folds == 0
+    # The border keeps its edges: the result's only border is the sheet's (each loop edge
+    # a -> b is the mesh's edge b -> a).
+    assert border_edges(r.faces) == set(zip(np.roll(outer, -1).tolist(), outer.tolist(), strict=True))
+    assert f"left open: the loop at vertex {outer[0]} ({len(outer)} edges), an outer border" in r.message
+    # The fill lies on the surface that was cut away (its G1 boundary: the sheet around).
+    new = r.vertices[len(v) :]
+    assert np.abs(new[:, 2] - height(new[:, 0], new[:, 1])).max() < 1e-3
+
+
+def test_the_rule_can_fill_outer_borders_too_or_leave_long_loops_open():
+    v, f = height_field()
+    outer, inner = sorted(geofair.boundary_loops(v, f), key=len, reverse=True)
+    capped = geofair.fill_holes(v, f, keep_outer_borders=False)
+    check_fill(capped, v, f)
+    assert not border_edges(capped.faces), "keep_outer_borders=False leaves a border"
+    holes, left_open = geofair.holes_to_fill(v, f, keep_outer_borders=False, max_hole_edges=len(inner))
+    assert [h.tolist() for h in holes] == [inner.tolist()]
+    assert [loop.tolist() for loop, _ in left_open] == [outer.tolist()]
+    assert left_open[0][1] == f"more edges than max_hole_edges = {len(inner)}"
+    with pytest.raises(geofair.InvalidInputError, match="no hole to fill.*max_hole_edges = 3"):
+        geofair.fill_holes(v, f, max_hole_edges=3)
+    # Given loops are filled whatever the rule.
+    given = geofair.fill_holes(v, f, [outer], max_hole_edges=3)
+    check_fill(given, v, f)
+    for bad in (0, -1, 2.5, "3"):
+        with pytest.raises(ValueError, match="max_hole_edges must be None or a positive integer"):
+            geofair.holes_to_fill(v, f, max_hole_edges=bad)
+
+
+def test_a_sheet_without_a_hole_has_none_to_fill():
+    v, f = height_field(hole=0.0)
+    with pytest.raises(geofair.InvalidInputError, match="no hole to fill.*an outer border: it spans 99 %"):
+        geofair.fill_holes(v, f)
+
+
+def area_and_centroid(vertices, faces):
+    """The area of the triangles and their area-weighted centroid."""
+    a, b, c = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
+    areas = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    return areas.sum(), (areas[:, None] * (a + b + c) / 3).sum(axis=0) / areas.sum()
+
+
+@pytest.mark.parametrize("scale", [1e100, 1e-100])
+def test_fill_and_fair_are_the_same_at_any_scale(scale):
+    v, f = sphere_with_hole()
+    unit = geofair.fill_holes(v, f)
+    scaled = geofair.fill_holes(v * scale, f)
+    assert scaled.converged, scaled.message
+    check_fill(scaled, v * scale, f)
+    new, new_unit = scaled.vertices[len(v) :] / scale, unit.vertices[len(v) :]
+    # The remesh rounds differently at another scale: about as many vertices on the same surface.
+    assert abs(len(new) - len(new_unit)) <= 0.02 * len(new_unit)
+    assert np.abs(np.linalg.norm(new, axis=1) - 1).max() < 1e-3
+    area, centroid = area_and_centroid(scaled.vertices / scale, scaled.faces[len(f) :])
+    area_unit, centroid_unit = area_and_centroid(unit.vertices, unit.faces[len(f) :])
+    assert abs(area / area_unit - 1) < 1e-4 and np.linalg.norm(centroid - centroid_unit) < 1e-4
+    free = np.abs(v[:, 2]) < 0.3
+    fair_unit = geofair.fair(v, f, free)
+    fair_scaled = geofair.fair(v * scale, f, free)
+    assert fair_scaled.converged, fair_scaled.message
+    assert np.array_equal(fair_scaled.vertices[~free], (v * scale)[~free])
+    np.testing.assert_allclose(fair_scaled.vertices / scale, fair_unit.vertices, rtol=0, atol=1e-12)
+    holes, _ = geofair.holes_to_fill(v * scale, f)
+    assert [h.tolist() for h in holes] == [h.tolist() for h in geofair.holes_to_fill(v, f)[0]]
+
+
+@pytest.mark.parametrize(
+    ("scale", "message"),
+    [
+        (1e200, r"a mesh of size 3\.4e\+200 is too large: squared lengths overflow"),
+        (1e-160, r"edge lengths of \d\.\de-162 are too small: squared lengths underflow"),
+    ],
+)
+def test_a_scale_beyond_the_doubles_is_named(scale, message):
+    v, f = sphere_with_hole()
+    for call in (lambda: geofair.fill_holes(v * scale, f), lambda: geofair.fair(v * scale, f, np.abs(v[:, 2]) < 0.3)):
+        with pytest.raises(geofair.InvalidInputError, match=message):
+            call()

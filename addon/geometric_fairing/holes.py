@@ -2,7 +2,9 @@
 
 A hole is a boundary loop of the mesh (a closed chain of edges with one face each). The
 holes filled are those whose whole boundary loop is selected; with nothing selected in
-the mesh (a script), or with ``all_holes``, every hole. A :class:`FillRun` reads the mesh
+the mesh (a script), or with ``all_holes``, every hole by the library's rule
+(``geofair.holes_to_fill``): every boundary loop but the outer border of each open part of
+the mesh, which the report names as left open. A :class:`FillRun` reads the mesh
 when it is made, solves (in the calling thread or a worker thread, like
 :class:`fairing.FairingRun`, whose progress and cancelling it shares) and writes only in
 :meth:`FillRun.finish`: the new vertices and faces, with UVs, colours and vertex groups
@@ -29,7 +31,7 @@ class FillRun(fairing.FairingRun):
         obj: a mesh object.
         options: :class:`fairing.FairingOptions` (its library options are used; region,
             pins, hidden faces and remesh are not).
-        all_holes: fill every hole whatever is selected.
+        all_holes: fill every hole whatever is selected (outer borders of open parts stay open).
         target_edge_length: the fill's edge length; 0: that of each hole's boundary.
         progress: optional ``callable(iteration, residual)``; returning False cancels.
 
@@ -41,8 +43,8 @@ class FillRun(fairing.FairingRun):
     def __init__(self, obj, options, all_holes=False, target_edge_length=0.0, progress=None):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
-        if not hasattr(native.geofair, "fill_holes"):
-            raise RuntimeError("this build of the compiled module 'geofair' has no fill_holes: update the add-on")
+        if not hasattr(native.geofair, "holes_to_fill"):
+            raise RuntimeError("this build of the compiled module 'geofair' has no holes_to_fill: update the add-on")
         if obj is None or obj.type != "MESH":
             raise ValueError("filling holes needs a mesh object")
         if mesh_edit.has_shape_keys(obj):
@@ -61,9 +63,12 @@ class FillRun(fairing.FairingRun):
         self.mesh = mesh = mesh_io.read(obj, uvs=False)
         self.timings["read"] = time.perf_counter() - clock
         n = len(mesh.vertices)
-        edges = mesh_io.edge_selection(obj)
-        loops = region.mesh_holes(mesh.triangles, n)
-        self.loops = region.choose_holes(loops, n, edges, bool(mesh.vertex_selected.any()), all_holes, obj.name)
+        self.left_open = []  # (loop, reason) of the boundary loops the library's rule leaves open
+        if all_holes or not mesh.vertex_selected.any():
+            self.loops, self.left_open = region.every_hole(native.geofair, mesh.vertices, mesh.triangles, obj.name)
+        else:
+            loops = region.mesh_holes(mesh.triangles, n)
+            self.loops = region.choose_holes(loops, n, mesh_io.edge_selection(obj), obj.name)
         # What the shared progress and status read: the boundary vertices stand for the region.
         self.region = types.SimpleNamespace(free=np.zeros(sum(len(loop) for loop in self.loops), dtype=bool))
         self.iteration = 0
@@ -150,13 +155,16 @@ class FillRun(fairing.FairingRun):
             discarded=discarded,
             remeshed=written.triangles_added > 0,
             triangles_added=written.triangles_added,
-            notes=tuple(written.notes),
+            notes=(*written.notes, *([region.left_open_text(self.left_open)] if self.left_open else [])),
             holes=self.holes,
         )
 
 
 def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, context=None, **options):
     """Fill holes of a mesh object from a script (Object or Edit Mode): the selected ones, or every hole.
+
+    With nothing selected, or ``all_holes``, every boundary loop is filled but the outer border of each open
+    part of the mesh (``geofair.holes_to_fill``'s rule); the report's ``notes`` name the loops left open.
 
     Args:
         obj: a mesh object.
@@ -173,7 +181,7 @@ def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, c
 
     Raises:
         TypeError: an unknown option.
-        ValueError: no hole to fill, bad input.
+        ValueError: no hole to fill (none, or only outer borders; :class:`region.RegionError`), bad input.
         fairing.NotConvergedError: the solve stopped unconverged (mesh unchanged) and
             ``keep_unconverged`` is not set.
         RuntimeError: the solver failed, or the compiled module is missing.

@@ -290,8 +290,9 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
 
 
 class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator):
-    """Fill the holes whose whole boundary loop is selected (nothing selected: every hole) with a faired surface
-    meeting the faces around with G1 continuity, or G0 (Boundary); UVs interpolated from around each hole"""
+    """Fill the holes whose whole boundary loop is selected (nothing selected: every hole, not an open mesh's outer
+    border) with a faired surface meeting the faces around with G1 continuity, or G0 (Boundary); UVs interpolated
+    from around each hole"""
 
     bl_idname = "mesh.geometric_fairing_fill_holes"
     bl_label = "Fill Holes (Geometric Fairing)"
@@ -310,7 +311,10 @@ class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator)
     time_limit: properties._time_limit(options={"SKIP_SAVE"})
     all_holes: BoolProperty(
         name="All Holes",
-        description="Fill every hole of the mesh, whatever is selected (with nothing selected: every hole too)",
+        description=(
+            "Fill every hole of the mesh, whatever is selected (with nothing selected: every hole too); "
+            "the outer border of an open mesh stays open (select it to fill it)"
+        ),
         default=False,
         options={"SKIP_SAVE"},
     )

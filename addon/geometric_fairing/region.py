@@ -344,6 +344,9 @@ def boundary_loops(triangles, free):
 
 
 NO_HOLE = "'{name}' has no hole: every edge has two faces"
+ONLY_OUTER_BORDERS = (
+    "'{name}' has no hole to fill: {left_open}. Select a loop (Alt+click one of its edges) to fill it anyway"
+)
 NO_HOLE_SELECTED = (
     "No hole is selected: select the whole boundary loop of each hole to fill (Alt+click one of its edges), "
     "or deselect everything to fill every hole"
@@ -358,16 +361,13 @@ def mesh_holes(triangles, n):
     return boundary_loops(triangles, np.ones(n, dtype=bool))
 
 
-def choose_holes(loops, n, selected_edges, any_selected, all_holes=False, name="the mesh"):
-    """The holes to fill among the mesh's boundary ``loops``: those whose every edge is selected; every one
-    with ``all_holes`` or when nothing at all is selected.
+def choose_holes(loops, n, selected_edges, name="the mesh"):
+    """The holes to fill among the mesh's boundary ``loops``: those whose every edge is selected.
 
     Args:
         loops: the mesh's boundary loops (:func:`mesh_holes`).
         n: number of vertices.
         selected_edges: ``(E, 2)`` vertex pairs of the selected edges.
-        any_selected: whether anything at all is selected in the mesh.
-        all_holes: every hole, whatever is selected.
         name: the object's name, for the message.
 
     Raises:
@@ -376,8 +376,6 @@ def choose_holes(loops, n, selected_edges, any_selected, all_holes=False, name="
     """
     if not loops:
         raise NothingSelectedError(NO_HOLE.format(name=name))
-    if all_holes or not any_selected:
-        return list(loops)
     edges = np.asarray(selected_edges, dtype=np.int64).reshape(-1, 2)
     selected = np.minimum(edges[:, 0], edges[:, 1]) * n + np.maximum(edges[:, 0], edges[:, 1])
     chosen, on_boundary = [], []
@@ -392,6 +390,38 @@ def choose_holes(loops, n, selected_edges, any_selected, all_holes=False, name="
     if np.isin(selected, np.concatenate(on_boundary)).any():
         raise RegionError(OPEN_LOOP_SELECTED)
     raise NothingSelectedError(NO_HOLE_SELECTED)
+
+
+def every_hole(library, vertices, triangles, name="the mesh"):
+    """The holes to fill when none is selected, by the library's rule (``geofair.holes_to_fill``: every
+    boundary loop but the outer border of each open part), and the loops it leaves open.
+
+    Args:
+        library: the compiled ``geofair`` module.
+        vertices: ``(n, 3)`` float64 positions; triangles: ``(T, 3)`` int triangles.
+        name: the object's name, for the message.
+
+    Returns:
+        ``(holes, left_open)``: a list of ``(k,)`` int64 vertex arrays, and a list of ``(loop, reason)``.
+
+    Raises:
+        NothingSelectedError: the mesh has no boundary loop, or the rule leaves every one open.
+        ValueError: the library refuses the mesh (e.g. holes that touch at a vertex).
+    """
+    holes, left_open = library.holes_to_fill(vertices, np.asarray(triangles, dtype=np.int32))
+    if not holes and not left_open:
+        raise NothingSelectedError(NO_HOLE.format(name=name))
+    if not holes:
+        raise NothingSelectedError(ONLY_OUTER_BORDERS.format(name=name, left_open=left_open_text(left_open)))
+    return [np.asarray(loop, dtype=np.int64) for loop in holes], list(left_open)
+
+
+def left_open_text(left_open, most=3):
+    """The loops ``geofair.holes_to_fill`` left open, for a report: each with its edges, a vertex and why."""
+    parts = [f"the loop of {len(loop)} edges at vertex {int(loop[0])} is left open, {why}" for loop, why in left_open]
+    if len(parts) > most:
+        parts = [*parts[:most], f"and {len(parts) - most} more loops"]
+    return "; ".join(parts)
 
 
 def _pop_successor(successors, vertex):

@@ -443,6 +443,7 @@ std::string fair_doc(std::string doc) {
   replace("{damping}", number(o.damping));
   replace("{cg_iterations}", std::to_string(o.cg_iterations));
   replace("{max_fill_vertices}", std::to_string(kMaxFillVertices));
+  replace("{outer_border_percent}", number(100.0 * kOuterBorderArea));
   return doc;
 }
 
@@ -587,8 +588,29 @@ std::vector<std::vector<int>> to_loops(const py::object& loops) {
   return out;
 }
 
+// fill_holes' and holes_to_fill's rule (HoleRule) from their keyword arguments.
+HoleRule hole_rule(bool keep_outer_borders, const py::object& max_hole_edges, const char* caller) {
+  HoleRule rule;
+  rule.keep_outer_borders = keep_outer_borders;
+  if (!max_hole_edges.is_none()) {
+    long long value = 0;
+    try {
+      value = py::module_::import("operator").attr("index")(max_hole_edges).cast<long long>();
+    } catch (const std::exception&) {
+      value = 0;
+    }
+    if (value < 1 || value > std::numeric_limits<int>::max())
+      throw InvalidInputError(std::string(caller) +
+                              ": max_hole_edges must be None or a positive integer, got " +
+                              std::string(py::str(py::repr(max_hole_edges))));
+    rule.max_hole_edges = int(value);
+  }
+  return rule;
+}
+
 FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
                             const py::object& loops, const py::object& target_edge_length,
+                            bool keep_outer_borders, const py::object& max_hole_edges,
                             const std::string& boundary, const std::string& inner_fairness,
                             const std::string& outer_fairness,
                             const std::string& normal_weighting, double tolerance,
@@ -598,6 +620,7 @@ FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
   const Positions V = to_positions(vertices, "vertices");
   const Triangles F = to_triangles(faces, "fill_holes", V.rows());
   const std::vector<std::vector<int>> holes = to_loops(loops);
+  const HoleRule rule = hole_rule(keep_outer_borders, max_hole_edges, "fill_holes");
   double length = 0.0;
   if (!target_edge_length.is_none()) {
     length = target_edge_length.cast<double>();
@@ -610,7 +633,8 @@ FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
                                            normal_weighting, tolerance, max_iterations, damping,
                                            cg_iterations, levels, iteration, time_limit, tuning,
                                            "fill_holes");
-  return with_progress(options, progress, [&] { return fill_holes(V, F, holes, options, length); });
+  return with_progress(options, progress,
+                       [&] { return fill_holes(V, F, holes, options, length, rule); });
 }
 
 Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
@@ -837,7 +861,10 @@ FairingResult, whose fields are
 Raises
 ------
 geofair.InvalidInputError (a ValueError): invalid input or option value; the message names
-    the problem and the vertex, face or option.
+    the problem and the vertex, face or option (a mesh whose squared lengths leave the
+    normal doubles, with a bounding-box diagonal above about 1.3e154 or a mean edge length
+    below about 1.5e-154, names its size). Within those sizes the result is the same at any
+    scale (positions are worked on in units of the mesh's own size).
 geofair.SolverError (a RuntimeError): the computation failed or diverged. NaN or Inf is
     never returned.
 TypeError: an unknown keyword argument, or an argument of the wrong type.)doc");
@@ -1079,7 +1106,7 @@ Raises
 geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 }
 
-// geofair.fill_holes and geofair.boundary_loops.
+// geofair.fill_holes, geofair.holes_to_fill and geofair.boundary_loops.
 void bind_holes(py::module_& m) {
   const FairingOptions d;
   static const std::string fill_holes_docstring = fair_doc(R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
@@ -1102,11 +1129,25 @@ Parameters
 ----------
 vertices : (n, 3) float64 array, positions in mesh units.
 faces : (m, 3) integer array, triangles, consistently oriented, manifold.
-loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops;
-    an open mesh's outer border too); or a list of loops, each a sequence of vertex indices
-    along one boundary loop (any start vertex, either direction).
+loops : None (default): the holes of geofair.holes_to_fill(vertices, faces,
+    keep_outer_borders=..., max_hole_edges=...), every boundary loop but the outer borders
+    of open surfaces (the result's .message names the loops left open and why); or a list
+    of loops, each a sequence of vertex indices along one boundary loop (any start vertex,
+    either direction), filled whatever their size.
 target_edge_length : edge length of the fill in mesh units, or None (default): the mean
     length of the hole's loop edges.
+keep_outer_borders : with loops=None, leave each outer border open (default True): in each
+    connected part of the mesh, the boundary loop that spans the largest area (the norm of
+    its vector area, ½|Σ (p_i − c) × (p_{i+1} − c)| about the centroid c of its vertices
+    p_i), where that is at least {outer_border_percent} % of the area of the part's triangles. A
+    sheet's border spans about the sheet's own area (a height field's: its area projected on
+    the plane), a hole in a closed surface a small part of it (a sphere missing a cap of
+    polar angle θ: (1 − cos θ)/2 of the rest, below {outer_border_percent} % up to θ = 66°). A part has at
+    most one outer border: a hole in a sheet is filled whatever its size. False: every
+    boundary loop is a hole (an open sheet is then capped into a closed surface). Not read
+    when loops are given.
+max_hole_edges : with loops=None, leave loops of more edges than this open (like Blender's
+    Fill Holes Sides or MeshLab's Close Holes size); None (default): no limit.
 boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
 damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
     geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
@@ -1123,16 +1164,71 @@ new vertices; .remeshed True (.origin_face -1: a fill has no input surface); .co
 
 Raises
 ------
-geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex indices, a loop is not a boundary
-loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
-the mesh has no hole, a fill would take more than {max_fill_vertices} new vertices, or for the input
-fair refuses (the message names the problem and the vertex or face); geofair.SolverError (a
-RuntimeError) as fair.)doc");
+geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex
+indices, a loop is not a boundary loop of the mesh (the offending pair of vertices is named),
+a vertex is on two given loops, the mesh has no hole to fill (no boundary loop, or with
+loops=None every loop is left open: the message names them and why), max_hole_edges is not
+None or a positive integer, a fill would take more than {max_fill_vertices} new vertices, the mesh's
+squared lengths leave the normal doubles (a bounding-box diagonal above about 1.3e154 or a
+mean edge length below about 1.5e-154: the message names the size), or for the input fair
+refuses (the message names the problem and the vertex or face); geofair.SolverError (a
+RuntimeError) as fair. Within those sizes the fill is the same at any scale (positions are
+worked on in units of the mesh's own size).)doc");
   def_solve(m, "fill_holes", &fill_holes_py, fill_holes_docstring.c_str(), py::arg("vertices"),
             py::arg("faces"), py::arg("loops") = py::none(), py::kw_only(),
             py::arg("target_edge_length") = py::none(),
+            py::arg("keep_outer_borders") = HoleRule{}.keep_outer_borders,
+            py::arg("max_hole_edges") = py::none(),
             py::arg("boundary") = name(d.boundary, kBoundaryNames));
-  def_checked(m, 
+  static const std::string holes_to_fill_docstring = fair_doc(R"doc(The holes that geofair.fill_holes fills when it is given no loops: the boundary
+loops of the mesh (geofair.boundary_loops) less those the rule leaves open.
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units; faces : (m, 3) integer array,
+    consistently oriented, manifold.
+keep_outer_borders : leave each outer border open (default True): in each connected part,
+    the boundary loop that spans the largest area, where that is at least {outer_border_percent} % of the
+    area of the part's triangles (see geofair.fill_holes). False: every boundary loop is a
+    hole.
+max_hole_edges : leave loops of more edges than this open; None (default): no limit.
+
+Returns
+-------
+(holes, left_open): holes a list of (k,) int32 arrays, the loops to fill as
+geofair.boundary_loops returns them (in its order); left_open a list of (loop, reason)
+tuples, the other loops with one clause for a user saying why (e.g. "an outer border: it
+spans 95 % of the area of its part's triangles (a hole less than 30 %)"). Both empty for
+a closed mesh. The same at any scale of the mesh.
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) as geofair.boundary_loops, for max_hole_edges not
+None or a positive integer, or a mesh whose squared lengths leave the normal doubles (see
+geofair.fill_holes).)doc");
+  def_checked(m,
+      "holes_to_fill",
+      [](const py::object& vertices, const py::object& faces, bool keep_outer_borders,
+         const py::object& max_hole_edges) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces, "holes_to_fill", V.rows());
+        const HoleRule rule = hole_rule(keep_outer_borders, max_hole_edges, "holes_to_fill");
+        HoleChoice choice;
+        {
+          py::gil_scoped_release release;
+          choice = holes_to_fill(V, F, rule);
+        }
+        py::list holes, left_open;
+        for (const auto& loop : choice.holes) holes.append(int_array(loop));
+        for (const auto& open : choice.left_open)
+          left_open.append(py::make_tuple(int_array(open.loop), open.reason));
+        return py::make_tuple(holes, left_open);
+      },
+      py::arg("vertices"), py::arg("faces"), py::kw_only(),
+      py::arg("keep_outer_borders") = HoleRule{}.keep_outer_borders,
+      py::arg("max_hole_edges") = py::none(),
+      holes_to_fill_docstring.c_str());
+  def_checked(m,
       "boundary_loops",
       [](const py::object& vertices, const py::object& faces) {
         const Positions V = to_positions(vertices, "vertices");
@@ -1157,7 +1253,9 @@ Returns
 -------
 list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
 (a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
-added into the hole is oriented like its neighbours; empty for a closed mesh.
+added into the hole is oriented like its neighbours; empty for a closed mesh. Every border
+is a loop, an open mesh's outer border too (geofair.holes_to_fill tells holes from outer
+borders).
 
 Raises
 ------

@@ -4,6 +4,7 @@
 
 #include "common.h"
 #include "inner_fairness.h"
+#include "mesh_scale.h"
 #include "nested_iteration.h"
 #include "parallel.h"
 #include "region.h"
@@ -358,12 +359,10 @@ FairingResult fair_if_needed(const Positions& V, const Triangles& F,
   return std::move(out);
 }
 
-}  // namespace
-
-FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const Positions* boundary_normals, const FairingOptions& options,
-                   const std::vector<int>* polygon_ids) {
-  check_options(options);
+// fair() on positions in the working scale (mesh_scale.h).
+FairingResult fair_scaled(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                          const Positions* boundary_normals, const FairingOptions& options,
+                          const std::vector<int>* polygon_ids) {
   switch (options.remesh) {
     case Remesh::Always:
       return fair_remeshed(V, F, free, boundary_normals, options, polygon_ids);
@@ -373,6 +372,26 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
       break;
   }
   return fair_kept(V, F, free, boundary_normals, options, polygon_ids);
+}
+
+}  // namespace
+
+FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const Positions* boundary_normals, const FairingOptions& options,
+                   const std::vector<int>* polygon_ids) {
+  check_options(options);
+  const double scale = working_scale(V, F, "fair");
+  if (scale == 1.0) return fair_scaled(V, F, free, boundary_normals, options, polygon_ids);
+  // Divided and multiplied by a power of two: exact, the solve sees edges about 1 long.
+  FairingResult result =
+      fair_scaled(V / scale, F, free, boundary_normals, options, polygon_ids);
+  result.vertices *= scale;
+  // Rows the solve did not move are the input's, also where V / scale was subnormal.
+  const Eigen::Index n = std::min(V.rows(), result.vertices.rows());
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!result.free[std::size_t(v)]) result.vertices.row(v) = V.row(v);
+  for (int v : result.unreferenced) result.vertices.row(v) = V.row(v);
+  return result;
 }
 
 }  // namespace geofair

@@ -4,15 +4,18 @@
 
 #include "common.h"
 #include "hole_filling_internal.h"
+#include "mesh_scale.h"
 #include "region.h"
 #include "remesh.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -69,6 +72,13 @@ std::vector<int> oriented_loop(const std::vector<int>& loop, const DirectedEdges
 std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F) {
   check_mesh(V, F, "boundary_loops");
   return hole_filling::border_loops(DirectedEdges(F), "boundary_loops");
+}
+
+HoleChoice holes_to_fill(const Positions& V, const Triangles& F, const HoleRule& rule) {
+  check_mesh(V, F, "holes_to_fill");
+  const double scale = working_scale(V, F, "holes_to_fill");
+  return hole_filling::choose_holes(scale == 1.0 ? V : Positions(V / scale), F, DirectedEdges(F),
+                                    rule, "holes_to_fill");
 }
 
 namespace hole_filling {
@@ -285,19 +295,126 @@ SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
   return out;
 }
 
-std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
-                                            const std::vector<std::vector<int>>& loops) {
-  check_mesh(V, F, "fill_holes");
-  return holes_to_fill(V, loops, DirectedEdges(F));
+namespace {
+
+// The area a loop spans: the norm of its vector area about its centroid.
+double spanned_area(const Positions& V, const std::vector<int>& loop) {
+  Vec3 centre = Vec3::Zero();
+  for (int v : loop) centre += V.row(v).transpose();
+  centre /= double(loop.size());
+  Vec3 sum = Vec3::Zero();
+  for (size_t k = 0; k < loop.size(); ++k) {
+    const Vec3 a = V.row(loop[k]).transpose() - centre;
+    const Vec3 b = V.row(loop[(k + 1) % loop.size()]).transpose() - centre;
+    sum += a.cross(b);
+  }
+  return 0.5 * sum.norm();
 }
 
-std::vector<std::vector<int>> holes_to_fill(const Positions& V,
+// The connected part of each vertex (its smallest vertex index; union-find over F) and the
+// area of each part's triangles, by part.
+std::pair<std::vector<int>, std::vector<double>> parts(const Positions& V, const Triangles& F) {
+  std::vector<int> parent(size_t(V.rows()));
+  for (size_t v = 0; v < parent.size(); ++v) parent[v] = int(v);
+  auto root = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 1; c < 3; ++c) {
+      const int a = root(F(f, 0)), b = root(F(f, c));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<double> area(parent.size(), 0.0);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    area[root(F(f, 0))] += 0.5 * triangle_normal(V, F(f, 0), F(f, 1), F(f, 2)).norm();
+  for (size_t v = 0; v < parent.size(); ++v) parent[v] = root(int(v));
+  return {std::move(parent), std::move(area)};
+}
+
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f %%", 100.0 * fraction);
+  return text;
+}
+
+}  // namespace
+
+HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                        const HoleRule& rule, const char* caller) {
+  if (rule.max_hole_edges < 0)
+    throw InvalidInputError(std::string(caller) + ": max_hole_edges must be >= 0 (0: no limit)");
+  HoleChoice out;
+  auto loops = border_loops(edges, caller);
+  if (loops.empty()) return out;
+  // Each part's outer border: its loop of the largest spanned area (the first of equals), if
+  // that is at least kOuterBorderArea of the part's area.
+  std::vector<int> outer(loops.size(), 0);
+  std::vector<double> spanned(loops.size(), 0.0);
+  std::vector<double> area;
+  std::vector<int> part;
+  if (rule.keep_outer_borders) {
+    std::tie(part, area) = parts(V, F);
+    std::map<int, size_t> largest;  // part -> its loop of the largest spanned area
+    for (size_t l = 0; l < loops.size(); ++l) {
+      spanned[l] = spanned_area(V, loops[l]);
+      const auto [it, first] = largest.emplace(part[size_t(loops[l][0])], l);
+      if (!first && spanned[l] > spanned[it->second]) it->second = l;
+    }
+    for (const auto& [p, l] : largest)
+      outer[l] = spanned[l] > 0.0 && spanned[l] >= kOuterBorderArea * area[size_t(p)];
+  }
+  for (size_t l = 0; l < loops.size(); ++l) {
+    auto& loop = loops[l];
+    std::string reason;
+    if (outer[l]) {
+      const double fraction = spanned[l] / area[size_t(part[size_t(loop[0])])];
+      reason = "an outer border: it spans " + percent(fraction) +
+               " of the area of its part's triangles (a hole less than " +
+               percent(kOuterBorderArea) + ")";
+    }
+    if (reason.empty() && rule.max_hole_edges > 0 && int(loop.size()) > rule.max_hole_edges)
+      reason = "more edges than max_hole_edges = " + std::to_string(rule.max_hole_edges);
+    if (reason.empty())
+      out.holes.push_back(std::move(loop));
+    else
+      out.left_open.push_back({std::move(loop), std::move(reason)});
+  }
+  return out;
+}
+
+std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
                                             const std::vector<std::vector<int>>& loops,
-                                            const DirectedEdges& edges) {
+                                            const HoleRule& rule) {
+  check_mesh(V, F, "fill_holes");
+  const double scale = working_scale(V, F, "fill_holes");
+  return holes_to_fill(scale == 1.0 ? V : Positions(V / scale), F, loops, DirectedEdges(F), rule);
+}
+
+std::string describe_open(const std::vector<OpenLoop>& open) {
+  std::string text;
+  for (size_t k = 0; k < open.size() && k < 3; ++k)
+    text += std::string(k ? "; " : "") + "the loop at vertex " + std::to_string(open[k].loop[0]) +
+            " (" + std::to_string(open[k].loop.size()) + " edges), " + open[k].reason;
+  if (open.size() > 3) text += "; and " + std::to_string(open.size() - 3) + " more";
+  return text;
+}
+
+std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
+                                            const std::vector<std::vector<int>>& loops,
+                                            const DirectedEdges& edges, const HoleRule& rule,
+                                            std::vector<OpenLoop>* left_open) {
   if (loops.empty()) {
-    auto all = border_loops(edges, "fill_holes");
-    if (all.empty()) throw InvalidInputError("fill_holes: the mesh has no hole (no boundary edge)");
-    return all;
+    HoleChoice choice = choose_holes(V, F, edges, rule, "fill_holes");
+    if (choice.holes.empty() && choice.left_open.empty())
+      throw InvalidInputError("fill_holes: the mesh has no hole (no boundary edge)");
+    if (choice.holes.empty())
+      throw InvalidInputError(
+          "fill_holes: the mesh has no hole to fill, every boundary loop is left open: " +
+          describe_open(choice.left_open) +
+          ". Give the loops to fill, keep_outer_borders=False or a larger max_hole_edges");
+    if (left_open) *left_open = std::move(choice.left_open);
+    return std::move(choice.holes);
   }
   std::vector<std::vector<int>> out;
   std::map<int, int> owner;
@@ -340,7 +457,7 @@ struct Fill {
 // Triangulates, splits and remeshes one hole at edge length L. The remesh sees only the
 // patch and the mesh's triangles at the loop (the valences there), not the whole mesh.
 Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges,
-              const std::vector<int>& loop, double L, int base) {
+              const std::vector<int>& loop, double L, int base, double unit) {
   // Local rows: the vertices of the triangles at the loop, then the split's midpoints.
   std::vector<int> global;
   std::unordered_map<int, int> local;
@@ -375,12 +492,14 @@ Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges
     area += 0.5 * (b - a).cross(c - a).norm();
   }
   const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
-  if (estimate > kMaxFillVertices)
+  if (!(estimate <= kMaxFillVertices)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.3g new vertices at edge length %.3g", estimate, L * unit);
     throw InvalidInputError("fill_holes: the hole at vertex " + std::to_string(loop[0]) +
-                            " would take about " + std::to_string(std::llround(estimate)) +
-                            " new vertices at edge length " + std::to_string(L) +
-                            " (at most " + std::to_string(kMaxFillVertices) +
+                            " would take about " + text + " (at most " +
+                            std::to_string(kMaxFillVertices) +
                             "): give a larger target_edge_length");
+  }
   std::vector<bool> free(X.rows(), false);
   for (int v = n_fixed; v < int(X.rows()); ++v) free[v] = true;
   RemeshOptions remesh;
@@ -411,12 +530,12 @@ Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges
 FairingResult fill_and_fair(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                             const std::vector<std::vector<int>>& holes,
                             const std::vector<double>& lengths, double scale,
-                            const FairingOptions& options) {
+                            const FairingOptions& options, double unit) {
   Laps laps;
   std::vector<Fill> fills;
   Eigen::Index rows = V.rows(), faces = F.rows();
   for (size_t h = 0; h < holes.size(); ++h) {
-    fills.push_back(fill_one(V, F, edges, holes[h], scale * lengths[h], int(rows)));
+    fills.push_back(fill_one(V, F, edges, holes[h], scale * lengths[h], int(rows), unit));
     rows += fills.back().vertices.rows();
     faces += fills.back().faces.rows();
   }
@@ -444,38 +563,61 @@ FairingResult fill_and_fair(const Positions& V, const Triangles& F, const Direct
   return result;
 }
 
-}  // namespace
-
-FairingResult fill_holes(const Positions& V, const Triangles& F,
-                         const std::vector<std::vector<int>>& loops,
-                         const FairingOptions& options, double target_edge_length) {
-  if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
-    throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
-  check_mesh(V, F, "fill_holes");
+// fill_holes on V in the working scale (positions divided by `unit`, a power of two).
+FairingResult fill_scaled(const Positions& V, const Triangles& F,
+                          const std::vector<std::vector<int>>& loops,
+                          const FairingOptions& options, double target_edge_length,
+                          const HoleRule& rule, double unit) {
   const DirectedEdges edges(F);
-  const auto holes = hole_filling::holes_to_fill(V, loops, edges);
+  std::vector<OpenLoop> left_open;
+  const auto holes = hole_filling::holes_to_fill(V, F, loops, edges, rule, &left_open);
   std::vector<double> lengths;
   for (const auto& loop : holes)
     lengths.push_back(target_edge_length > 0.0 ? target_edge_length
                                                : mean_loop_edge_length(V, loop));
   Laps laps;
-  FairingResult result = fill_and_fair(V, F, edges, holes, lengths, 1.0, options);
+  FairingResult result = fill_and_fair(V, F, edges, holes, lengths, 1.0, options, unit);
   const bool failed = !result.converged || result.new_folds > 0;
   const double spent = laps.lap();
   const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
   const auto added = result.vertices.rows() - V.rows();
+  const std::string open_note =
+      left_open.empty() ? "" : "; left open: " + hole_filling::describe_open(left_open);
   if (!failed || target_edge_length > 0.0 || !time_left || 4 * added > kMaxFillVertices ||
-      result.stop_reason == StopReason::Cancelled)
+      result.stop_reason == StopReason::Cancelled) {
+    result.message += open_note;
     return result;
+  }
   // A ragged loop asks for a finer fill next to it: once more at half the edge length.
-  FairingResult finer = fill_and_fair(V, F, edges, holes, lengths, 0.5, options_after(options, spent));
+  FairingResult finer = fill_and_fair(V, F, edges, holes, lengths, 0.5,
+                                      options_after(options, spent), unit);
   const bool finer_ok = finer.converged && finer.new_folds == 0;
   if (finer_ok || (finer.converged && !result.converged)) {
     finer.message += "; filled at half the loops' edge length (at their own it did not " +
-                     std::string(result.converged ? "stay free of folds)" : "converge)");
+                     std::string(result.converged ? "stay free of folds)" : "converge)") +
+                     open_note;
     return finer;
   }
-  result.message += "; at half the loops' edge length neither (" + finer.message + ")";
+  result.message += "; at half the loops' edge length neither (" + finer.message + ")" + open_note;
+  return result;
+}
+
+}  // namespace
+
+FairingResult fill_holes(const Positions& V, const Triangles& F,
+                         const std::vector<std::vector<int>>& loops,
+                         const FairingOptions& options, double target_edge_length,
+                         const HoleRule& rule) {
+  if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
+    throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
+  check_mesh(V, F, "fill_holes");
+  const double scale = working_scale(V, F, "fill_holes");
+  if (scale == 1.0) return fill_scaled(V, F, loops, options, target_edge_length, rule, 1.0);
+  // Divided and multiplied by a power of two: exact, the fill sees edges about 1 long.
+  FairingResult result =
+      fill_scaled(V / scale, F, loops, options, target_edge_length / scale, rule, scale);
+  result.vertices *= scale;
+  result.vertices.topRows(V.rows()) = V;  // the input's rows, also where V / scale was subnormal
   return result;
 }
 

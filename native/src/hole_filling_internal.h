@@ -1,9 +1,11 @@
 // The steps of fill_holes (geofair/hole_filling.h), for the library and its unit tests.
 #pragma once
 
+#include "geofair/hole_filling.h"
 #include "geofair/types.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace geofair::hole_filling {
@@ -52,15 +54,27 @@ class DirectedEdges {
 /// is on the border twice.
 std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller);
 
+/// The boundary loops of a valid F (checked before) split by `rule` (geofair::holes_to_fill),
+/// with V in the working scale (mesh_scale.h). \throw InvalidInputError, naming `caller`,
+/// as border_loops or for a negative rule.max_hole_edges.
+HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                        const HoleRule& rule, const char* caller);
+
+/// Up to three of `open` as one clause each ("the loop at vertex 7 (40 edges), <reason>").
+std::string describe_open(const std::vector<OpenLoop>& open);
+
 /// The holes to fill: `loops` checked (boundary loops of F, oriented in the direction of
-/// the missing face, see boundary_loops), or every boundary loop of F when `loops` is empty.
-/// \throw InvalidInputError as fill_holes.
+/// the missing face, see boundary_loops), or where `loops` is empty the holes of
+/// choose_holes(rule). \throw InvalidInputError as fill_holes.
 std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
-                                            const std::vector<std::vector<int>>& loops);
-/// The same from the directed edges of a valid F (checked before).
-std::vector<std::vector<int>> holes_to_fill(const Positions& V,
                                             const std::vector<std::vector<int>>& loops,
-                                            const DirectedEdges& edges);
+                                            const HoleRule& rule = {});
+/// The same from the directed edges of a valid F (checked before), V in the working scale;
+/// `left_open` (if given) receives the loops that the rule leaves open.
+std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles& F,
+                                            const std::vector<std::vector<int>>& loops,
+                                            const DirectedEdges& edges, const HoleRule& rule,
+                                            std::vector<OpenLoop>* left_open = nullptr);
 
 /// Loops longer than this are not searched by Liepa's O(n³) triangulation: their patch is a
 /// fan around a vertex at the centroid (split_inner_edges).

@@ -1,7 +1,9 @@
-// fill_holes' combinatorial steps (hole_filling_internal.h): the boundary loops, Liepa's
-// triangulation of a loop and the split of its edges across the hole.
+// fill_holes' combinatorial steps (hole_filling_internal.h): the boundary loops, which of
+// them are holes, Liepa's triangulation of a loop and the split of its edges across the
+// hole; the working scale (mesh_scale.h).
 #include "geofair/hole_filling.h"
 #include "hole_filling_internal.h"
+#include "mesh_scale.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>
@@ -73,11 +75,62 @@ TEST(BoundaryLoops, GridWithHoleHasOuterAndInnerLoop) {
     }
 }
 
+TEST(HolesToFill, LeavesTheOuterBorderOfASheetOpen) {
+  const testing::Mesh m = grid_with_hole(10, 0.45);
+  const auto loops = boundary_loops(m.V, m.F);
+  ASSERT_EQ(loops.size(), 2u);
+  const size_t inner = loops[0].size() < loops[1].size() ? 0 : 1;
+  const HoleChoice choice = holes_to_fill(m.V, m.F);
+  ASSERT_EQ(choice.holes.size(), 1u);
+  EXPECT_EQ(choice.holes[0], loops[inner]);
+  ASSERT_EQ(choice.left_open.size(), 1u);
+  EXPECT_EQ(choice.left_open[0].loop, loops[1 - inner]);
+  EXPECT_NE(choice.left_open[0].reason.find("an outer border"), std::string::npos);
+  // The rule's options: every loop, or none longer than the inner one's edges less one.
+  EXPECT_EQ(holes_to_fill(m.V, m.F, HoleRule{false, 0}).holes, loops);
+  const int shorter = int(loops[inner].size()) - 1;
+  const HoleChoice none = holes_to_fill(m.V, m.F, HoleRule{false, shorter});
+  EXPECT_TRUE(none.holes.empty());
+  ASSERT_EQ(none.left_open.size(), 2u);
+  EXPECT_NE(none.left_open[inner].reason.find("more edges than max_hole_edges"), std::string::npos);
+  EXPECT_THROW(holes_to_fill(m.V, m.F, HoleRule{true, -1}), InvalidInputError);
+  // The same at any scale.
+  for (double scale : {1e-100, 1e100})
+    EXPECT_EQ(holes_to_fill(m.V * scale, m.F).holes, choice.holes) << scale;
+}
+
+TEST(HolesToFill, FillsTheHolesOfAClosedSurface) {
+  // A pillow: the dome z = 2 (1 − x²)(1 − y²) over the grid with a hole, closed by the flat
+  // grid with another hole below it, mirrored (x → −x: it faces down, and its diagonals
+  // differ from the dome's), which shares the dome's border vertices.
+  testing::Mesh dome = grid_with_hole(10, 0.45);
+  for (int v = 0; v < dome.V.rows(); ++v)
+    dome.V(v, 2) = 2.0 * (1.0 - dome.V(v, 0) * dome.V(v, 0)) * (1.0 - dome.V(v, 1) * dome.V(v, 1));
+  const testing::Mesh floor = grid_with_hole(10, 0.45, -0.5, 0.5);
+  const int n = int(dome.V.rows());
+  testing::Mesh m{Positions(2 * n, 3), Triangles(dome.F.rows() + floor.F.rows(), 3)};
+  m.V.topRows(n) = dome.V;
+  m.V.bottomRows(n) = floor.V;
+  m.V.bottomRows(n).col(0) *= -1.0;
+  m.F.topRows(dome.F.rows()) = dome.F;
+  for (int f = 0; f < floor.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int v = floor.F(f, c), i = v % 11, j = v / 11;
+      const bool border = i == 0 || j == 0 || i == 10 || j == 10;
+      m.F(dome.F.rows() + f, c) = border ? j * 11 + (10 - i) : n + v;
+    }
+  const auto loops = boundary_loops(m.V, m.F);
+  ASSERT_EQ(loops.size(), 2u);
+  const HoleChoice choice = holes_to_fill(m.V, m.F);
+  EXPECT_EQ(choice.holes, loops);
+  EXPECT_TRUE(choice.left_open.empty());
+}
+
 TEST(TriangulateLoop, PlanarHoleIsFilledFlatAndOrientedLikeTheMesh) {
   const testing::Mesh m = grid_with_hole(10, 0.45);
   auto loops = hole_filling::holes_to_fill(m.V, m.F, {});
-  // The inner loop is the shorter one.
-  const auto& loop = loops[0].size() < loops[1].size() ? loops[0] : loops[1];
+  ASSERT_EQ(loops.size(), 1u);  // the inner loop: the grid's border is an outer border
+  const auto& loop = loops[0];
   const Triangles T = hole_filling::triangulate_loop(m.V, loop, hole_filling::DirectedEdges(m.F));
   ASSERT_EQ(T.rows(), Eigen::Index(loop.size() - 2));
   // Every triangle lies in z = 0 and faces +z like the grid, and the patch with the mesh
@@ -100,7 +153,7 @@ TEST(TriangulateLoop, PlanarHoleIsFilledFlatAndOrientedLikeTheMesh) {
 TEST(SplitInnerEdges, EveryTriangleGetsAVertexOffTheLoop) {
   const testing::Mesh m = grid_with_hole(10, 0.45);
   auto loops = hole_filling::holes_to_fill(m.V, m.F, {});
-  const auto& loop = loops[0].size() < loops[1].size() ? loops[0] : loops[1];
+  const auto& loop = loops.at(0);
   const Triangles T = hole_filling::triangulate_loop(m.V, loop, hole_filling::DirectedEdges(m.F));
   const auto split = hole_filling::split_inner_edges(m.V, T, loop);
   const std::set<int> on_loop(loop.begin(), loop.end());
@@ -118,15 +171,17 @@ TEST(HolesToFill, RejectsALoopThatIsNotABoundary) {
   // Three interior vertices of the grid, far from the hole.
   const std::vector<std::vector<int>> bad{{12, 13, 24}};
   EXPECT_THROW(hole_filling::holes_to_fill(m.V, m.F, bad), InvalidInputError);
-  const testing::Mesh closed = testing::planar_grid(2);
-  auto loops = hole_filling::holes_to_fill(closed.V, closed.F, {});
-  EXPECT_EQ(loops.size(), 1u);  // the grid's own border is a hole
+  // A sheet's own border is a hole only where the rule says so.
+  const testing::Mesh sheet = testing::planar_grid(2);
+  EXPECT_THROW(hole_filling::holes_to_fill(sheet.V, sheet.F, {}), InvalidInputError);
+  auto loops = hole_filling::holes_to_fill(sheet.V, sheet.F, {}, HoleRule{false, 0});
+  EXPECT_EQ(loops.size(), 1u);
 }
 
 TEST(HolesToFill, AcceptsALoopInEitherDirectionAndOrientsIt) {
   const testing::Mesh m = grid_with_hole(10, 0.45);
   auto loops = hole_filling::holes_to_fill(m.V, m.F, {});
-  const auto& loop = loops[0].size() < loops[1].size() ? loops[0] : loops[1];
+  const auto& loop = loops.at(0);
   std::vector<int> reversed(loop.rbegin(), loop.rend());
   const auto given = hole_filling::holes_to_fill(m.V, m.F, {reversed});
   ASSERT_EQ(given.size(), 1u);
@@ -154,7 +209,7 @@ TEST(SplitInnerEdges, AThreeVertexHoleGetsItsCentroid) {
 TEST(SplitInnerEdges, ALongLoopGetsACentroidFan) {
   // The border of a 250×250 grid: 1000 vertices, above kMaxLiepaLoop.
   const testing::Mesh m = testing::planar_grid(250);
-  const auto loops = hole_filling::holes_to_fill(m.V, m.F, {});
+  const auto loops = boundary_loops(m.V, m.F);
   ASSERT_EQ(loops.size(), 1u);
   ASSERT_GT(int(loops[0].size()), hole_filling::kMaxLiepaLoop);
   const Triangles T = hole_filling::triangulate_loop(m.V, loops[0], hole_filling::DirectedEdges(m.F));
@@ -163,6 +218,38 @@ TEST(SplitInnerEdges, ALongLoopGetsACentroidFan) {
   ASSERT_EQ(fan.new_vertices.rows(), 1);
   EXPECT_NEAR(fan.new_vertices.row(0).norm(), 0.0, 1e-12);  // the square's centre
   EXPECT_EQ(fan.faces.rows(), Eigen::Index(loops[0].size()));
+}
+
+TEST(WorkingScale, IsOneInTheBandAndAPowerOfTwoNearTheEdgeLengthOutside) {
+  const testing::Mesh m = grid_with_hole(10, 0.45);  // edges 0.2 to 0.28 long
+  for (double scale : {1.0, 1e-8, 1e8}) EXPECT_EQ(working_scale(m.V * scale, m.F, "t"), 1.0);
+  for (double scale : {1e-100, 1e100, 1e-150, 1e150}) {
+    const double s = working_scale(m.V * scale, m.F, "t");
+    EXPECT_EQ(std::frexp(s, new int), 0.5) << scale;  // a power of two
+    const double relative = s / (0.23 * scale);
+    EXPECT_GT(relative, 0.5) << scale;
+    EXPECT_LT(relative, 2.0) << scale;
+  }
+}
+
+TEST(WorkingScale, NamesTheScaleWhereSquaredLengthsLeaveTheDoubles) {
+  const testing::Mesh m = grid_with_hole(10, 0.45);
+  auto message = [&](double scale) {
+    try {
+      working_scale(m.V * scale, m.F, "fill_holes");
+    } catch (const InvalidInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(1e200).find("fill_holes: a mesh of size 2.8e+200 is too large: squared "
+                                "lengths overflow"),
+            std::string::npos)
+      << message(1e200);
+  EXPECT_NE(message(1e-160).find("fill_holes: edge lengths of 2.3e-161 are too small: squared "
+                                 "lengths underflow"),
+            std::string::npos)
+      << message(1e-160);
 }
 
 }  // namespace

@@ -523,6 +523,62 @@ def check_fill_sphere(addon):
     bpy.data.objects.remove(obj)
 
 
+def height_grid(name, hole_radius):
+    """Blender's Grid (about 20 × 20 quads over [-1, 1]²) lifted to a smooth height field, the faces within
+    ``hole_radius`` of its centre deleted, nothing selected, in Edit Mode; and its border's edge count."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=20, y_subdivisions=20, size=2.0)
+    obj = bpy.context.active_object
+    obj.name = name
+    for vertex in obj.data.vertices:
+        x, y = vertex.co.x, vertex.co.y
+        vertex.co.z = 0.3 * np.sin(1.3 * x) * np.cos(y)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    outer = open_edges(bm)
+    doomed = [f for f in bm.faces if np.hypot(*f.calc_center_median()[:2]) < hole_radius]
+    bmesh.ops.delete(bm, geom=doomed, context="FACES")
+    for element in (*bm.verts, *bm.edges, *bm.faces):
+        element.select = False
+    bmesh.update_edit_mesh(obj.data)
+    return obj, outer
+
+
+def check_fill_open_mesh(addon):
+    """An open sheet with a hole: with nothing selected only the hole is filled, the sheet's border stays
+    open and the report says so; a sheet without a hole has nothing to fill."""
+    obj, outer = height_grid("Holed sheet", 0.35)
+    border = open_edges(bmesh.from_edit_mesh(obj.data))
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes)
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert result == {"FINISHED"} and last.status == "CONVERGED", (error, last.message)
+    bm = bmesh.from_edit_mesh(obj.data)
+    assert open_edges(bm) == outer, f"{open_edges(bm)} open edges after the fill, {border} before, {outer} outer"
+    assert "edges at vertex" in last.message and "is left open, an outer border: it spans" in last.message
+    print(f"ok: Fill Holes on an open sheet filled its hole, its border left open: {last.message}")
+    bpy.ops.ed.undo_push(message="filled")
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, all_holes=True)
+    assert result == {"CANCELLED"} and f"has no hole to fill: the loop of {outer} edges" in error, error
+    print(f"ok: All Holes on the filled sheet: {error}")
+    # Selected, the border is filled like any hole.
+    for edge in bm.edges:
+        edge.select_set(len(edge.link_faces) == 1)
+    bmesh.update_edit_mesh(obj.data)
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, keep_unconverged=True)
+    assert result == {"FINISHED"}, error
+    assert open_edges(bmesh.from_edit_mesh(obj.data)) == 0
+    print("ok: the sheet's border selected: filled")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+    # From a script: the report's notes name the loop left open.
+    obj, _ = height_grid("Holed sheet (script)", 0.35)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    report = addon.fill_holes(obj)
+    assert report.holes == 1 and any("is left open, an outer border" in note for note in report.notes), report
+    print(f"ok: fill_holes from a script on the open sheet: {report.summary()}")
+    bpy.data.objects.remove(obj)
+
+
 def check_fill_errors(addon):
     bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, location=(4, 0, 0))
     closed = bpy.context.active_object
@@ -577,6 +633,7 @@ def main():
     check_options()
     if "--fill" in parts:
         check_fill_errors(addon)
+        check_fill_open_mesh(addon)
         check_fill_sphere(addon)
         check_bad_fill(addon)
     if "--remesh" in parts:

@@ -198,8 +198,17 @@ struct FairingResult {
 /// Iteration::Auto a diverging last attempt returns the input unconverged (its residual,
 /// the reason in result.message) instead of throwing.
 ///
+/// Positions are worked on in units of the mesh's own size: where the mean edge length of F
+/// lies outside [2^-32, 2^32] they are divided by the power of two nearest to it (exactly;
+/// the result multiplied back, the fixed rows the input's), so that the squares and fourth
+/// powers of lengths in normals, areas and curvatures stay normal doubles. The result is
+/// the same at any scale up to the factor and rounding.
+///
 /// \throw InvalidInputError for invalid input (see extract_region; polygon_ids of the wrong
-///        size) or options (a tuning field outside its range, validate_tuning); SolverError
+///        size; a mesh whose squared bounding-box diagonal overflows, above about 1.3e154,
+///        or whose squared mean edge length is not a normal double, below about 1.5e-154:
+///        the message names the size) or options (a tuning field outside its range,
+///        validate_tuning); SolverError
 ///        (not with Auto's iteration, see above) if a linear solve fails or the iteration
 ///        diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,

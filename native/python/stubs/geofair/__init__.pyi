@@ -9,7 +9,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'holes_to_fill', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -163,7 +163,9 @@ def boundary_loops(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.t
     -------
     list of (k,) int32 arrays, one per loop, its vertices in the direction of the missing face
     (a followed by b: the mesh has a triangle with the edge b -> a), so a triangle (a, b, c)
-    added into the hole is oriented like its neighbours; empty for a closed mesh.
+    added into the hole is oriented like its neighbours; empty for a closed mesh. Every border
+    is a loop, an open mesh's outer border too (geofair.holes_to_fill tells holes from outer
+    borders).
     
     Raises
     ------
@@ -309,12 +311,15 @@ def fair(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDAr
     Raises
     ------
     geofair.InvalidInputError (a ValueError): invalid input or option value; the message names
-        the problem and the vertex, face or option.
+        the problem and the vertex, face or option (a mesh whose squared lengths leave the
+        normal doubles, with a bounding-box diagonal above about 1.3e154 or a mean edge length
+        below about 1.5e-154, names its size). Within those sizes the result is the same at any
+        scale (positions are worked on in units of the mesh's own size).
     geofair.SolverError (a RuntimeError): the computation failed or diverged. NaN or Inf is
         never returned.
     TypeError: an unknown keyword argument, or an argument of the wrong type.
     """
-def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
+def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, keep_outer_borders: bool = True, max_hole_edges: typing.SupportsInt | typing.SupportsIndex | None = None, boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
     """
     Fill holes of a triangle mesh with intrinsically faired patches: each hole's
     loop keeps its positions and takes its unit normals from the faces around it (the G1
@@ -336,11 +341,25 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     ----------
     vertices : (n, 3) float64 array, positions in mesh units.
     faces : (m, 3) integer array, triangles, consistently oriented, manifold.
-    loops : None (default): every boundary loop of the mesh is a hole (geofair.boundary_loops;
-        an open mesh's outer border too); or a list of loops, each a sequence of vertex indices
-        along one boundary loop (any start vertex, either direction).
+    loops : None (default): the holes of geofair.holes_to_fill(vertices, faces,
+        keep_outer_borders=..., max_hole_edges=...), every boundary loop but the outer borders
+        of open surfaces (the result's .message names the loops left open and why); or a list
+        of loops, each a sequence of vertex indices along one boundary loop (any start vertex,
+        either direction), filled whatever their size.
     target_edge_length : edge length of the fill in mesh units, or None (default): the mean
         length of the hole's loop edges.
+    keep_outer_borders : with loops=None, leave each outer border open (default True): in each
+        connected part of the mesh, the boundary loop that spans the largest area (the norm of
+        its vector area, ½|Σ (p_i − c) × (p_{i+1} − c)| about the centroid c of its vertices
+        p_i), where that is at least 30 % of the area of the part's triangles. A
+        sheet's border spans about the sheet's own area (a height field's: its area projected on
+        the plane), a hole in a closed surface a small part of it (a sphere missing a cap of
+        polar angle θ: (1 − cos θ)/2 of the rest, below 30 % up to θ = 66°). A part has at
+        most one outer border: a hole in a sheet is filled whatever its size. False: every
+        boundary loop is a hole (an open sheet is then capped into a closed surface). Not read
+        when loops are given.
+    max_hole_edges : with loops=None, leave loops of more edges than this open (like Blender's
+        Fill Holes Sides or MeshLab's Close Holes size); None (default): no limit.
     boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
     damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
         geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
@@ -357,11 +376,45 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     
     Raises
     ------
-    geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex indices, a loop is not a boundary
-    loop of the mesh (the offending pair of vertices is named), a vertex is on two given loops,
-    the mesh has no hole, a fill would take more than 2000000 new vertices, or for the input
-    fair refuses (the message names the problem and the vertex or face); geofair.SolverError (a
-    RuntimeError) as fair.
+    geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex
+    indices, a loop is not a boundary loop of the mesh (the offending pair of vertices is named),
+    a vertex is on two given loops, the mesh has no hole to fill (no boundary loop, or with
+    loops=None every loop is left open: the message names them and why), max_hole_edges is not
+    None or a positive integer, a fill would take more than 2000000 new vertices, the mesh's
+    squared lengths leave the normal doubles (a bounding-box diagonal above about 1.3e154 or a
+    mean edge length below about 1.5e-154: the message names the size), or for the input fair
+    refuses (the message names the problem and the vertex or face); geofair.SolverError (a
+    RuntimeError) as fair. Within those sizes the fill is the same at any scale (positions are
+    worked on in units of the mesh's own size).
+    """
+def holes_to_fill(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], *, keep_outer_borders: bool = True, max_hole_edges: typing.SupportsInt | typing.SupportsIndex | None = None) -> tuple[list[numpy.typing.NDArray[numpy.int32]], list[tuple[numpy.typing.NDArray[numpy.int32], str]]]:
+    """
+    The holes that geofair.fill_holes fills when it is given no loops: the boundary
+    loops of the mesh (geofair.boundary_loops) less those the rule leaves open.
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units; faces : (m, 3) integer array,
+        consistently oriented, manifold.
+    keep_outer_borders : leave each outer border open (default True): in each connected part,
+        the boundary loop that spans the largest area, where that is at least 30 % of the
+        area of the part's triangles (see geofair.fill_holes). False: every boundary loop is a
+        hole.
+    max_hole_edges : leave loops of more edges than this open; None (default): no limit.
+    
+    Returns
+    -------
+    (holes, left_open): holes a list of (k,) int32 arrays, the loops to fill as
+    geofair.boundary_loops returns them (in its order); left_open a list of (loop, reason)
+    tuples, the other loops with one clause for a user saying why (e.g. "an outer border: it
+    spans 95 % of the area of its part's triangles (a hole less than 30 %)"). Both empty for
+    a closed mesh. The same at any scale of the mesh.
+    
+    Raises
+    ------
+    geofair.InvalidInputError (a ValueError) as geofair.boundary_loops, for max_hole_edges not
+    None or a positive integer, or a mesh whose squared lengths leave the normal doubles (see
+    geofair.fill_holes).
     """
 def intrinsic_delaunay(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> tuple[numpy.typing.NDArray[numpy.int32], numpy.typing.NDArray[numpy.float64], int]:
     """
