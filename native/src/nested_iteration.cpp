@@ -498,47 +498,68 @@ class PaperLevels final : public LevelIteration {
   int iterations_ = 0;  // of all levels so far (FairingResult::iterations)
 };
 
+// The copies of the positions that an attempt's hierarchy is measured on (Xs, #region×3, empty
+// for one level; progressive_mesh.h), whose conformal weights also interpolate the splits:
+// - Attempt::decimate_on_membrane: the membrane Xm, where the attempt's uniform coarse
+//   weights place the vertices (coarse_level_weights). Decimated on another copy, a coarse
+//   triangle valid there folds on the membrane where an irregular connectivity moves
+//   vertices by many edge lengths, and the base level's relaxations and Newton steps
+//   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
+// - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
+//   positions fold coarse triangles, and the splits interpolate smooth corrections);
+// and the reference of Newton's uniform coarse weights (Xr; coarse_level_weights).
+struct HierarchyPositions {
+  HierarchyPositions(const Attempt& attempt)
+      : newton(attempt.iteration == Iteration::Newton),
+        membrane(newton && attempt.reference == CoarseReference::Membrane),
+        on_membrane(membrane && attempt.decimate_on_membrane && attempt.levels > 1),
+        own_reference(!newton || attempt.reference == CoarseReference::Own) {}
+
+  // The hierarchy of the attempt, decimated on Xs (made here with Xm where needed).
+  ProgressiveMesh build(const Problem& p, const Attempt& attempt) {
+    if (on_membrane)
+      Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
+    else if (attempt.levels > 1)
+      smoothed = hierarchy_positions(p.region, p.X0, &p.lambda_finest,
+                                     p.options.tuning.hierarchy.smoothing);
+    ProgressiveMesh hierarchy =
+        build_hierarchy(p.region, Xs(), attempt.levels,
+                        newton ? kNewtonDecimation : kPaperDecimation, p.options.tuning.hierarchy);
+    coarse_levels = hierarchy.triangles.size() > 1;
+    if (membrane && coarse_levels && !on_membrane)  // only once the mesh could be decimated
+      Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
+    return hierarchy;
+  }
+  const Positions& Xs() const { return on_membrane ? Xm : smoothed; }
+  // Empty: the coarse levels' own positions.
+  const Positions& Xr() const {
+    return own_reference ? none : membrane && coarse_levels ? Xm : Xs();
+  }
+  void release() { smoothed = Xm = Positions(); }
+
+  const bool newton, membrane, on_membrane, own_reference;
+  bool coarse_levels = false;
+  Positions smoothed, Xm;
+  const Positions none;
+};
+
 }  // namespace
 
 SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iterations,
                       Phases& phases) {
   const bool newton = attempt.iteration == Iteration::Newton;
   std::deque<MultigridLevel> levels;  // kept in place: the constructions refer to the regions
-  const bool membrane = newton && attempt.reference == CoarseReference::Membrane;
-  const bool on_membrane = membrane && attempt.decimate_on_membrane && attempt.levels > 1;
-  // Xs (#region×3, empty for one level), what the hierarchy is measured on
-  // (progressive_mesh.h), whose conformal weights also interpolate the splits:
-  // - Attempt::decimate_on_membrane: the membrane Xm, where the attempt's uniform coarse
-  //   weights place the vertices (coarse_level_weights). Decimated on another copy, a coarse
-  //   triangle valid there folds on the membrane where an irregular connectivity moves
-  //   vertices by many edge lengths, and the base level's relaxations and Newton steps
-  //   wander (docs/DESIGN_NOTES.md, "The membrane attempt's hierarchy");
-  // - else a smoothed copy of the input (hierarchy_positions: on a noisy input the raw
-  //   positions fold coarse triangles, and the splits interpolate smooth corrections).
-  Positions smoothed, Xm;
-  const Positions& Xs = on_membrane ? Xm : smoothed;
+  HierarchyPositions positions(attempt);
   std::unique_ptr<LevelIteration> iteration;
   if (newton)  // the membrane's attempt decimated on the smoothed copy presolves on it
     iteration = std::make_unique<NewtonLevels>(
-        p, levels, membrane && !attempt.decimate_on_membrane ? &smoothed : nullptr,
+        p, levels,
+        positions.membrane && !attempt.decimate_on_membrane ? &positions.smoothed : nullptr,
         newton_iterations);
   Laps laps;
-  if (on_membrane)
-    Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
-  else if (attempt.levels > 1)
-    smoothed = hierarchy_positions(p.region, p.X0, &p.lambda_finest,
-                                   p.options.tuning.hierarchy.smoothing);
-  ProgressiveMesh hierarchy =
-      build_hierarchy(p.region, Xs, attempt.levels, newton ? kNewtonDecimation : kPaperDecimation,
-                      p.options.tuning.hierarchy);
-  const bool coarse_levels = hierarchy.triangles.size() > 1;
-  if (membrane && coarse_levels && !on_membrane)  // only once the mesh could be decimated
-    Xm = membrane_positions(p.region, p.lambda_finest, p.X0);
-  // The reference of Newton's uniform coarse weights (coarse_level_weights; empty: their own).
-  const Positions none;
-  const Positions& Xr = !newton || attempt.reference == CoarseReference::Own ? none
-                        : membrane && coarse_levels                          ? Xm
-                                                                             : Xs;
+  ProgressiveMesh hierarchy = positions.build(p, attempt);
+  const Positions& Xs = positions.Xs();
+  const Positions& Xr = positions.Xr();
   if (!newton) iteration = std::make_unique<PaperLevels>(p, levels);
   SolveRun run;
   FairingResult& result = run.result;
@@ -579,7 +600,7 @@ SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iter
       }
     }
     if (finest)  // memory of the finest
-      hierarchy = ProgressiveMesh(), smoothed = Xm = Positions();
+      hierarchy = ProgressiveMesh(), positions.release();
     phases.emplace_back(level_phase(l, "initial mesh"), laps.lap());
     Construction& construction = iteration->set_up(l, finest, std::move(coarse_lambda));
     phases.emplace_back(level_phase(l, "set-up"), laps.lap());

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <vector>
 
 namespace geofair {
 namespace {
@@ -59,9 +60,10 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // if it cannot be the decimater's choice (see Sweep).
   bool is_collapse_ok(HalfedgeHandle v0v1) {
     const VertexHandle v0 = from_vertex_handle(v0v1);
-    if (v0v1 == halfedge_handle(v0) || v0 != sweep.from)
+    if (v0v1 == halfedge_handle(v0) || v0 != sweep.from) {
       sweep.start(v0, priority_factor(v0));
-    else if (length_priority(point(v0), point(to_vertex_handle(v0v1)), sweep.factor) > sweep.best)
+      for (const VertexHandle a : vv_range(v0)) sweep.ring.push_back(a.idx());
+    } else if (length_priority(point(v0), point(to_vertex_handle(v0v1)), sweep.factor) > sweep.best)
       return false;
     return keeps_manifold(v0v1);
   }
@@ -88,10 +90,24 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // popping it from the heap, is never skipped: if no other sweep came in between, its
   // length equals `best`, and only longer ones are skipped. The hierarchy is the same as
   // with every candidate weighed (docs/DESIGN_NOTES.md, "The decimation's speed").
+  // The sweep also keeps what every candidate of `from` reads and the collapses leave
+  // unchanged until one is made: the one-ring of `from` (ring, for the link condition) and
+  // its triangles with their normals (faces, for the priority module).
+  struct Face {
+    FaceHandle handle;
+    VertexHandle vertex[3];
+    OpenMesh::Vec3d point[3], normal;
+  };
   struct Sweep {
     VertexHandle from;
     float best = FLT_MAX, factor = 1.0f;  // factor: priority_factor(from)
-    void start(VertexHandle v, float f = 1.0f) { from = v, best = FLT_MAX, factor = f; }
+    std::vector<int> ring;
+    std::vector<Face> faces;
+    bool faces_known = false;
+    void start(VertexHandle v, float f = 1.0f) {
+      from = v, best = FLT_MAX, factor = f;
+      ring.clear(), faces.clear(), faces_known = false;
+    }
   } sweep;
 
  private:
@@ -111,10 +127,12 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
     };
     VertexHandle vl, vr;
     if (!apex(v0v1, vl) || !apex(v1v0, vr) || vl == vr) return false;
-    for (const VertexHandle a : vv_range(v0)) {
-      if (a == vl || a == vr) continue;
-      for (const VertexHandle b : vv_range(v1))
-        if (a == b) return false;
+    // The link condition: no common neighbour of v0 (its ring, kept by the sweep) and v1
+    // but the apexes.
+    for (const VertexHandle b : vv_range(v1)) {
+      if (b == vl || b == vr) continue;
+      if (std::find(sweep.ring.begin(), sweep.ring.end(), b.idx()) != sweep.ring.end())
+        return false;
     }
     return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
   }
@@ -152,19 +170,14 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
     if (!mesh_.is_g1(ci.v1) &&
         int(mesh_.valence(ci.v1) + mesh_.valence(ci.v0)) - 4 > rules.max_valence)
       return float(Base::ILLEGAL_COLLAPSE);
-    for (auto f : mesh_.vf_range(ci.v0)) {
-      if (f == ci.fl || f == ci.fr) continue;  // these two triangles disappear
-      OpenMesh::Vec3d p[3], q[3];
-      int k = 0;
-      for (auto v : mesh_.fv_range(f)) {
-        p[k] = mesh_.point(v);
-        q[k] = v == ci.v0 ? ci.p1 : p[k];
-        ++k;
-      }
-      OpenMesh::Vec3d n_old, n_new;
-      triangle_quality(p[0], p[1], p[2], n_old);
+    for (const auto& face : faces_of(ci.v0)) {
+      if (face.handle == ci.fl || face.handle == ci.fr) continue;  // these two disappear
+      OpenMesh::Vec3d q[3];
+      for (int k = 0; k < 3; ++k) q[k] = face.vertex[k] == ci.v0 ? ci.p1 : face.point[k];
+      OpenMesh::Vec3d n_new;
       if (triangle_quality(q[0], q[1], q[2], n_new) < rules.min_quality)
         return float(Base::ILLEGAL_COLLAPSE);
+      const OpenMesh::Vec3d& n_old = face.normal;
       if ((n_old | n_new) < 0.5 * n_old.norm() * n_new.norm()) return float(Base::ILLEGAL_COLLAPSE);
     }
     const float priority = length_priority(
@@ -184,6 +197,30 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   VertexSplits collapses;  // in collapse order
 
  private:
+  // The triangles of v0 with their corners and normals: the sweep's where it sweeps v0 (made
+  // at its first candidate), else made now into `scratch_`.
+  const std::vector<typename MeshT::Face>& faces_of(typename MeshT::VertexHandle v0) {
+    const bool swept = v0 == mesh_.sweep.from;
+    auto& faces = swept ? mesh_.sweep.faces : scratch_;
+    if (swept && mesh_.sweep.faces_known) return faces;
+    faces.clear();
+    for (auto f : mesh_.vf_range(v0)) {
+      typename MeshT::Face face;
+      face.handle = f;
+      int k = 0;
+      for (auto v : mesh_.fv_range(f)) {
+        face.vertex[k] = v;
+        face.point[k] = mesh_.point(v);
+        ++k;
+      }
+      triangle_quality(face.point[0], face.point[1], face.point[2], face.normal);
+      faces.push_back(face);
+    }
+    if (swept) mesh_.sweep.faces_known = true;
+    return faces;
+  }
+  std::vector<typename MeshT::Face> scratch_;
+
   // True if the border loop through border vertex v has more than min_boundary_loop vertices.
   bool long_loop(typename MeshT::VertexHandle v) const {
     auto h = mesh_.halfedge_handle(v);  // the border half-edge out of v
