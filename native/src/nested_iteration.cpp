@@ -547,9 +547,9 @@ struct HierarchyPositions {
 
 SolveRun solve_levels(const Problem& p, const Attempt& attempt, int& newton_iterations,
                       Phases& phases) {
-  const bool newton = attempt.iteration == Iteration::Newton;
   std::deque<MultigridLevel> levels;  // kept in place: the constructions refer to the regions
   HierarchyPositions positions(attempt);
+  const bool newton = positions.newton;
   std::unique_ptr<LevelIteration> iteration;
   if (newton)  // the membrane's attempt decimated on the smoothed copy presolves on it
     iteration = std::make_unique<NewtonLevels>(
