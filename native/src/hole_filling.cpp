@@ -488,12 +488,12 @@ std::vector<std::vector<int>> rings_around(const Triangles& F, const DirectedEdg
   return out;
 }
 
-// Folded edges of the triangles T.row(first ..): edges among them and with the other
-// triangles whose two normals have a non-positive dot product (bench/holes.py's test).
-int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first) {
+// Folded edges of the triangles T.row(first .. end - 1): edges among them and with the
+// other triangles whose two normals have a non-positive dot product (bench/holes.py's test).
+int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen::Index end) {
   std::map<std::pair<int, int>, std::vector<Eigen::Index>> by_edge;
   std::unordered_map<int, bool> fill_vertex;
-  for (Eigen::Index t = first; t < T.rows(); ++t)
+  for (Eigen::Index t = first; t < end; ++t)
     for (int c = 0; c < 3; ++c) fill_vertex[T(t, c)] = true;
   for (Eigen::Index t = 0; t < T.rows(); ++t)
     for (int c = 0; c < 3; ++c) {
@@ -506,7 +506,8 @@ int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first) {
   int folds = 0;
   for (const auto& [edge, faces] : by_edge) {
     (void)edge;
-    if (faces.size() != 2 || (faces[0] < first && faces[1] < first)) continue;
+    auto in_fill = [&](Eigen::Index t) { return t >= first && t < end; };
+    if (faces.size() != 2 || (!in_fill(faces[0]) && !in_fill(faces[1]))) continue;
     folds += normal(faces[0]).dot(normal(faces[1])) <= 0.0;
   }
   return folds;
@@ -616,7 +617,7 @@ Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edge
   out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
   out.made = true;
   out.attempt.converged = out.fairing.converged;
-  out.attempt.folds = fill_folds(out.fairing.vertices, S, kept);
+  out.attempt.folds = fill_folds(out.fairing.vertices, S, kept, fill_end);
   out.attempt.message = out.fairing.message;
   // The fill in the caller's indices: fixed rows are input rows, new ones -(k + 1).
   std::vector<int> to_caller(size_t(Y.rows()), 0);
