@@ -171,6 +171,7 @@ def child(args):
             out[attr] = child_process.scalar(getattr(r, attr, None))
         if getattr(r, "holes", None):
             out["fill_method"] = r.holes[0].method
+            out["attempts"] = [[a["method"], a["converged"], a["folds"], a["seconds"]] for a in r.holes[0].attempts]
     child_process.report(out)
 
 

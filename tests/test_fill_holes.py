@@ -294,3 +294,69 @@ def test_a_scale_beyond_the_doubles_is_named(scale, message):
     for call in (lambda: geofair.fill_holes(v * scale, f), lambda: geofair.fair(v * scale, f, np.abs(v[:, 2]) < 0.3)):
         with pytest.raises(geofair.InvalidInputError, match=message):
             call()
+
+
+def sphere_with_teeth():
+    """A hole at the pole of a regular sphere whose rim keeps five teeth (triangles with two loop
+    edges) with their tips lifted 15 % off the sphere, a ragged scan's rim; and the teeth's rows."""
+    s = scenes.sphere(n_vertices=2000, irregular=False)
+    centre = s.vertices[s.faces].mean(axis=1)
+    distance = np.linalg.norm(centre - [0, 0, 1], axis=1)
+    cut_away = distance < 0.45
+    tooth = cut_away & (distance > 0.36) & (centre[:, 0] > 0.1)
+    faces = s.faces[~cut_away | tooth]
+    used = np.unique(faces)
+    index = np.full(len(s.vertices), -1)
+    index[used] = np.arange(len(used))
+    vertices, faces = s.vertices[used].copy(), index[faces]
+    (loop,) = geofair.boundary_loops(vertices, faces)
+    tips = np.array([x for x in loop if np.count_nonzero(faces == x) == 1])
+    vertices[tips] *= 1.15
+    return vertices, faces, np.flatnonzero(np.isin(faces, tips).any(axis=1)), tips
+
+
+def test_rim_trim_removes_the_teeth_names_them_and_keeps_the_order():
+    v, f, teeth, tips = sphere_with_teeth()
+    assert len(teeth) == len(tips) == 5
+    length = 0.08  # the loop's edge length about; given, so that no finer fill is tried (time)
+    kept = geofair.fill_holes(v, f, target_edge_length=length)
+    check_fill(kept, v, f)  # rim="keep": every input face stays
+    (hole,) = kept.holes
+    assert len(kept.removed_faces) == 0 and len(hole.removed_faces) == 0
+    # No fill without folds: the one with the fewest is kept.
+    assert hole.filled and hole.folds == min(a["folds"] for a in hole.attempts) > 0, hole.attempts
+    assert [a["method"] for a in hole.attempts][0] == "intrinsic" and hole.attempts[0]["folds"] > 0
+    r = geofair.fill_holes(v, f, target_edge_length=length, rim="trim")
+    (hole,) = r.holes
+    assert hole.method == "intrinsic_trimmed" and hole.converged and hole.folds == 0, hole.attempts
+    assert r.converged and r.folds == 0, r.message
+    assert r.removed_faces.tolist() == hole.removed_faces.tolist() == teeth.tolist()
+    assert "5 input faces removed at the rim" in r.message
+    # The rows stay (the tips, in no face now, are named); the other faces keep their order.
+    n, m = len(v), len(f) - len(teeth)
+    assert np.array_equal(r.vertices[:n].view(np.uint64), v.view(np.uint64))
+    assert np.array_equal(r.faces[:m], np.delete(f, teeth, axis=0))
+    assert sorted(r.unreferenced.tolist()) == sorted(tips.tolist())
+    assert r.free[n:].all() and not r.free[:n].any()
+    assert not border_edges(r.faces), "the trimmed hole is not closed"
+    # Without the lifted tips the fill lies on the sphere (the issue's bound, 1e-3).
+    assert np.abs(np.linalg.norm(r.vertices[n:], axis=1) - 1).max() < 1e-3
+    with pytest.raises(geofair.InvalidInputError, match='rim must be "keep" or "trim"'):
+        geofair.fill_holes(v, f, rim="clean")
+
+
+def test_every_hole_gets_a_fill_even_out_of_time():
+    v, f = sphere_with_hole()
+    inside = v[:, 2] < -np.cos(0.5)
+    v2, f2, _ = cut(v, f, inside)
+    # An explicit time limit spent before the first fill: each hole still gets the linear fill.
+    r = geofair.fill_holes(v2, f2, time_limit=1e-9)
+    check_fill(r, v2, f2)
+    assert [h.method for h in r.holes] == ["linear", "linear"], r.message
+    assert [h.loop.tolist() for h in r.holes] == [loop.tolist() for loop in geofair.boundary_loops(v2, f2)]
+    assert not border_edges(r.faces)
+    assert r.message.startswith("2 holes filled (2 linear)"), r.message
+    # Each hole's record adds up to the result.
+    assert sum(h.new_vertices for h in r.holes) == len(r.vertices) - len(v2)
+    assert sum(h.new_faces for h in r.holes) == len(r.faces) - len(f2)
+    assert sum(h.folds for h in r.holes) == r.folds
