@@ -129,8 +129,11 @@ class FillRun(fairing.FairingRun):
             cancelled = True
             result = fairing._NOT_SOLVED
         # Every hole's best fill is written (converged or not: fill_holes tried the others).
-        records = region.hole_records(getattr(result, "holes", ()), self.mesh.triangle_face)
-        discarded = not cancelled and not any(r["filled"] for r in records)
+        records = region.hole_records(getattr(result, "holes", None) or (), self.mesh.triangle_face)
+        if getattr(result, "holes", None) is not None:
+            discarded = not cancelled and not any(r["filled"] for r in records)
+        else:  # a module without per-hole records: as for fairing
+            discarded = not cancelled and not result.converged and not self.options.keep_unconverged
         written = mesh_edit.Written()
         uv_after = None
         if not cancelled and not discarded:
