@@ -4,6 +4,7 @@
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "geofair/hole_filling.h"
+#include "geofair/mesh_file.h"
 #include "geofair/tuning.h"
 #include "geofair/types.h"
 
@@ -1187,9 +1188,102 @@ void bind_fill_result(py::module_& m) {
       });
 }
 
+// geofair.read_mesh and geofair.write_mesh (OpenMesh's IO; the command line's files).
+void bind_mesh_files(py::module_& m) {
+  def_checked(
+      m, "read_mesh",
+      [](const std::string& path) {
+        MeshFile mesh;
+        {
+          py::gil_scoped_release release;
+          mesh = read_mesh_file(path);
+        }
+        py::dict out;
+        out["vertices"] = mesh.vertices;
+        out["faces"] = mesh.faces;
+        out["polygon"] = int_array(mesh.polygon);
+        out["colors"] = mesh.colors.rows() ? py::object(py::cast(mesh.colors)) : py::none();
+        out["texcoords"] = mesh.texcoords.rows() ? py::object(py::cast(mesh.texcoords)) : py::none();
+        return out;
+      },
+      py::arg("path"),
+      R"doc(Read an OBJ, PLY, OFF or STL file (by its extension) with OpenMesh's readers.
+
+Parameters
+----------
+path : str, the file.
+
+Returns
+-------
+dict: "vertices" (n, 3) float64 positions in file units; "faces" (m, 3) int32 triangles
+(polygons split into fans, oriented as in the file); "polygon" (m,) int32 the file's face of
+each triangle; "colors" (n, 4) uint8 RGBA vertex colours (PLY, OFF) or None; "texcoords"
+(n, 2) float64 vertex texture coordinates (OBJ's vt) or None. STL's repeated corners are
+merged into shared vertices.
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) naming the file and the problem: an unknown
+extension, an unreadable file, faces OpenMesh's reader skips as non-manifold, no face, or a
+non-finite coordinate.)doc");
+  def_checked(
+      m, "write_mesh",
+      [](const std::string& path, const py::object& vertices, const py::object& faces,
+         const py::object& colors, const py::object& texcoords) {
+        MeshFile mesh;
+        mesh.vertices = to_positions(vertices, "vertices");
+        mesh.faces = to_triangles(faces, "write_mesh", mesh.vertices.rows());
+        const auto n = mesh.vertices.rows();
+        if (!colors.is_none()) {
+          const auto c = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(colors);
+          if (!c || c.ndim() != 2 || c.shape(0) != n || c.shape(1) != 4)
+            throw InvalidInputError("write_mesh: colors must be None or an (n, 4) uint8 array, n = " +
+                                    std::to_string(n));
+          mesh.colors.resize(n, 4);
+          std::copy(c.data(), c.data() + 4 * n, mesh.colors.data());
+        }
+        if (!texcoords.is_none()) {
+          const auto t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(texcoords);
+          if (!t || t.ndim() != 2 || t.shape(0) != n || t.shape(1) != 2)
+            throw InvalidInputError("write_mesh: texcoords must be None or an (n, 2) float array, n = " +
+                                    std::to_string(n));
+          mesh.texcoords.resize(n, 2);
+          std::copy(t.data(), t.data() + 2 * n, mesh.texcoords.data());
+        }
+        try {
+          py::gil_scoped_release release;
+          write_mesh_file(path, mesh);
+        } catch (const InvalidInputError&) {
+          throw;
+        } catch (const std::runtime_error& error) {  // the file system's: an OSError
+          PyErr_SetString(PyExc_OSError, error.what());
+          throw py::error_already_set();
+        }
+      },
+      py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
+      py::arg("colors") = py::none(), py::arg("texcoords") = py::none(),
+      R"doc(Write a triangle mesh to an OBJ, PLY (binary), OFF or STL (binary) file (by its
+extension) with OpenMesh's writers. The file is written under a temporary name beside the
+destination and renamed over it at the end: an error never leaves a partial file.
+
+Parameters
+----------
+path : str, the file.
+vertices : (n, 3) float64 positions; faces : (m, 3) integer triangles.
+colors : None or (n, 4) uint8 RGBA vertex colours (written to PLY and OFF).
+texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY).
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) for an unknown extension, faces that index no
+vertex, a non-finite coordinate, or triangles that do not form a manifold mesh; OSError if
+the file cannot be written.)doc");
+}
+
 // geofair.fill_holes, geofair.holes_to_fill and geofair.boundary_loops.
 void bind_holes(py::module_& m) {
   bind_fill_result(m);
+  bind_mesh_files(m);
   const FairingOptions d;
   static const std::string fill_holes_docstring = fair_doc(R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
 loop keeps its positions and takes its unit normals from the faces around it (the G1
