@@ -341,7 +341,7 @@ def test_rim_trim_removes_the_teeth_names_them_and_keeps_the_order():
     assert not border_edges(r.faces), "the trimmed hole is not closed"
     # Without the lifted tips the fill lies on the sphere (the bound, 1e-3).
     assert np.abs(np.linalg.norm(r.vertices[n:], axis=1) - 1).max() < 1e-3
-    with pytest.raises(geofair.InvalidInputError, match='rim must be "keep" or "trim"'):
+    with pytest.raises(geofair.InvalidInputError, match="rim must be 'keep' or 'trim'"):
         geofair.fill_holes(v, f, rim="clean")
 
 

@@ -636,7 +636,7 @@ FillResult fill_holes_py(const py::object& vertices, const py::object& faces,
                                            cg_iterations, levels, iteration, time_limit, tuning,
                                            "fill_holes");
   if (rim != "keep" && rim != "trim")
-    throw InvalidInputError("fill_holes: rim must be \"keep\" or \"trim\", got " +
+    throw InvalidInputError("rim must be 'keep' or 'trim', got " +
                             std::string(py::str(py::repr(py::str(rim)))));
   const Rim rim_mode = rim == "trim" ? Rim::Trim : Rim::Keep;
   return with_progress(options, progress,
