@@ -360,3 +360,24 @@ def test_every_hole_gets_a_fill_even_out_of_time():
     assert sum(h.new_vertices for h in r.holes) == len(r.vertices) - len(v2)
     assert sum(h.new_faces for h in r.holes) == len(r.faces) - len(f2)
     assert sum(h.folds for h in r.holes) == r.folds
+
+
+def test_holes_that_touch_are_left_open_with_the_reason_and_the_others_filled():
+    v, f = sphere_with_hole()
+    # Two holes touching at the south pole: all faces there but two opposite ones removed.
+    pole = int(np.argmin(v[:, 2]))
+    at = np.flatnonzero((f == pole).any(axis=1))
+    apart = next(k for k in range(1, len(at)) if len(set(f[at[0]]) & set(f[at[k]])) == 1)  # only the pole shared
+    f2 = np.delete(f, np.delete(at, [0, apart]), axis=0)
+    with pytest.raises(geofair.InvalidInputError, match="lies on the border twice"):
+        geofair.boundary_loops(v, f2)
+    holes, left_open = geofair.holes_to_fill(v, f2)
+    assert len(holes) == 1 and len(left_open) == 1
+    loop, reason = left_open[0]
+    assert pole in loop.tolist() and reason.startswith(
+        f"not a simple loop: its border passes more than once through vertex {pole}"
+    )
+    r = geofair.fill_holes(v, f2)
+    check_fill(r, v, f2)
+    assert [h.filled for h in r.holes] == [True, False] and r.holes[1].reason == reason
+    assert "left open: the loop at vertex" in r.message and "not a simple loop" in r.message

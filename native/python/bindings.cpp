@@ -1391,7 +1391,9 @@ Returns
 (holes, left_open): holes a list of (k,) int32 arrays, the loops to fill as
 geofair.boundary_loops returns them (in its order); left_open a list of (loop, reason)
 tuples, the other loops with one clause for a user saying why (e.g. "an outer border: it
-spans 95 % of the area of its part's triangles (a hole less than 30 %)"). Both empty for
+spans 95 % of the area of its part's triangles (a hole less than 30 %)"; a piece of border
+that passes more than once through a vertex, where holes touch: "not a simple loop: ...",
+its vertices sorted). Both empty for
 a closed mesh. The same at any scale of the mesh.
 
 Raises

@@ -341,12 +341,64 @@ std::string percent(double fraction) {
 
 }  // namespace
 
+// The border loops as border_loops finds them, except that the border edges of a connected
+// piece of border that passes more than once through a vertex (holes that touch) are not
+// walked: each such piece is returned in `pinched` (its vertices, sorted) with that vertex.
+static std::vector<std::vector<int>> manifold_border_loops(const DirectedEdges& edges,
+                                                    std::vector<std::pair<std::vector<int>, int>>& pinched) {
+  std::map<int, std::vector<int>> next;
+  edges.for_each_border_edge([&](int a, int b) { next[b].push_back(a); });
+  std::map<int, int> parent;  // union-find over the border's vertices
+  auto root = [&](int v) {
+    while (parent.at(v) != v) v = parent[v] = parent.at(parent.at(v));
+    return v;
+  };
+  for (const auto& [v, successors] : next) {
+    parent.emplace(v, v);
+    for (int w : successors) parent.emplace(w, w);
+  }
+  for (const auto& [v, successors] : next)
+    for (int w : successors) {
+      const int a = root(v), b = root(w);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::map<int, int> pinch;  // component root -> its first vertex with two successors
+  for (const auto& [v, successors] : next)
+    if (successors.size() > 1) pinch.emplace(root(v), v);
+  std::map<int, std::vector<int>> pieces;
+  std::vector<std::vector<int>> loops;
+  std::map<int, bool> done;
+  for (const auto& [start, successors] : next) {
+    (void)successors;
+    const int r = root(start);
+    if (pinch.count(r)) {
+      pieces[r].push_back(start);
+      continue;
+    }
+    if (done[start]) continue;
+    std::vector<int> loop;
+    for (int v = start; !done[v]; v = next.at(v).front()) {
+      done[v] = true;
+      loop.push_back(v);
+    }
+    loops.push_back(std::move(loop));
+  }
+  for (auto& [r, vertices] : pieces) pinched.push_back({std::move(vertices), pinch.at(r)});
+  return loops;
+}
+
 HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                         const HoleRule& rule, const char* caller) {
   if (rule.max_hole_edges < 0)
     throw InvalidInputError(std::string(caller) + ": max_hole_edges must be >= 0 (0: no limit)");
   HoleChoice out;
-  auto loops = border_loops(edges, caller);
+  std::vector<std::pair<std::vector<int>, int>> pinched;
+  auto loops = manifold_border_loops(edges, pinched);
+  for (auto& [vertices, vertex] : pinched)
+    out.left_open.push_back(
+        {std::move(vertices), "not a simple loop: its border passes more than once through vertex " +
+                                  std::to_string(vertex) +
+                                  " (holes touch there); give its loops one at a time"});
   if (loops.empty()) return out;
   // Each part's outer border: its loop of the largest spanned area (the first of equals), if
   // that is at least kOuterBorderArea of the part's area.
