@@ -62,9 +62,11 @@ struct HoleChoice {
 /// boundary_loops(V, F) that `rule` does not leave open (see HoleRule), and those it does
 /// with the reason. A piece of border that passes more than once through a vertex (holes
 /// that touch there, which boundary_loops refuses) is left open as "not a simple loop",
-/// its vertices sorted in place of a loop: give its loops to fill_holes one at a time. Scale-invariant (measured in units of the mesh's size, working_scale).
-/// \throw InvalidInputError for invalid triangles (see fair), a negative rule.max_hole_edges, or a mesh
-///        whose squared lengths overflow or underflow (see fill_holes).
+/// its vertices sorted in place of a loop: give its loops to fill_holes one at a time.
+/// Scale-invariant (measured in units of the mesh's size, working_scale).
+/// \throw InvalidInputError for invalid triangles (see fair), a negative
+///        rule.max_hole_edges, or a mesh whose squared lengths overflow or underflow (see
+///        fill_holes).
 HoleChoice holes_to_fill(const Positions& V, const Triangles& F, const HoleRule& rule = {});
 
 /// The most new vertices fill_holes makes (about 14 GiB for the solve at the README's
