@@ -757,7 +757,9 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   if (attempt(loop, committed, L, first)) return finish();
   if (!chain.kept.made) return finish();  // over the size limit: no other fill is smaller
   if (linear_only) return finish();
-  if (target_edge_length <= 0.0 && time_left() &&
+  // Half the edge length: four times the vertices; not for large fills (their time).
+  const bool small = chain.kept.vertices.rows() <= kMaxFinerFillVertices;
+  if (target_edge_length <= 0.0 && small && time_left() &&
       attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
     return finish();
   std::vector<int> hole = loop, removed = committed;

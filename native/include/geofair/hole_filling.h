@@ -81,6 +81,12 @@ constexpr double kTrimSpikeAngle = 1.5707963267948966;  // 90°
 /// most this many rings of triangles).
 constexpr int kTrimRounds = 3;
 
+/// fill_holes tries a hole at half its loop's edge length (FillMethod::IntrinsicFiner) only
+/// where its first fill has at most this many new vertices: the finer fill has four times as
+/// many, and on bench/holes.py it mended holes of 100 and 1,000 vertices, never one of
+/// 10,000, whose two fills outlasted the benchmark's 120 s (docs/DESIGN_NOTES.md).
+constexpr int kMaxFinerFillVertices = 5000;
+
 /// What fill_holes may do to the input's triangles at a hole's loop.
 enum class Rim {
   Keep,  ///< every input face stays as it is (the library's default)
@@ -153,7 +159,8 @@ struct FillResult : FairingResult {
 /// Every hole gets a fill: each is filled and faired on its own (its patch and the input's
 /// triangles within three rings of its loop, which hold everything the G1 normals are
 /// estimated from), trying in turn (FillMethod) the intrinsic fill, the same at half the
-/// loop's edge length (only where target_edge_length is 0), with rim = Trim the same on the
+/// loop's edge length (only where target_edge_length is 0 and the first fill has at most
+/// kMaxFinerFillVertices new vertices), with rim = Trim the same on the
 /// trimmed rim, then G0 and the linear Δ²f = 0 fill (both on the trimmed rim where it was
 /// trimmed), and keeps the first that converges without a folded edge, else the one with
 /// the fewest folded edges (converged first among equals, then the earlier). HoleFill
