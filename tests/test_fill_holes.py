@@ -381,3 +381,21 @@ def test_holes_that_touch_are_left_open_with_the_reason_and_the_others_filled():
     check_fill(r, v, f2)
     assert [h.filled for h in r.holes] == [True, False] and r.holes[1].reason == reason
     assert "left open: the loop at vertex" in r.message and "not a simple loop" in r.message
+
+
+@pytest.mark.parametrize("case", [("elk", 100, 1), ("cheese", 100, 1), ("hand", 100, 0)])
+def test_ragged_corpus_holes_are_always_closed_within_a_time_limit(case):
+    # bench/holes.py's holes whose intrinsic fill folds or does not converge: with an explicit
+    # time limit the chain ends at the linear fill where the limit is spent, so every hole is
+    # closed (a manifold mesh, input first and unchanged) and the record says how.
+    cut, _, _ = holes.corpus_hole(*case, corpus.DEFAULT_CACHE)
+    hole = holes.neighbourhood(cut, 4)
+    for rim in ("keep", "trim"):
+        r = geofair.fill_holes(hole.vertices, hole.faces, [hole.loop], rim=rim, time_limit=1.0)
+        (record,) = r.holes
+        assert record.filled and record.attempts[0]["method"] == "intrinsic", record.attempts
+        assert record.method in [a["method"] for a in record.attempts]
+        c = holes.check_fill(hole.vertices, hole.faces, hole.loop, r.vertices, r.faces, r.removed_faces)
+        assert c["input_kept"] and c["closed"] and c["manifold"] is None, (rim, c)
+        assert c["folds"] == record.folds == r.folds, (c["folds"], record.folds)
+        assert rim == "trim" or len(r.removed_faces) == 0
