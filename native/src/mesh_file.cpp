@@ -190,7 +190,13 @@ void write_mesh_file(const std::string& path, const MeshFile& in) {
     CaptureOmerr capture;
     written = OpenMesh::IO::write_mesh(mesh, temporary, options, 17);
   }
-  if (!written || std::rename(temporary.c_str(), path.c_str()) != 0) {
+  // std::rename does not replace an existing file on Windows: remove it there first.
+  const auto moved = [&] {
+    if (std::rename(temporary.c_str(), path.c_str()) == 0) return true;
+    std::remove(path.c_str());
+    return std::rename(temporary.c_str(), path.c_str()) == 0;
+  };
+  if (!written || !moved()) {
     std::remove(temporary.c_str());
     throw std::runtime_error("write_mesh: " + path + ": cannot be written");
   }
