@@ -414,8 +414,8 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     Every hole gets a fill: per hole the fills below are tried in order and the first that
     converges without a folded edge is kept, else the one with the fewest folded edges
     (converged first among equals): "intrinsic" (the fill above), "intrinsic_finer" (at half
-    the loop's edge length, where target_edge_length is None: ragged loops need a finer fill
-    next to them), "intrinsic_trimmed" (rim="trim" only: the rim's teeth, triangles with two
+    the loop's edge length, where target_edge_length is None and the first fill has at most
+    5000 new vertices: ragged loops need a finer fill next to them), "intrinsic_trimmed" (rim="trim" only: the rim's teeth, triangles with two
     loop edges, and the triangles at loop vertices whose faces span less than 90° removed, up to
     three rounds, while the hole stays one simple loop; MeshFix's remove-and-fill, Attene
     2010), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
