@@ -4,7 +4,7 @@ Holes are cut into meshes (geofair_dev.holes.cut_disc: a geodesic disc of vertic
 Dijkstra distance along the edges, removed with its triangles; cleaned up until exactly
 one new boundary loop is left on a manifold mesh) and each is filled, in the same run, by
 ``geofair.fill_holes(vertices, faces, loops=[loop])`` (defaults; --inner sets its
-inner_fairness) and by CGAL 5.5's
+inner_fairness, --rim its rim) and by CGAL 5.5's
 ``Polygon_mesh_processing::triangulate_refine_and_fair_hole`` (defaults: the linear
 bilaplacian fairing, geofair_dev.cgal_fill_hole, bench/cgal_fill_hole.cpp). Both get the
 same input: the hole's surroundings, the triangles within --rings rings of the loop
@@ -25,7 +25,9 @@ same input: the hole's surroundings, the triangles within --rings rings of the l
   takes more than a quarter of a mesh. Measured: the distance from the fill to the
   triangles that were cut away (exact point-to-triangle distances from the fill's
   vertices and 12 barycentric grid points on each of its triangles), mean and max,
-  relative to the hole's diameter (the largest distance between two loop vertices).
+  relative to the hole's diameter (the largest distance between two loop vertices); with
+  --rim trim the faces the fill removed count as cut away (their fill is measured against
+  them too).
 
 Per hole and method one row: the case, vertices removed, loop vertices, the method, "ok"
 (yes: the method's own success flag — fill_holes converged, CGAL's fair() succeeded — and
@@ -40,7 +42,7 @@ and the median ratio ours/CGAL.
 
     PYTHONPATH=build/python python3 bench/holes.py [--quick] [--only SUBSTRING[,SUBSTRING...]]
         [--seeds N] [--sizes 100,1000,10000] [--all] [--rings N] [--timeout SECONDS]
-        [--inner uniform|conformal|...] [--no-cgal] [--no-ours] [--cache DIR] [--json FILE]
+        [--inner uniform|conformal|...] [--rim keep|trim] [--no-cgal] [--no-ours] [--cache DIR] [--json FILE]
 
 Default: the analytic holes, all 12 meshes with holes of 100 and 1,000 vertices, seeds 0
 and 1, and holes of 10,000 vertices on bear, diplodocus and ChineseDragon-10kv (seed 0).
@@ -159,11 +161,17 @@ def child(args):
     with np.load(args.child) as d:
         v, f, loop = d["vertices"], d["faces"], d["loop"]
     options = {"inner_fairness": args.inner} if args.inner else {}
+    if args.rim:
+        options["rim"] = args.rim
     out, r = child_process.solve(lambda: geofair.fill_holes(v, f, loops=[loop], **options))
     if r is not None:
-        np.savez(args.result, vertices=np.asarray(r.vertices), faces=np.asarray(r.faces))
+        removed = np.asarray(getattr(r, "removed_faces", np.zeros(0, np.int32)))
+        np.savez(args.result, vertices=np.asarray(r.vertices), faces=np.asarray(r.faces), removed=removed)
         for attr in ("converged", "residual", "message", "stop_reason", "folds", "new_folds", "remeshed"):
             out[attr] = child_process.scalar(getattr(r, attr, None))
+        if getattr(r, "holes", None):
+            out["fill_method"] = r.holes[0].method
+            out["attempts"] = [[a["method"], a["converged"], a["folds"], a["seconds"]] for a in r.holes[0].attempts]
     child_process.report(out)
 
 
@@ -179,11 +187,14 @@ def run_ours(hole, args):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", src, "--result", dst]
     if args.inner:
         cmd += ["--inner", args.inner]
+    if args.rim:
+        cmd += ["--rim", args.rim]
     out = child_process.run(cmd, args.timeout)
     if out["status"] != "done":
         return out, None, None
     with np.load(dst) as d:
         v, f = d["vertices"], d["faces"]
+        out["removed_faces"] = d["removed"].tolist() if "removed" in d else []
     os.remove(dst)
     out["flag"] = bool(out.get("converged"))
     return out, v, f
@@ -202,12 +213,17 @@ def run_cgal(hole, args):
 
 
 def measure(row, hole, reference, scale, v, f):
-    check = holes.check_fill(hole.vertices, hole.faces, hole.loop, v, f)
+    removed = np.asarray(row.get("removed_faces") or [], np.int64)
+    check = holes.check_fill(hole.vertices, hole.faces, hole.loop, v, f, removed)
     row.update(check)
-    mean, worst = holes.fill_distance(v, f, len(hole.faces), reference)
+    kept = len(hole.faces) - len(removed)
+    if len(removed) and not callable(reference):  # the removed faces are cut-away surface too
+        rv, rf = reference
+        reference = (np.concatenate([rv, hole.vertices]), np.concatenate([rf, hole.faces[removed] + len(rv)]))
+    mean, worst = holes.fill_distance(v, f, kept, reference)
     row["mean"] = None if mean is None else mean / scale
     row["max"] = None if worst is None else worst / scale
-    vmean, vmax = holes.fill_distance(v, f, len(hole.faces), reference, per_edge=1)
+    vmean, vmax = holes.fill_distance(v, f, kept, reference, per_edge=1)
     row["vertex_mean"] = None if vmean is None else vmean / scale
     row["vertex_max"] = None if vmax is None else vmax / scale
     problems = []
@@ -234,7 +250,10 @@ HEADER = (
 def format_row(row):
     flag = {True: "yes", False: "no"}.get(row.get("flag"), "")
     ok = "yes" if row.get("ok") else ("no" if row["status"] == "done" else row["status"])
-    note = "; ".join(row.get("problems", []) + ([row["message"]] if row.get("message") else []))
+    fill = []
+    if row.get("fill_method"):
+        fill = [row["fill_method"] + (f", {row['removed_faces']} faces removed" if row.get("removed_faces") else "")]
+    note = "; ".join(row.get("problems", []) + fill + ([row["message"]] if row.get("message") else []))
     return (
         f"{row['case']:<34} {row['removed']:>7} {row['loop']:>5} {row['method']:<7} {ok:<4} {flag:<5} "
         f"{_fmt(row.get('folds'), 'd', 5)} {_fmt(row.get('new_vertices'), 'd', 6)} "
@@ -291,6 +310,12 @@ def summary(rows, methods):
                 t = f", median {np.median(ts):.3f} s" if ts else ""
                 parts.append(f"{size}: {sum(bool(r.get('ok')) for r in ks)} of {len(ks)}{t}")
             lines.append(f"    {method}: corpus holes ok by size (vertices removed, about): " + "; ".join(parts))
+        fills = [r["fill_method"] for r in rs if r.get("fill_method")]
+        if fills:
+            counts = {m: fills.count(m) for m in dict.fromkeys(fills)}
+            trimmed = sum(bool(r.get("removed_faces")) for r in rs)
+            lines.append(f"    {method}: fills kept: " + ", ".join(f"{m} {c}" for m, c in counts.items())
+                         + f"; rims trimmed: {trimmed}")  # fmt: skip
         ts = [r["seconds"] for r in rs if r["status"] == "done"]
         if ts:
             lines.append(f"    {method}: median time {np.median(ts):.3f} s, max {max(ts):.3f} s ({len(ts)} fills)")
@@ -335,6 +360,7 @@ def main():
     parser.add_argument("--rings", type=int, default=4, help="rings of triangles around the hole given (0: all)")
     parser.add_argument("--timeout", type=float, default=120.0, help="per fill, seconds")
     parser.add_argument("--inner", default=None, help="fill_holes' inner_fairness (default: its own default)")
+    parser.add_argument("--rim", default=None, help="fill_holes' rim: keep (default) or trim")
     parser.add_argument("--no-cgal", action="store_true", help="skip CGAL's fill")
     parser.add_argument("--no-ours", action="store_true", help="skip geofair.fill_holes")
     parser.add_argument("--cache", default=DEFAULT_CACHE)
@@ -363,6 +389,7 @@ def main():
         descs = [d for d in descs if any(part in d["name"] for part in args.only.split(","))]
     around = f"{args.rings} rings of triangles" if args.rings > 0 else "the whole mesh"
     inner = f" (inner fairness {args.inner})" if args.inner and "geofair" in methods else ""
+    inner += f" (rim {args.rim})" if args.rim and "geofair" in methods else ""
     print(f"# {len(descs)} holes; methods: {', '.join(methods) or 'none'}{inner}; surroundings: {around}; "
           f"timeout {args.timeout:.0f} s; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")  # fmt: skip
     for note in notes:

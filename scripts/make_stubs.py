@@ -56,6 +56,9 @@ PARAMETER_TYPES = {
     "progress": "collections.abc.Callable[[int, float], bool | None] | None",
     "time_limit": f"{FLOAT} | None",
     "tuning": "dict[str, typing.Any] | None",
+    "path": "str",
+    "colors": "numpy.typing.NDArray[numpy.uint8] | None",
+    "texcoords": f"{FLOAT64_ARRAY} | None",
 }
 # mean_curvature's normals may be None (then estimated); relax_inner_fairness' may not.
 PARAMETER_TYPES_OF = {("mean_curvature", "normals"): f"{FLOAT64_ARRAY} | None"}
@@ -65,14 +68,16 @@ RETURN_TYPES = {
     "cotangent_laplacian": "scipy.sparse.csr_matrix",
     "defaults": "dict[str, typing.Any]",
     "fair": "FairingResult",
-    "fill_holes": "FairingResult",
+    "fill_holes": "FillResult",
     "holes_to_fill": f"tuple[list[{INT32_ARRAY}], list[tuple[{INT32_ARRAY}, str]]]",
     "intrinsic_delaunay": f"tuple[{INT32_ARRAY}, {FLOAT64_ARRAY}, int]",
     "intrinsic_delaunay_laplacian": "scipy.sparse.csr_matrix",
     "mean_curvature": FLOAT64_ARRAY,
     "progressive_mesh": f"list[{INT32_ARRAY}]",
+    "read_mesh": "dict[str, typing.Any]",
     "relax_inner_fairness": f"tuple[{FLOAT64_ARRAY}, float]",
     "remesh_region": "RemeshedRegion",
+    "write_mesh": "None",
 }
 IMPORTS = ("collections.abc", "numpy", "numpy.typing", "scipy.sparse", "typing")
 

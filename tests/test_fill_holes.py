@@ -294,3 +294,108 @@ def test_a_scale_beyond_the_doubles_is_named(scale, message):
     for call in (lambda: geofair.fill_holes(v * scale, f), lambda: geofair.fair(v * scale, f, np.abs(v[:, 2]) < 0.3)):
         with pytest.raises(geofair.InvalidInputError, match=message):
             call()
+
+
+def sphere_with_teeth():
+    """A hole at the pole of a regular sphere whose rim keeps five teeth (triangles with two loop
+    edges) with their tips lifted 15 % off the sphere, a ragged scan's rim; and the teeth's rows."""
+    s = scenes.sphere(n_vertices=2000, irregular=False)
+    centre = s.vertices[s.faces].mean(axis=1)
+    distance = np.linalg.norm(centre - [0, 0, 1], axis=1)
+    cut_away = distance < 0.45
+    tooth = cut_away & (distance > 0.36) & (centre[:, 0] > 0.1)
+    faces = s.faces[~cut_away | tooth]
+    used = np.unique(faces)
+    index = np.full(len(s.vertices), -1)
+    index[used] = np.arange(len(used))
+    vertices, faces = s.vertices[used].copy(), index[faces]
+    (loop,) = geofair.boundary_loops(vertices, faces)
+    tips = np.array([x for x in loop if np.count_nonzero(faces == x) == 1])
+    vertices[tips] *= 1.15
+    return vertices, faces, np.flatnonzero(np.isin(faces, tips).any(axis=1)), tips
+
+
+def test_rim_trim_removes_the_teeth_names_them_and_keeps_the_order():
+    v, f, teeth, tips = sphere_with_teeth()
+    assert len(teeth) == len(tips) == 5
+    length = 0.08  # the loop's edge length about; given, so that no finer fill is tried (time)
+    kept = geofair.fill_holes(v, f, target_edge_length=length)
+    check_fill(kept, v, f)  # rim="keep": every input face stays
+    (hole,) = kept.holes
+    assert len(kept.removed_faces) == 0 and len(hole.removed_faces) == 0
+    # No fill without folds: the one with the fewest is kept.
+    assert hole.filled and hole.folds == min(a["folds"] for a in hole.attempts) > 0, hole.attempts
+    assert [a["method"] for a in hole.attempts][0] == "intrinsic" and hole.attempts[0]["folds"] > 0
+    r = geofair.fill_holes(v, f, target_edge_length=length, rim="trim")
+    (hole,) = r.holes
+    assert hole.method == "intrinsic_trimmed" and hole.converged and hole.folds == 0, hole.attempts
+    assert r.converged and r.folds == 0, r.message
+    assert r.removed_faces.tolist() == hole.removed_faces.tolist() == teeth.tolist()
+    assert "5 input faces removed at the rim" in r.message
+    # The rows stay (the tips, in no face now, are named); the other faces keep their order.
+    n, m = len(v), len(f) - len(teeth)
+    assert np.array_equal(r.vertices[:n].view(np.uint64), v.view(np.uint64))
+    assert np.array_equal(r.faces[:m], np.delete(f, teeth, axis=0))
+    assert sorted(r.unreferenced.tolist()) == sorted(tips.tolist())
+    assert r.free[n:].all() and not r.free[:n].any()
+    assert not border_edges(r.faces), "the trimmed hole is not closed"
+    # Without the lifted tips the fill lies on the sphere (the issue's bound, 1e-3).
+    assert np.abs(np.linalg.norm(r.vertices[n:], axis=1) - 1).max() < 1e-3
+    with pytest.raises(geofair.InvalidInputError, match="rim must be 'keep' or 'trim'"):
+        geofair.fill_holes(v, f, rim="clean")
+
+
+def test_every_hole_gets_a_fill_even_out_of_time():
+    v, f = sphere_with_hole()
+    inside = v[:, 2] < -np.cos(0.5)
+    v2, f2, _ = cut(v, f, inside)
+    # An explicit time limit spent before the first fill: each hole still gets the linear fill.
+    r = geofair.fill_holes(v2, f2, time_limit=1e-9)
+    check_fill(r, v2, f2)
+    assert [h.method for h in r.holes] == ["linear", "linear"], r.message
+    assert [h.loop.tolist() for h in r.holes] == [loop.tolist() for loop in geofair.boundary_loops(v2, f2)]
+    assert not border_edges(r.faces)
+    assert r.message.startswith("2 holes filled (2 linear)"), r.message
+    # Each hole's record adds up to the result.
+    assert sum(h.new_vertices for h in r.holes) == len(r.vertices) - len(v2)
+    assert sum(h.new_faces for h in r.holes) == len(r.faces) - len(f2)
+    assert sum(h.folds for h in r.holes) == r.folds
+
+
+def test_holes_that_touch_are_left_open_with_the_reason_and_the_others_filled():
+    v, f = sphere_with_hole()
+    # Two holes touching at the south pole: all faces there but two opposite ones removed.
+    pole = int(np.argmin(v[:, 2]))
+    at = np.flatnonzero((f == pole).any(axis=1))
+    apart = next(k for k in range(1, len(at)) if len(set(f[at[0]]) & set(f[at[k]])) == 1)  # only the pole shared
+    f2 = np.delete(f, np.delete(at, [0, apart]), axis=0)
+    with pytest.raises(geofair.InvalidInputError, match="lies on the border twice"):
+        geofair.boundary_loops(v, f2)
+    holes, left_open = geofair.holes_to_fill(v, f2)
+    assert len(holes) == 1 and len(left_open) == 1
+    loop, reason = left_open[0]
+    assert pole in loop.tolist() and reason.startswith(
+        f"not a simple loop: its border passes more than once through vertex {pole}"
+    )
+    r = geofair.fill_holes(v, f2)
+    check_fill(r, v, f2)
+    assert [h.filled for h in r.holes] == [True, False] and r.holes[1].reason == reason
+    assert "left open: the loop at vertex" in r.message and "not a simple loop" in r.message
+
+
+@pytest.mark.parametrize("case", [("elk", 100, 1), ("cheese", 100, 1), ("hand", 100, 0)])
+def test_ragged_corpus_holes_are_always_closed_within_a_time_limit(case):
+    # bench/holes.py's holes whose intrinsic fill folds or does not converge: with an explicit
+    # time limit the chain ends at the linear fill where the limit is spent, so every hole is
+    # closed (a manifold mesh, input first and unchanged) and the record says how.
+    cut, _, _ = holes.corpus_hole(*case, corpus.DEFAULT_CACHE)
+    hole = holes.neighbourhood(cut, 4)
+    for rim in ("keep", "trim"):
+        r = geofair.fill_holes(hole.vertices, hole.faces, [hole.loop], rim=rim, time_limit=1.0)
+        (record,) = r.holes
+        assert record.filled and record.attempts[0]["method"] == "intrinsic", record.attempts
+        assert record.method in [a["method"] for a in record.attempts]
+        c = holes.check_fill(hole.vertices, hole.faces, hole.loop, r.vertices, r.faces, r.removed_faces)
+        assert c["input_kept"] and c["closed"] and c["manifold"] is None, (rim, c)
+        assert c["folds"] == record.folds == r.folds, (c["folds"], record.folds)
+        assert rim == "trim" or len(r.removed_faces) == 0

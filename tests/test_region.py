@@ -434,3 +434,33 @@ def test_polygons_inside_a_vertex_set():
     np.testing.assert_array_equal(
         region.polygons_inside(np.arange(8) >= 3, [7, 0, 3], [5, 3, 4], corner_verts), [True, False, False]
     )
+
+
+def test_fill_report_names_each_holes_method_and_the_removed_faces():
+    """The add-on's Fill Holes report (region.hole_records, fill_text, hole_lines) from the library's
+    per-hole records: methods counted, the removed triangles named as their polygons."""
+
+    class Hole:
+        def __init__(self, method, removed=(), folds=0, converged=True, reason=""):
+            self.method, self.filled, self.folds, self.converged = method, method != "none", folds, converged
+            self.removed_faces, self.reason, self.loop = np.array(removed, dtype=np.int32), reason, np.array([7, 8, 9])
+
+    holes = [
+        Hole("intrinsic"),
+        Hole("intrinsic"),
+        Hole("intrinsic_trimmed", removed=[4, 5, 9]),
+        Hole("linear", folds=2, converged=True),
+        Hole("none", reason="cannot be filled: it would take about 3e+06 new vertices"),
+    ]
+    triangle_face = np.array([0, 0, 1, 1, 2, 2, 3, 3, 4, 4])  # quads: two triangles each
+    records = region.hole_records(holes, triangle_face)
+    assert records[2]["removed_faces"] == [2, 4]
+    text = region.fill_text(records)
+    assert text.startswith("4 holes filled: 2 intrinsic, 1 after cleaning its rim (2 faces removed: 2, 4), 1 linear")
+    assert "; 2 folded edges" in text and "not converged" not in text
+    assert "the hole at vertex 7 is not filled: cannot be filled" in text
+    lines = region.hole_lines(records)
+    assert (
+        len(lines) == 5
+        and lines[2] == "hole at vertex 7: after cleaning its rim, converged, 0 folded edges, faces removed: 2, 4"
+    )

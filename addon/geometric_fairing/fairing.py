@@ -135,6 +135,8 @@ class FairingReport:
         notes: what could not be carried over to new faces (UV seams, custom normals), one
             sentence each.
         holes: holes filled (Fill Holes; ``free_vertices`` are then the new vertices).
+        hole_fills: Fill Holes: what was done with each hole (:func:`region.hole_records`:
+            method, converged, folds, removed faces, why left open).
     """
 
     object_name: str
@@ -167,6 +169,7 @@ class FairingReport:
     uv_flips: int = 0
     notes: tuple = ()
     holes: int = 0
+    hole_fills: tuple = ()
 
     @classmethod
     def of_result(cls, result, options, **fields):
@@ -204,7 +207,11 @@ class FairingReport:
 
     def summary(self):
         """One line for reports and logs."""
-        if self.holes:
+        if self.hole_fills:
+            text = region.fill_text(self.hole_fills) + f"; {self.free_vertices} new vertices"
+            if self.changed:
+                text += f", {self.triangles_added} new triangles"
+        elif self.holes:
             text = f"{self.holes} hole{'s' if self.holes > 1 else ''}, {self.free_vertices} new vertices"
             if self.changed:
                 text += f", {self.triangles_added} new triangles"
@@ -226,6 +233,8 @@ class FairingReport:
         stopped = f" ({self.stopped_at_time_limit})" if self.stopped_at_time_limit else ""
         if self.discarded:
             return text + f", NOT converged{stopped}: mesh unchanged"
+        if self.hole_fills:  # fill_text said how each hole ended
+            return "; ".join([text, *self.notes])
         text += ", converged" if self.converged else f", NOT converged{stopped}, result kept"
         if self.folds:
             but = ", but " if self.converged else ", "

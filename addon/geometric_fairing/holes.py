@@ -8,8 +8,11 @@ the mesh, which the report names as left open. A :class:`FillRun` reads the mesh
 when it is made, solves (in the calling thread or a worker thread, like
 :class:`fairing.FairingRun`, whose progress and cancelling it shares) and writes only in
 :meth:`FillRun.finish`: the new vertices and faces, with UVs, colours and vertex groups
-interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). An
-unconverged result is written only with ``keep_unconverged``, as for fairing.
+interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). Every hole gets
+a fill: the library tries its fills in turn and keeps the best (``geofair.FillResult.holes``
+says which), so a fill that did not converge is written too and the report says so. With
+*Clean Rim* (``clean_rim``, on in the panel) the library may remove the faces of a ragged rim
+(teeth, spikes) first; the report names them (face indices before the fill).
 """
 
 import threading
@@ -34,13 +37,15 @@ class FillRun(fairing.FairingRun):
         all_holes: fill every hole whatever is selected (outer borders of open parts stay open).
         target_edge_length: the fill's edge length; 0: that of each hole's boundary.
         progress: optional ``callable(iteration, residual)``; returning False cancels.
+        clean_rim: let the library remove the faces of a ragged rim where the fill of the hole as
+            it is folds or does not converge (``geofair.fill_holes(rim="trim")``).
 
     Raises:
         ValueError: no hole to fill (:class:`region.RegionError`).
         RuntimeError: the compiled module cannot be loaded, or has no ``fill_holes``.
     """
 
-    def __init__(self, obj, options, all_holes=False, target_edge_length=0.0, progress=None):
+    def __init__(self, obj, options, all_holes=False, target_edge_length=0.0, progress=None, clean_rim=False):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
         if not hasattr(native.geofair, "holes_to_fill"):
@@ -57,6 +62,7 @@ class FillRun(fairing.FairingRun):
         self.mode = obj.mode
         self.options = options
         self.target_edge_length = float(target_edge_length)
+        self.clean_rim = bool(clean_rim)
         self.user_progress = progress
         self.timings = {}
         clock = time.perf_counter()
@@ -90,6 +96,8 @@ class FillRun(fairing.FairingRun):
         options.pop("remesh", None)
         if self.target_edge_length > 0.0:
             options["target_edge_length"] = self.target_edge_length
+        if self.clean_rim:
+            options["rim"] = "trim"
         start = time.perf_counter()
         try:
             self.result = native.geofair.fill_holes(
@@ -120,7 +128,12 @@ class FillRun(fairing.FairingRun):
         if result is None:
             cancelled = True
             result = fairing._NOT_SOLVED
-        discarded = not cancelled and not result.converged and not self.options.keep_unconverged
+        # Every hole's best fill is written (converged or not: fill_holes tried the others).
+        records = region.hole_records(getattr(result, "holes", None) or (), self.mesh.triangle_face)
+        if getattr(result, "holes", None) is not None:
+            discarded = not cancelled and not any(r["filled"] for r in records)
+        else:  # a module without per-hole records: as for fairing
+            discarded = not cancelled and not result.converged and not self.options.keep_unconverged
         written = mesh_edit.Written()
         uv_after = None
         if not cancelled and not discarded:
@@ -157,10 +170,14 @@ class FillRun(fairing.FairingRun):
             triangles_added=written.triangles_added,
             notes=(*written.notes, *([region.left_open_text(self.left_open)] if self.left_open else [])),
             holes=self.holes,
+            hole_fills=tuple(records),
+            faces_removed=written.faces_removed,
         )
 
 
-def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, context=None, **options):
+def fill_holes(
+    obj, *, all_holes=False, target_edge_length=0.0, clean_rim=False, progress=None, context=None, **options
+):
     """Fill holes of a mesh object from a script (Object or Edit Mode): the selected ones, or every hole.
 
     With nothing selected, or ``all_holes``, every boundary loop is filled but the outer border of each open
@@ -170,20 +187,22 @@ def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, c
         obj: a mesh object.
         all_holes: every hole, whatever is selected (with nothing selected: every hole too).
         target_edge_length: the fill's edge length; 0: that of each hole's boundary.
+        clean_rim: let the library remove the faces of a ragged rim first where the fill of the
+            hole as it is folds or does not converge (the report's ``hole_fills`` name them).
         progress: optional ``callable(iteration, residual)``; returning False cancels.
         context: ``bpy.context`` by default (its scene's panel settings are the defaults).
         **options: ``geofair.fill_holes``'s fairing options (``inner_fairness``, ``boundary``,
             ``normal_weighting``, ``tolerance``, ``time_limit``, ``tuning``, ...), and ``keep_unconverged``.
 
     Returns:
-        :class:`fairing.FairingReport` (``holes``, ``free_vertices`` the new vertices,
-        ``triangles_added``, ``notes``).
+        :class:`fairing.FairingReport` (``holes``, ``hole_fills`` what each hole got,
+        ``free_vertices`` the new vertices, ``triangles_added``, ``faces_removed``, ``notes``).
+        Every hole gets its best fill, converged or not (``converged`` says whether all did).
 
     Raises:
         TypeError: an unknown option.
         ValueError: no hole to fill (none, or only outer borders; :class:`region.RegionError`), bad input.
-        fairing.NotConvergedError: the solve stopped unconverged (mesh unchanged) and
-            ``keep_unconverged`` is not set.
+        fairing.NotConvergedError: no hole could be filled (mesh unchanged).
         RuntimeError: the solver failed, or the compiled module is missing.
     """
     import bpy
@@ -191,7 +210,14 @@ def fill_holes(obj, *, all_holes=False, target_edge_length=0.0, progress=None, c
     context = context or bpy.context
     fairing.check_option_names("fill_holes", options, (*FILL_OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES))
     run_options = fairing.default_options(context, **options)
-    run = FillRun(obj, run_options, all_holes=all_holes, target_edge_length=target_edge_length, progress=progress)
+    run = FillRun(
+        obj,
+        run_options,
+        all_holes=all_holes,
+        target_edge_length=target_edge_length,
+        progress=progress,
+        clean_rim=clean_rim,
+    )
     run.solve()
     report = run.finish()
     if report.discarded:

@@ -409,10 +409,15 @@ def replace_region(obj, data, input_index, old_free, result):
 def add_fill(obj, data, result):
     """Add the new vertices and faces of ``geofair.fill_holes``'s result to ``obj``'s mesh.
 
+    Where the library removed triangles at a hole's rim (``result.removed_faces``, rim="trim"),
+    their faces are deleted; a face of which only some triangles were removed is replaced by its
+    other triangles (corner data copied), and vertices left in no face are deleted.
+
     Args:
         obj: the mesh object the run read.
         data: its :class:`mesh_io.MeshData` (all its loop triangles were given to the library).
-        result: the library's result: ``vertices`` (n + k rows), ``faces`` (T + l rows).
+        result: the library's result: ``vertices`` (n + k rows), ``faces`` (T - r + l rows: the
+            triangles less the r ``removed_faces``, in order, then the fill's).
 
     Returns:
         :class:`Written`.
@@ -424,13 +429,19 @@ def add_fill(obj, data, result):
     n, t = len(data.vertices), len(data.triangles)
     vertices = np.asarray(result.vertices, dtype=np.float64)
     faces = np.asarray(result.faces, dtype=np.int64).reshape(-1, 3)
-    if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) < n or len(faces) < t:
+    removed = np.asarray(getattr(result, "removed_faces", ()), dtype=np.int64).reshape(-1)
+    if removed.size and (removed.min() < 0 or removed.max() >= t or len(np.unique(removed)) != len(removed)):
+        raise carry.CarryError("the solver removed triangles that are not the mesh's; mesh unchanged")
+    alive = np.ones(t, dtype=bool)
+    alive[removed] = False
+    t_kept = t - len(removed)
+    if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) < n or len(faces) < t_kept:
         raise carry.CarryError("the solver returned a result of the wrong shape; mesh unchanged")
-    if not np.array_equal(faces[:t], data.triangles):
+    if not np.array_equal(faces[:t_kept], data.triangles[alive]):
         raise carry.CarryError("the solver changed the mesh's faces; mesh unchanged")
     if not np.isfinite(vertices[n:]).all():
         raise carry.CarryError("the solver returned invalid positions; mesh unchanged")
-    new_faces = faces[t:]
+    new_faces = faces[t_kept:]
     if len(new_faces) == 0:
         raise carry.CarryError("the solver added no face; mesh unchanged")
     if new_faces.min() < 0 or new_faces.max() >= len(vertices):
@@ -442,7 +453,7 @@ def add_fill(obj, data, result):
     boundary_rows = np.unique(new_faces[new_faces < n])
     # Only the mesh's triangles at the fill's old vertices can be repeated by a new face or lie
     # across its boundary (a small set: the checks below do not scan a large mesh).
-    at_boundary = np.isin(data.triangles, boundary_rows)
+    at_boundary = np.isin(data.triangles, boundary_rows) & alive[:, None]
     repeatable = at_boundary.all(axis=1) & (data.loop_total[data.triangle_face] == 3)
     keys, existing = carry.face_keys(new_faces, data.triangles[repeatable])
     if len(np.unique(keys)) != len(keys) or np.isin(keys, existing).any():
@@ -545,6 +556,18 @@ def add_fill(obj, data, result):
         row_vert = {int(v): verts[int(v)] for v in boundary_rows}
         nearest_verts = [verts[int(v)] for v in nearest_vertex]
         source_faces = [bm_faces[across_face[int(e)][1]] for e in nearest_edge]
+        # The faces the rim's removed triangles belong to, and their triangles that stay.
+        touched = np.unique(data.triangle_face[removed]) if removed.size else np.zeros(0, dtype=np.int64)
+        doomed = [bm_faces[int(p)] for p in touched]
+        staying = np.flatnonzero(np.isin(data.triangle_face, touched) & alive)
+        restore = [
+            (
+                [verts[int(v)] for v in data.triangles[tri]],
+                [loop_at(int(c)) for c in data.triangle_corners[tri]],
+                bm_faces[int(data.triangle_face[tri])],
+            )
+            for tri in staying.tolist()
+        ]
         for i, row in enumerate(new_rows.tolist()):
             vertex = verts.new(vertices[row].tolist())
             _copy_layers(vertex, nearest_verts[i], vertex_layers)
@@ -567,6 +590,21 @@ def add_fill(obj, data, result):
                 _copy_layers(loop, boundary_loops[row][0] if row in boundary_loops else source_loop, loop_layers)
                 for (kind, _, layer, _), values in zip(corner_layers, corner_values, strict=True):
                     _set_loop_value(loop, kind, layer, tuple(values[f, c]))
+        # The rim's faces: their staying triangles as faces of their own, then the faces deleted
+        # (with the edges and vertices left in none).
+        for tri_verts, tri_loops, source in restore:
+            face = bm_faces.new(tri_verts)
+            _copy_layers(face, source, face_layers)
+            face.material_index, face.smooth = source.material_index, source.smooth
+            for loop, old in zip(face.loops, tri_loops, strict=True):
+                _copy_layers(loop, old, loop_layers)
+                for kind, _, layer, _ in corner_layers:
+                    _set_loop_value(loop, kind, layer, _loop_value(old, kind, layer))
+        if doomed:
+            count = len(bm.verts)
+            bmesh.ops.delete(bm, geom=doomed, context="FACES")
+            written.faces_removed = len(doomed)
+            written.vertices_removed = count - len(bm.verts)
         if obj.data.has_custom_normals:
             written.notes.append("custom split normals are not carried over to the new faces")
         bm.select_flush(True)

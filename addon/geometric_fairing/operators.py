@@ -291,8 +291,8 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
 
 class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator):
     """Fill the holes whose whole boundary loop is selected (nothing selected: every hole, not an open mesh's outer
-    border) with a faired surface meeting the faces around with G1 continuity, or G0 (Boundary); UVs interpolated
-    from around each hole"""
+    border) with a faired surface meeting the faces around with G1 continuity, or G0 (Boundary); every hole gets its
+    best fill (Clean Rim: a ragged rim's faces may be removed first); UVs interpolated from around each hole"""
 
     bl_idname = "mesh.geometric_fairing_fill_holes"
     bl_label = "Fill Holes (Geometric Fairing)"
@@ -326,6 +326,15 @@ class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator)
         subtype="DISTANCE",
         options={"SKIP_SAVE"},
     )
+    clean_rim: BoolProperty(
+        name="Clean Rim",
+        description=(
+            "Where a hole's fill folds or does not converge, remove the ragged faces of its rim first (teeth with "
+            "two boundary edges, spikes narrower than 90°) and fill the larger hole; the report names the faces removed"
+        ),
+        default=True,
+        options={"SKIP_SAVE"},
+    )
     keep_unconverged: properties._keep_unconverged(options={"SKIP_SAVE"})
 
     def resolve_options(self, context):
@@ -339,7 +348,9 @@ class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator)
         return fairing.FairingOptions(**values, keep_unconverged=self.keep_unconverged)
 
     def make_run(self, obj, options):
-        return holes.FillRun(obj, options, all_holes=self.all_holes, target_edge_length=self.edge_length)
+        return holes.FillRun(
+            obj, options, all_holes=self.all_holes, target_edge_length=self.edge_length, clean_rim=self.clean_rim
+        )
 
     def status_text(self, run):
         return f"{run.holes} hole{'s' if run.holes > 1 else ''}"

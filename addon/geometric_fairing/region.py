@@ -424,6 +424,84 @@ def left_open_text(left_open, most=3):
     return "; ".join(parts)
 
 
+# How each of geofair.fill_holes' methods reads in a report.
+FILL_METHOD_WORDS = {
+    "intrinsic": "intrinsic",
+    "intrinsic_finer": "intrinsic at half the edge length",
+    "intrinsic_trimmed": "after cleaning its rim",
+    "g0": "G0 (positions only)",
+    "linear": "linear",
+}
+
+
+def hole_records(holes, triangle_face=None):
+    """``geofair.FillResult.holes`` as plain dicts for a report: ``method``, ``filled``, ``converged``,
+    ``folds``, ``vertex`` (a vertex of its loop), ``removed_faces`` (the removed triangles' faces:
+    polygon indices through ``triangle_face``, ``(T,)``, where given, else triangle rows; sorted) and
+    ``reason`` (why it was left open, else "")."""
+    out = []
+    for hole in holes:
+        removed = np.asarray(hole.removed_faces, dtype=np.int64)
+        if triangle_face is not None:
+            removed = np.unique(np.asarray(triangle_face)[removed])
+        out.append({
+            "method": str(hole.method),
+            "filled": bool(hole.filled),
+            "converged": bool(hole.converged),
+            "folds": int(hole.folds),
+            "vertex": int(hole.loop[0]) if len(hole.loop) else -1,
+            "removed_faces": [int(f) for f in removed],
+            "reason": str(hole.reason),
+        })  # fmt: skip
+    return out
+
+
+def fill_text(records, most=8):
+    """One sentence for the holes of :func:`hole_records`, e.g. "9 holes filled: 7 intrinsic, 1 after cleaning
+    its rim (4 faces removed: 12, 13, 40, 41), 1 linear; 2 folded edges; 1 not converged"."""
+    filled = [r for r in records if r["filled"]]
+    counts = {}
+    for r in filled:
+        counts[r["method"]] = counts.get(r["method"], 0) + 1
+    parts = []
+    for method, count in counts.items():
+        part = f"{count} {FILL_METHOD_WORDS.get(method, method)}"
+        removed = sorted({f for r in filled if r["method"] == method for f in r["removed_faces"]})
+        if removed:
+            shown = ", ".join(map(str, removed[:most])) + (", ..." if len(removed) > most else "")
+            part += f" ({len(removed)} face{'s' if len(removed) != 1 else ''} removed: {shown})"
+        parts.append(part)
+    text = f"{len(filled)} hole{'s' if len(filled) != 1 else ''} filled"
+    if parts:
+        text += ": " + ", ".join(parts)
+    folds = sum(r["folds"] for r in filled)
+    if folds:
+        text += f"; {folds} folded edge{'s' if folds != 1 else ''}"
+    unconverged = sum(not r["converged"] for r in filled)
+    if unconverged:
+        text += f"; {unconverged} not converged (the best fill kept)"
+    for r in records:
+        if not r["filled"] and r["reason"] and not r["reason"].startswith(("an outer border", "more edges than")):
+            text += f"; the hole at vertex {r['vertex']} is not filled: {r['reason']}"
+    return text
+
+
+def hole_lines(records):
+    """One line per hole of :func:`hole_records`: its vertex, method, convergence, folds, removed faces."""
+    lines = []
+    for r in records:
+        if not r["filled"]:
+            lines.append(f"hole at vertex {r['vertex']}: left open, {r['reason']}")
+            continue
+        line = f"hole at vertex {r['vertex']}: {FILL_METHOD_WORDS.get(r['method'], r['method'])}"
+        line += ", converged" if r["converged"] else ", not converged"
+        line += f", {r['folds']} folded edge{'s' if r['folds'] != 1 else ''}"
+        if r["removed_faces"]:
+            line += f", faces removed: {', '.join(map(str, r['removed_faces']))}"
+        lines.append(line)
+    return lines
+
+
 def _pop_successor(successors, vertex):
     following = successors[vertex]
     tail = following.pop()

@@ -393,18 +393,21 @@ def folded_edges(vertices, faces, of_interest):
     return int((dot <= 0).sum())
 
 
-def check_fill(vertices_in, faces_in, loop, vertices_out, faces_out):
+def check_fill(vertices_in, faces_in, loop, vertices_out, faces_out, removed=()):
     """The properties of a filled mesh, a dict: "input_kept" (the input's rows and faces come
-    first, bit-identical), "manifold" (manifold_problem's reason or None), "closed" (every
-    edge of the loop has two triangles and no new boundary edge appeared), "folds" (folded
+    first, bit-identical; the faces less the rows ``removed``, in their order), "manifold"
+    (manifold_problem's reason or None), "closed" (every edge of the loop and of the removed
+    faces has two triangles or none, and no new boundary edge appeared), "folds" (folded
     edges of the new triangles, among them and with the old ones), "new_vertices",
     "new_faces", "min_angle" (degrees, the new triangles' smallest)."""
     from geofair_dev.scenes import triangle_angles
 
     vi, fi = np.asarray(vertices_in, float), np.asarray(faces_in, np.int64)
     vo, fo = np.asarray(vertices_out, float), np.asarray(faces_out, np.int64)
-    n, m = len(vi), len(fi)
-    kept = len(vo) >= n and len(fo) >= m and np.array_equal(fo[:m], fi)
+    removed = np.asarray(removed, np.int64).reshape(-1)
+    kept_in = np.delete(fi, removed, axis=0)
+    n, m = len(vi), len(kept_in)
+    kept = len(vo) >= n and len(fo) >= m and np.array_equal(fo[:m], kept_in)
     bits = np.ascontiguousarray(vo[:n]).view(np.uint64), np.ascontiguousarray(vi).view(np.uint64)
     kept = kept and np.array_equal(*bits)
     new = np.zeros(len(fo), bool)
@@ -414,6 +417,7 @@ def check_fill(vertices_in, faces_in, loop, vertices_out, faces_out):
     after = {tuple(e) for e in boundary_edges(fo).tolist()}
     lp = np.asarray(loop, np.int64)
     loop_edges = {tuple(e) for e in np.column_stack([lp, np.roll(lp, -1)]).tolist()}
+    loop_edges |= {tuple(e) for e in _directed_edges(fi[removed]).tolist()}
     loop_edges |= {(b, a) for a, b in loop_edges}
     closed = not (after - before) and not (after & loop_edges)
     ang = triangle_angles(vo, fo[m:]) if len(fo) > m else np.zeros((0, 3))
@@ -424,6 +428,7 @@ def check_fill(vertices_in, faces_in, loop, vertices_out, faces_out):
         "folds": folded_edges(vo, fo, new),
         "new_vertices": len(vo) - n,
         "new_faces": len(fo) - m,
+        "removed_faces": len(removed),
         "min_angle": float(ang.min()) if ang.size else None,
     }
 

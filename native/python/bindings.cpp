@@ -4,6 +4,7 @@
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "geofair/hole_filling.h"
+#include "geofair/mesh_file.h"
 #include "geofair/tuning.h"
 #include "geofair/types.h"
 
@@ -492,7 +493,7 @@ FairingOptions fairing_options(const std::string& boundary, const std::string& i
 // at most every 0.1 s); an exception in the callback (e.g. KeyboardInterrupt) stops the run
 // and is re-raised.
 template <class Solve>
-FairingResult with_progress(FairingOptions& options, const py::object& progress, Solve solve) {
+auto with_progress(FairingOptions& options, const py::object& progress, Solve solve) {
   std::optional<py::error_already_set> callback_error;
   if (!progress.is_none()) {
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -511,7 +512,7 @@ FairingResult with_progress(FairingOptions& options, const py::object& progress,
       }
     };
   }
-  FairingResult result;
+  decltype(solve()) result;  // FairingResult, or fill_holes' FillResult
   {
     py::gil_scoped_release release;
     result = solve();
@@ -609,10 +610,10 @@ HoleRule hole_rule(bool keep_outer_borders, const py::object& max_hole_edges, co
   return rule;
 }
 
-FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
-                            const py::object& loops, const py::object& target_edge_length,
-                            bool keep_outer_borders, const py::object& max_hole_edges,
-                            const std::string& boundary, const std::string& inner_fairness,
+FillResult fill_holes_py(const py::object& vertices, const py::object& faces,
+                         const py::object& loops, const py::object& target_edge_length,
+                         bool keep_outer_borders, const py::object& max_hole_edges,
+                         const std::string& rim, const std::string& boundary, const std::string& inner_fairness,
                             const std::string& outer_fairness,
                             const std::string& normal_weighting, double tolerance,
                             int max_iterations, double damping, int cg_iterations, int levels,
@@ -634,8 +635,12 @@ FairingResult fill_holes_py(const py::object& vertices, const py::object& faces,
                                            normal_weighting, tolerance, max_iterations, damping,
                                            cg_iterations, levels, iteration, time_limit, tuning,
                                            "fill_holes");
+  if (rim != "keep" && rim != "trim")
+    throw InvalidInputError("rim must be 'keep' or 'trim', got " +
+                            std::string(py::str(py::repr(py::str(rim)))));
+  const Rim rim_mode = rim == "trim" ? Rim::Trim : Rim::Keep;
   return with_progress(options, progress,
-                       [&] { return fill_holes(V, F, holes, options, length, rule); });
+                       [&] { return fill_holes(V, F, holes, options, length, rule, rim_mode); });
 }
 
 Eigen::VectorXd mean_curvature_py(const py::object& vertices, const py::object& faces,
@@ -1107,8 +1112,178 @@ Raises
 geofair.InvalidInputError (a ValueError) for invalid input.)doc");
 }
 
+// geofair.HoleFill and geofair.FillResult (fill_holes' per-hole records).
+void bind_fill_result(py::module_& m) {
+  py::class_<HoleFill>(m, "HoleFill", "What geofair.fill_holes did with one hole.")
+      .def_property_readonly(
+          "loop", [](const HoleFill& h) { return int_array(h.loop); },
+          "(k,) int32: the hole's loop, input vertex indices in the direction of the missing "
+          "face (as geofair.boundary_loops orders them).")
+      .def_property_readonly(
+          "method", [](const HoleFill& h) { return std::string(fill_method_name(h.method)); },
+          "The fill kept: \"intrinsic\" (G1, Δ_B H = 0 at the loop's edge length), "
+          "\"intrinsic_finer\" (at half of it), \"intrinsic_trimmed\" (after rim=\"trim\" "
+          "removed faces at the rim), \"g0\" (positions only at the loop: H = 0), "
+          "\"linear\" (the linear Δ²f = 0 fill of the same patch), or \"none\": left open "
+          "(.reason says why).")
+      .def_property_readonly("filled", [](const HoleFill& h) { return h.method != FillMethod::None; },
+                             "True unless the hole was left open.")
+      .def_readonly("converged", &HoleFill::converged, "The kept fill's solve converged.")
+      .def_readonly("folds", &HoleFill::folds,
+                    "Folded edges of the kept fill: edges of its triangles, among them and with "
+                    "the input's triangles at the loop, whose two triangles' normals have a "
+                    "non-positive dot product.")
+      .def_readonly("residual", &HoleFill::residual,
+                    "The kept fill's normalized residual (dimensionless, see geofair.fair).")
+      .def_readonly("new_vertices", &HoleFill::new_vertices, "Vertices the fill added.")
+      .def_readonly("new_faces", &HoleFill::new_faces, "Triangles the fill added.")
+      .def_property_readonly(
+          "removed_faces", [](const HoleFill& h) { return int_array(h.removed_faces); },
+          "(r,) int32: input face indices (rows of the input faces) removed at this hole's "
+          "rim, sorted; empty unless rim=\"trim\" trimmed it.")
+      .def_property_readonly(
+          "attempts",
+          [](const HoleFill& h) {
+            py::list out;
+            for (const FillAttempt& a : h.attempts) {
+              py::dict d;
+              d["method"] = fill_method_name(a.method);
+              d["converged"] = a.converged;
+              d["folds"] = a.folds;
+              d["seconds"] = a.seconds;
+              d["message"] = a.message;
+              out.append(d);
+            }
+            return out;
+          },
+          "Every fill tried, in order: a list of dicts with \"method\", \"converged\", "
+          "\"folds\", \"seconds\" (wall-clock) and \"message\" (the solve's, or why it "
+          "was not made).")
+      .def_readonly("reason", &HoleFill::reason,
+                    "Left open: why, one clause for a user; filled: \"\".")
+      .def("__repr__", [](const HoleFill& h) {
+        return "HoleFill(loop of " + std::to_string(h.loop.size()) + " vertices, method=\"" +
+               fill_method_name(h.method) + "\", converged=" +
+               (h.converged ? "True" : "False") + ", folds=" + std::to_string(h.folds) +
+               ", removed_faces=" + std::to_string(h.removed_faces.size()) + ")";
+      });
+  py::class_<FillResult, FairingResult>(
+      m, "FillResult",
+      "Result of geofair.fill_holes: geofair.FairingResult's fields for the filled mesh, and "
+      "a record per hole.")
+      .def_readonly("holes", &FillResult::holes,
+                    "list of geofair.HoleFill: the holes in the order of the loops (given, or "
+                    "geofair.holes_to_fill's), then the loops the rule left open (method "
+                    "\"none\", with the reason).")
+      .def_property_readonly(
+          "removed_faces", [](const FillResult& r) { return int_array(r.removed_faces); },
+          "(r,) int32: the input face indices removed at the rims (rim=\"trim\"), sorted; "
+          "the result's faces are the other input faces in their order, then the fills'.")
+      .def("__repr__", [](const FillResult& r) {
+        size_t filled = 0;
+        for (const HoleFill& h : r.holes) filled += h.method != FillMethod::None;
+        return "FillResult(holes filled=" + std::to_string(filled) + " of " +
+               std::to_string(r.holes.size()) + ", converged=" + (r.converged ? "True" : "False") +
+               ", folds=" + std::to_string(r.folds) + ")";
+      });
+}
+
+// geofair.read_mesh and geofair.write_mesh (OpenMesh's IO; the command line's files).
+void bind_mesh_files(py::module_& m) {
+  def_checked(
+      m, "read_mesh",
+      [](const std::string& path) {
+        MeshFile mesh;
+        {
+          py::gil_scoped_release release;
+          mesh = read_mesh_file(path);
+        }
+        py::dict out;
+        out["vertices"] = mesh.vertices;
+        out["faces"] = mesh.faces;
+        out["polygon"] = int_array(mesh.polygon);
+        out["colors"] = mesh.colors.rows() ? py::object(py::cast(mesh.colors)) : py::none();
+        out["texcoords"] = mesh.texcoords.rows() ? py::object(py::cast(mesh.texcoords)) : py::none();
+        return out;
+      },
+      py::arg("path"),
+      R"doc(Read an OBJ, PLY, OFF or STL file (by its extension) with OpenMesh's readers.
+
+Parameters
+----------
+path : str, the file.
+
+Returns
+-------
+dict: "vertices" (n, 3) float64 positions in file units; "faces" (m, 3) int32 triangles
+(polygons split into fans, oriented as in the file); "polygon" (m,) int32 the file's face of
+each triangle; "colors" (n, 4) uint8 RGBA vertex colours (PLY, OFF) or None; "texcoords"
+(n, 2) float64 vertex texture coordinates (OBJ's vt) or None. STL's repeated corners are
+merged into shared vertices.
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) naming the file and the problem: an unknown
+extension, an unreadable file, faces OpenMesh's reader skips as non-manifold, no face, or a
+non-finite coordinate.)doc");
+  def_checked(
+      m, "write_mesh",
+      [](const std::string& path, const py::object& vertices, const py::object& faces,
+         const py::object& colors, const py::object& texcoords) {
+        MeshFile mesh;
+        mesh.vertices = to_positions(vertices, "vertices");
+        mesh.faces = to_triangles(faces, "write_mesh", mesh.vertices.rows());
+        const auto n = mesh.vertices.rows();
+        if (!colors.is_none()) {
+          const auto c = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(colors);
+          if (!c || c.ndim() != 2 || c.shape(0) != n || c.shape(1) != 4)
+            throw InvalidInputError("write_mesh: colors must be None or an (n, 4) uint8 array, n = " +
+                                    std::to_string(n));
+          mesh.colors.resize(n, 4);
+          std::copy(c.data(), c.data() + 4 * n, mesh.colors.data());
+        }
+        if (!texcoords.is_none()) {
+          const auto t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(texcoords);
+          if (!t || t.ndim() != 2 || t.shape(0) != n || t.shape(1) != 2)
+            throw InvalidInputError("write_mesh: texcoords must be None or an (n, 2) float array, n = " +
+                                    std::to_string(n));
+          mesh.texcoords.resize(n, 2);
+          std::copy(t.data(), t.data() + 2 * n, mesh.texcoords.data());
+        }
+        try {
+          py::gil_scoped_release release;
+          write_mesh_file(path, mesh);
+        } catch (const InvalidInputError&) {
+          throw;
+        } catch (const std::runtime_error& error) {  // the file system's: an OSError
+          PyErr_SetString(PyExc_OSError, error.what());
+          throw py::error_already_set();
+        }
+      },
+      py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
+      py::arg("colors") = py::none(), py::arg("texcoords") = py::none(),
+      R"doc(Write a triangle mesh to an OBJ, PLY (binary), OFF or STL (binary) file (by its
+extension) with OpenMesh's writers. The file is written under a temporary name beside the
+destination and renamed over it at the end: an error never leaves a partial file.
+
+Parameters
+----------
+path : str, the file.
+vertices : (n, 3) float64 positions; faces : (m, 3) integer triangles.
+colors : None or (n, 4) uint8 RGBA vertex colours (written to PLY and OFF).
+texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY).
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) for an unknown extension, faces that index no
+vertex, a non-finite coordinate, or triangles that do not form a manifold mesh; OSError if
+the file cannot be written.)doc");
+}
+
 // geofair.fill_holes, geofair.holes_to_fill and geofair.boundary_loops.
 void bind_holes(py::module_& m) {
+  bind_fill_result(m);
+  bind_mesh_files(m);
   const FairingOptions d;
   static const std::string fill_holes_docstring = fair_doc(R"doc(Fill holes of a triangle mesh with intrinsically faired patches: each hole's
 loop keeps its positions and takes its unit normals from the faces around it (the G1
@@ -1120,11 +1295,20 @@ Each hole's loop is triangulated (Liepa's dynamic programme, Liepa 2003, "Fillin
 in meshes", by the largest dihedral angle between adjacent triangles, the faces around the
 loop included, then the area; loops of more than 500 vertices get a fan around their
 centroid), the edges across the hole are split, the patch is remeshed isotropically at
-target_edge_length (geofair.remesh_region), and all patches are faired together by
-geofair.fair with the new vertices free. Where that does not converge or folds an edge and
-target_edge_length is None, the holes are filled once more at half the loops' edge length
-(ragged loops need a finer fill next to them) and the better result is returned; its
-message says so.
+target_edge_length (geofair.remesh_region), and faired by geofair.fair with the new
+vertices free, each hole on its own (its patch and the faces within three rings of its loop).
+
+Every hole gets a fill: per hole the fills below are tried in order and the first that
+converges without a folded edge is kept, else the one with the fewest folded edges
+(converged first among equals): "intrinsic" (the fill above), "intrinsic_finer" (at half
+the loop's edge length, where target_edge_length is None and the first fill has at most
+5000 new vertices: ragged loops need a finer fill next to them), "intrinsic_trimmed" (rim="trim" only: the rim's teeth, triangles with two
+loop edges, and the triangles at loop vertices whose faces span less than 90° removed, up to
+three rounds, while the hole stays one simple loop; MeshFix's remove-and-fill, Attene
+2010), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
+Δ²f = 0 fill of the same patch, the method of CGAL's triangulate_refine_and_fair_hole; the
+last two on the trimmed rim where it was trimmed). .holes says which fill each hole got.
+A hole is left open only where no fill can be made (over {max_fill_vertices} new vertices).
 
 Parameters
 ----------
@@ -1149,6 +1333,9 @@ keep_outer_borders : with loops=None, leave each outer border open (default True
     when loops are given.
 max_hole_edges : with loops=None, leave loops of more edges than this open (like Blender's
     Fill Holes Sides or MeshLab's Close Holes size); None (default): no limit.
+rim : "keep" (default): every input face is kept; "trim": where the fill of a loop as it is
+    folds or does not converge, input faces at its rim may be removed first (see above; named
+    in .removed_faces and each hole's .removed_faces).
 boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
 damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
     geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
@@ -1156,20 +1343,25 @@ damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
 
 Returns
 -------
-FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
-vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
-after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
-new vertices; .remeshed True (.origin_face -1: a fill has no input surface); .converged,
-.residual, .message, .stop_reason, .folds, .new_folds and .phase_seconds (starting with
-"fill") as for fair.
+FillResult (a FairingResult): .vertices (n + k, 3), the input's n rows first and
+bit-identical, the k new vertices after (with rim="trim", input rows whose every face was
+removed stay, listed in .unreferenced); .faces, the input's m faces first and unchanged
+(with rim="trim" less .removed_faces, the others in their order), then each hole's fill,
+oriented like the faces around the holes; .free (n + k,) bool, True exactly at the new
+vertices; .remeshed True (.origin_face -1: a fill has no input surface); .converged (every
+fill converged), .residual (the largest), .folds and .new_folds (the fills' folded edges,
+HoleFill.folds, summed), .message (one clause per method), .stop_reason and .phase_seconds
+(starting with "fill", the holes' phases summed); .holes, a list of geofair.HoleFill (loop,
+method, converged, folds, removed_faces, attempts, reason), the holes in the order of the
+loops, then the loops the rule left open; .removed_faces (r,) int32, sorted.
 
 Raises
 ------
 geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex
 indices, a loop is not a boundary loop of the mesh (the offending pair of vertices is named),
-a vertex is on two given loops, the mesh has no hole to fill (no boundary loop, or with
+a vertex is on two given loops, rim is not "keep" or "trim", the mesh has no hole to fill (no boundary loop, or with
 loops=None every loop is left open: the message names them and why), max_hole_edges is not
-None or a positive integer, a fill would take more than {max_fill_vertices} new vertices, the mesh's
+None or a positive integer, no hole can be filled under {max_fill_vertices} new vertices, the mesh's
 squared lengths leave the normal doubles (a bounding-box diagonal above about 1.3e154 or a
 mean edge length below about 1.5e-154: the message names the size), or for the input fair
 refuses (the message names the problem and the vertex or face); geofair.SolverError (a
@@ -1179,7 +1371,7 @@ worked on in units of the mesh's own size).)doc");
             py::arg("faces"), py::arg("loops") = py::none(), py::kw_only(),
             py::arg("target_edge_length") = py::none(),
             py::arg("keep_outer_borders") = HoleRule{}.keep_outer_borders,
-            py::arg("max_hole_edges") = py::none(),
+            py::arg("max_hole_edges") = py::none(), py::arg("rim") = "keep",
             py::arg("boundary") = name(d.boundary, kBoundaryNames));
   static const std::string holes_to_fill_docstring = fair_doc(R"doc(The holes that geofair.fill_holes fills when it is given no loops: the boundary
 loops of the mesh (geofair.boundary_loops) less those the rule leaves open.
@@ -1199,7 +1391,9 @@ Returns
 (holes, left_open): holes a list of (k,) int32 arrays, the loops to fill as
 geofair.boundary_loops returns them (in its order); left_open a list of (loop, reason)
 tuples, the other loops with one clause for a user saying why (e.g. "an outer border: it
-spans 95 % of the area of its part's triangles (a hole less than 30 %)"). Both empty for
+spans 95 % of the area of its part's triangles (a hole less than 30 %)"; a piece of border
+that passes more than once through a vertex, where holes touch: "not a simple loop: ...",
+its vertices sorted). Both empty for
 a closed mesh. The same at any scale of the mesh.
 
 Raises

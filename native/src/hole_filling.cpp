@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <string>
@@ -340,12 +341,64 @@ std::string percent(double fraction) {
 
 }  // namespace
 
+// The border loops as border_loops finds them, except that the border edges of a connected
+// piece of border that passes more than once through a vertex (holes that touch) are not
+// walked: each such piece is returned in `pinched` (its vertices, sorted) with that vertex.
+static std::vector<std::vector<int>> manifold_border_loops(const DirectedEdges& edges,
+                                                    std::vector<std::pair<std::vector<int>, int>>& pinched) {
+  std::map<int, std::vector<int>> next;
+  edges.for_each_border_edge([&](int a, int b) { next[b].push_back(a); });
+  std::map<int, int> parent;  // union-find over the border's vertices
+  auto root = [&](int v) {
+    while (parent.at(v) != v) v = parent[v] = parent.at(parent.at(v));
+    return v;
+  };
+  for (const auto& [v, successors] : next) {
+    parent.emplace(v, v);
+    for (int w : successors) parent.emplace(w, w);
+  }
+  for (const auto& [v, successors] : next)
+    for (int w : successors) {
+      const int a = root(v), b = root(w);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::map<int, int> pinch;  // component root -> its first vertex with two successors
+  for (const auto& [v, successors] : next)
+    if (successors.size() > 1) pinch.emplace(root(v), v);
+  std::map<int, std::vector<int>> pieces;
+  std::vector<std::vector<int>> loops;
+  std::map<int, bool> done;
+  for (const auto& [start, successors] : next) {
+    (void)successors;
+    const int r = root(start);
+    if (pinch.count(r)) {
+      pieces[r].push_back(start);
+      continue;
+    }
+    if (done[start]) continue;
+    std::vector<int> loop;
+    for (int v = start; !done[v]; v = next.at(v).front()) {
+      done[v] = true;
+      loop.push_back(v);
+    }
+    loops.push_back(std::move(loop));
+  }
+  for (auto& [r, vertices] : pieces) pinched.push_back({std::move(vertices), pinch.at(r)});
+  return loops;
+}
+
 HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                         const HoleRule& rule, const char* caller) {
   if (rule.max_hole_edges < 0)
     throw InvalidInputError(std::string(caller) + ": max_hole_edges must be >= 0 (0: no limit)");
   HoleChoice out;
-  auto loops = border_loops(edges, caller);
+  std::vector<std::pair<std::vector<int>, int>> pinched;
+  auto loops = manifold_border_loops(edges, pinched);
+  for (auto& [vertices, vertex] : pinched)
+    out.left_open.push_back(
+        {std::move(vertices), "not a simple loop: its border passes more than once through vertex " +
+                                  std::to_string(vertex) +
+                                  " (holes touch there); give its loops one at a time"});
   if (loops.empty()) return out;
   // Each part's outer border: its loop of the largest spanned area (the first of equals), if
   // that is at least kOuterBorderArea of the part's area.
@@ -430,6 +483,18 @@ std::vector<std::vector<int>> holes_to_fill(const Positions& V, const Triangles&
 
 }  // namespace hole_filling
 
+const char* fill_method_name(FillMethod method) {
+  switch (method) {
+    case FillMethod::Intrinsic: return "intrinsic";
+    case FillMethod::IntrinsicFiner: return "intrinsic_finer";
+    case FillMethod::IntrinsicTrimmed: return "intrinsic_trimmed";
+    case FillMethod::G0: return "g0";
+    case FillMethod::Linear: return "linear";
+    case FillMethod::None: return "none";
+  }
+  return "none";
+}
+
 namespace {
 
 double mean_loop_edge_length(const Positions& V, const std::vector<int>& loop) {
@@ -447,40 +512,102 @@ void append_rows(Matrix& M, const Matrix& rows) {
   M.bottomRows(rows.rows()) = rows;
 }
 
-// One hole's fill: the new vertices (to be appended after `base` rows) and the new
-// triangles, in the caller's indices.
-struct Fill {
+// The rings of the input's triangles around a loop (without `removed`, sorted rows of F):
+// first[r] the triangles of ring r (ring 0: those at the loop's vertices).
+std::vector<std::vector<int>> rings_around(const Triangles& F, const DirectedEdges& edges,
+                                           const std::vector<int>& loop,
+                                           const std::vector<int>& removed, int rings) {
+  std::vector<std::vector<int>> out(static_cast<size_t>(rings));
+  std::unordered_map<int, bool> seen_vertex, seen_face;
+  std::vector<int> front = loop;
+  for (int v : loop) seen_vertex[v] = true;
+  for (int r = 0; r < rings; ++r) {
+    std::vector<int> next;
+    for (int v : front)
+      edges.for_each_triangle_at(v, [&](int f) {
+        if (std::binary_search(removed.begin(), removed.end(), f) || seen_face[f]) return;
+        seen_face[f] = true;
+        out[size_t(r)].push_back(f);
+        for (int c = 0; c < 3; ++c)
+          if (!seen_vertex[F(f, c)]) {
+            seen_vertex[F(f, c)] = true;
+            next.push_back(F(f, c));
+          }
+      });
+    std::sort(out[size_t(r)].begin(), out[size_t(r)].end());
+    front = std::move(next);
+  }
+  return out;
+}
+
+// Folded edges of the triangles T.row(first .. end - 1): edges among them and with the
+// other triangles whose two normals have a non-positive dot product (bench/holes.py's test).
+int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen::Index end) {
+  std::map<std::pair<int, int>, std::vector<Eigen::Index>> by_edge;
+  std::unordered_map<int, bool> fill_vertex;
+  for (Eigen::Index t = first; t < end; ++t)
+    for (int c = 0; c < 3; ++c) fill_vertex[T(t, c)] = true;
+  for (Eigen::Index t = 0; t < T.rows(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const int a = T(t, c), b = T(t, (c + 1) % 3);
+      if (fill_vertex.count(a) && fill_vertex.count(b)) by_edge[std::minmax(a, b)].push_back(t);
+    }
+  auto normal = [&](Eigen::Index t) {
+    return (X.row(T(t, 1)) - X.row(T(t, 0))).cross(X.row(T(t, 2)) - X.row(T(t, 0))).eval();
+  };
+  int folds = 0;
+  for (const auto& [edge, faces] : by_edge) {
+    (void)edge;
+    auto in_fill = [&](Eigen::Index t) { return t >= first && t < end; };
+    if (faces.size() != 2 || (!in_fill(faces[0]) && !in_fill(faces[1]))) continue;
+    folds += normal(faces[0]).dot(normal(faces[1])) <= 0.0;
+  }
+  return folds;
+}
+
+// One fill tried for a hole: the new vertices and triangles in the caller's indices (a
+// new vertex k encoded as -(k + 1)), fair()'s result on the hole's submesh, the attempt.
+struct Tried {
+  FillAttempt attempt;
+  FairingResult fairing;
   Positions vertices;
   Triangles faces;
+  std::vector<int> removed;  // rows of F removed at the rim (sorted)
+  bool made = false;         // false: refused before fair (attempt.message says why)
+  bool ok() const { return made && attempt.converged && attempt.folds == 0; }
 };
 
-// Triangulates, splits and remeshes one hole at edge length L. The remesh sees only the
-// patch and the mesh's triangles at the loop (the valences there), not the whole mesh.
-Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges,
-              const std::vector<int>& loop, double L, int base, double unit) {
-  // Local rows: the vertices of the triangles at the loop, then the split's midpoints.
+// The rings of input triangles whose vertices the G1 normals are estimated from
+// (estimate_boundary_normals: two rings through the surrounding triangles) and one more.
+constexpr int kSurroundingRings = 3;
+
+// Triangulates, splits and remeshes one hole at edge length L, and fairs it on its own
+// submesh: the patch and the input's triangles within kSurroundingRings rings of the loop
+// (the remesh sees the first ring alone, for the valences at the loop).
+Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+               const std::vector<int>& loop, const std::vector<int>& removed, double L,
+               FillMethod method, const FairingOptions& options, double unit) {
+  Laps laps;
+  Tried out;
+  out.attempt.method = method;
+  out.removed = removed;
+  const auto rings = rings_around(F, edges, loop, removed, kSurroundingRings);
+  // Local rows: the vertices of the first ring, then the split's midpoints, then the rest.
   std::vector<int> global;
   std::unordered_map<int, int> local;
   auto add = [&](int v) {
     if (local.emplace(v, int(global.size())).second) global.push_back(v);
     return local.at(v);
   };
-  std::vector<int> around;  // the mesh's triangles at the loop vertices
-  for (int v : loop) edges.for_each_triangle_at(v, [&](int f) { around.push_back(f); });
-  std::sort(around.begin(), around.end());
-  around.erase(std::unique(around.begin(), around.end()), around.end());
-  Triangles T(Eigen::Index(around.size()), 3);
-  for (size_t k = 0; k < around.size(); ++k)
-    for (int c = 0; c < 3; ++c) T(Eigen::Index(k), c) = add(F(around[k], c));
+  Triangles T(Eigen::Index(rings[0].size()), 3);
+  for (size_t k = 0; k < rings[0].size(); ++k)
+    for (int c = 0; c < 3; ++c) T(Eigen::Index(k), c) = add(F(rings[0][k], c));
   std::vector<int> local_loop;
   for (int v : loop) local_loop.push_back(add(v));
-  Positions X(Eigen::Index(global.size()), 3);
-  for (size_t k = 0; k < global.size(); ++k) X.row(Eigen::Index(k)) = V.row(global[k]);
-  const Triangles patch = hole_filling::triangulate_loop(V, loop, edges);
-  Triangles local_patch(patch.rows(), 3);
-  for (int t = 0; t < patch.rows(); ++t)
-    for (int c = 0; c < 3; ++c) local_patch(t, c) = local.at(patch(t, c));
-  const auto split = hole_filling::split_inner_edges(X, local_patch, local_loop);
+  Positions X = gather(V, global);
+  const Triangles patch =
+      hole_filling::triangulate_loop(X, local_loop, hole_filling::DirectedEdges(T));
+  const auto split = hole_filling::split_inner_edges(X, patch, local_loop);
   const int n_fixed = int(X.rows());
   append_rows(X, split.new_vertices);
   append_rows(T, split.faces);
@@ -493,129 +620,333 @@ Fill fill_one(const Positions& V, const Triangles& F, const DirectedEdges& edges
   }
   const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
   if (!(estimate <= kMaxFillVertices)) {
-    char text[96];
-    std::snprintf(text, sizeof text, "%.3g new vertices at edge length %.3g", estimate, L * unit);
-    throw InvalidInputError("fill_holes: the hole at vertex " + std::to_string(loop[0]) +
-                            " would take about " + text + " (at most " +
-                            std::to_string(kMaxFillVertices) +
-                            "): give a larger target_edge_length");
+    char text[160];
+    std::snprintf(text, sizeof text, "about %.3g new vertices at edge length %.3g (at most %d)",
+                  estimate, L * unit, kMaxFillVertices);
+    out.attempt.message = text;
+    return out;
   }
-  std::vector<bool> free(X.rows(), false);
-  for (int v = n_fixed; v < int(X.rows()); ++v) free[v] = true;
+  std::vector<bool> free(size_t(X.rows()), false);
+  for (int v = n_fixed; v < int(X.rows()); ++v) free[size_t(v)] = true;
   RemeshOptions remesh;
   remesh.target_edge_length = L;
-  const RemeshedRegion r = remesh_region(X, T, free, remesh);
-  // Its new vertices: the free rows (the unreferenced ones are not free); the fixed rows
-  // are the mesh's.
-  std::vector<int> to_caller(r.vertices.rows(), -1);
-  for (int v = 0; v < n_fixed; ++v) to_caller[v] = global[v];
-  Fill fill;
+  RemeshedRegion r = remesh_region(X, T, free, remesh);
+  const Eigen::Index kept = Eigen::Index(rings[0].size());  // remesh_region keeps them first
+  const Eigen::Index fill_end = r.faces.rows();
+  // The outer rings, for the G1 normals' samples.
+  Positions Y = r.vertices;
+  Triangles S = r.faces;
+  std::vector<bool> region_free = r.free;
+  std::vector<int> row_of(global.size(), -1);  // local fixed row -> row of Y (the same)
+  for (size_t k = 0; k < global.size(); ++k) row_of[k] = int(k);
+  std::unordered_map<int, int> outer_row;
+  std::vector<int> outer_rows;
+  for (size_t ring = 1; ring < rings.size(); ++ring)
+    for (int f : rings[ring]) {
+      S.conservativeResize(S.rows() + 1, Eigen::NoChange);
+      for (int c = 0; c < 3; ++c) {
+        const int v = F(f, c);
+        const auto it = local.find(v);
+        int row;
+        if (it != local.end()) {
+          row = it->second;
+        } else {
+          const auto [o, fresh] = outer_row.emplace(v, int(Y.rows() + outer_rows.size()));
+          if (fresh) outer_rows.push_back(v);
+          row = o->second;
+        }
+        S(S.rows() - 1, c) = row;
+      }
+    }
+  append_rows(Y, gather(V, outer_rows));
+  region_free.resize(size_t(Y.rows()), false);
+  const double prepared = laps.lap();
+  FairingOptions fairing = options;
+  fairing.remesh = Remesh::Off;  // the patch is a remesh already
+  if (method == FillMethod::G0) fairing.boundary = BoundaryCondition::G0;
+  if (method == FillMethod::Linear) fairing.outer_fairness = OuterFairness::Bilaplacian;
+  out.fairing = fair(Y, S, region_free, nullptr, fairing);
+  out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
+  out.made = true;
+  out.attempt.converged = out.fairing.converged;
+  out.attempt.folds = fill_folds(out.fairing.vertices, S, kept, fill_end);
+  out.attempt.message = out.fairing.message;
+  // The fill in the caller's indices: fixed rows are input rows, new ones -(k + 1).
+  std::vector<int> to_caller(size_t(Y.rows()), 0);
+  for (size_t k = 0; k < global.size(); ++k) to_caller[k] = global[k];
   std::vector<int> rows;
   for (int v = n_fixed; v < int(r.vertices.rows()); ++v)
-    if (r.free[v]) {
-      to_caller[v] = base + int(rows.size());
+    if (r.free[size_t(v)]) {
+      to_caller[size_t(v)] = -(int(rows.size()) + 1);
       rows.push_back(v);
     }
-  fill.vertices.resize(Eigen::Index(rows.size()), 3);
-  for (size_t k = 0; k < rows.size(); ++k) fill.vertices.row(Eigen::Index(k)) = r.vertices.row(rows[k]);
-  const Eigen::Index kept = Eigen::Index(around.size());  // remesh_region keeps them first
-  fill.faces.resize(r.faces.rows() - kept, 3);
-  for (Eigen::Index t = kept; t < r.faces.rows(); ++t)
-    for (int c = 0; c < 3; ++c) fill.faces(t - kept, c) = to_caller[r.faces(t, c)];
-  return fill;
+  out.vertices = gather(out.fairing.vertices, rows);
+  out.faces.resize(fill_end - kept, 3);
+  for (Eigen::Index t = kept; t < fill_end; ++t)
+    for (int c = 0; c < 3; ++c) out.faces(t - kept, c) = to_caller[size_t(S(t, c))];
+  out.attempt.seconds = prepared + laps.lap();
+  return out;
 }
 
-// All holes filled at `scale` times their edge lengths, then faired together (the phase
-// "fill" first in phase_seconds).
-FairingResult fill_and_fair(const Positions& V, const Triangles& F, const DirectedEdges& edges,
-                            const std::vector<std::vector<int>>& holes,
-                            const std::vector<double>& lengths, double scale,
-                            const FairingOptions& options, double unit) {
-  Laps laps;
-  std::vector<Fill> fills;
-  Eigen::Index rows = V.rows(), faces = F.rows();
-  for (size_t h = 0; h < holes.size(); ++h) {
-    fills.push_back(fill_one(V, F, edges, holes[h], scale * lengths[h], int(rows), unit));
-    rows += fills.back().vertices.rows();
-    faces += fills.back().faces.rows();
+// Whether `a` is a better fill than `b` (neither converged without folds): made, fewer
+// folded edges, then converged; else the earlier (b).
+bool better(const Tried& a, const Tried& b) {
+  if (!a.made || !b.made) return a.made && !b.made;
+  if (a.attempt.folds != b.attempt.folds) return a.attempt.folds < b.attempt.folds;
+  return a.attempt.converged && !b.attempt.converged;
+}
+
+// One hole's fallback chain (fill_holes): its record and the fill kept.
+struct Chain {
+  HoleFill record;
+  Tried kept;
+  bool cancelled = false;
+};
+
+// Tries the fills of one hole in fill_holes' order and keeps the first that converges
+// without a folded edge, else the best (better). `committed`: rows of F removed for the
+// holes before (sorted); `spent`: seconds of the call so far, advanced here.
+Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                    const std::vector<int>& loop, const std::vector<int>& committed,
+                    const std::vector<bool>& other_border, double target_edge_length, Rim rim,
+                    const FairingOptions& options, double unit, double& spent) {
+  Chain chain;
+  chain.record.loop = loop;
+  Laps watch;
+  auto time_left = [&] { return !(options.time_limit >= 0.0) || spent < options.time_limit; };
+  // Tries one fill; true once the chain is done (a fill without folds, or cancelled).
+  auto attempt = [&](const std::vector<int>& hole, const std::vector<int>& removed, double L,
+                     FillMethod method) {
+    FairingOptions now = options_after(options, spent);
+    // Out of time, the linear fill (one linear solve) is still made: every hole is closed.
+    if (method == FillMethod::Linear && !time_left()) now.time_limit = -1.0;
+    Tried tried = try_fill(V, F, edges, hole, removed, L, method, now, unit);
+    spent += watch.lap();
+    chain.record.attempts.push_back(tried.attempt);
+    chain.cancelled = tried.made && tried.fairing.stop_reason == StopReason::Cancelled;
+    if (tried.ok() || better(tried, chain.kept)) chain.kept = std::move(tried);
+    return chain.kept.ok() || chain.cancelled;
+  };
+  auto finish = [&] {
+    HoleFill& h = chain.record;
+    if (!chain.kept.made) {
+      h.reason = chain.cancelled ? "cancelled"
+                                 : "cannot be filled: it would take " + h.attempts.front().message;
+      return std::move(chain);
+    }
+    const Tried& k = chain.kept;
+    h.method = k.attempt.method;
+    h.converged = k.attempt.converged;
+    h.folds = k.attempt.folds;
+    h.residual = k.fairing.residual;
+    h.new_vertices = int(k.vertices.rows());
+    h.new_faces = int(k.faces.rows());
+    std::set_difference(k.removed.begin(), k.removed.end(), committed.begin(), committed.end(),
+                        std::back_inserter(h.removed_faces));
+    return std::move(chain);
+  };
+  const double L = target_edge_length > 0.0 ? target_edge_length : mean_loop_edge_length(V, loop);
+  const bool linear_only = options.outer_fairness == OuterFairness::Bilaplacian;
+  const FillMethod first = linear_only                                  ? FillMethod::Linear
+                           : options.boundary == BoundaryCondition::G1 ? FillMethod::Intrinsic
+                                                                        : FillMethod::G0;
+  if (!time_left()) {
+    attempt(loop, committed, L, FillMethod::Linear);
+    return finish();
   }
-  Positions X(rows, 3);
-  Triangles T(faces, 3);
-  X.topRows(V.rows()) = V;
-  T.topRows(F.rows()) = F;
-  rows = V.rows(), faces = F.rows();
-  for (const Fill& fill : fills) {
-    X.middleRows(rows, fill.vertices.rows()) = fill.vertices;
-    T.middleRows(faces, fill.faces.rows()) = fill.faces;
-    rows += fill.vertices.rows();
-    faces += fill.faces.rows();
+  if (attempt(loop, committed, L, first)) return finish();
+  if (!chain.kept.made) return finish();  // over the size limit: no other fill is smaller
+  if (linear_only) return finish();
+  // Half the edge length: four times the vertices; not for large fills (their time).
+  const bool small = chain.kept.vertices.rows() <= kMaxFinerFillVertices;
+  if (target_edge_length <= 0.0 && small && time_left() &&
+      attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
+    return finish();
+  std::vector<int> hole = loop, removed = committed;
+  double L_hole = L;
+  if (rim == Rim::Trim) {
+    hole_filling::TrimmedHole trimmed = hole_filling::trim_rim(V, F, edges, loop, other_border);
+    if (!trimmed.removed.empty()) {
+      hole = std::move(trimmed.loop);
+      removed.clear();
+      std::set_union(committed.begin(), committed.end(), trimmed.removed.begin(),
+                     trimmed.removed.end(), std::back_inserter(removed));
+      L_hole = target_edge_length > 0.0 ? target_edge_length : mean_loop_edge_length(V, hole);
+      if (time_left() && attempt(hole, removed, L_hole, FillMethod::IntrinsicTrimmed))
+        return finish();
+    }
   }
-  std::vector<bool> free(X.rows(), false);
-  for (int v = int(V.rows()); v < int(X.rows()); ++v) free[v] = true;
-  const double seconds = laps.lap();
-  FairingOptions fairing = options_after(options, seconds);
-  fairing.remesh = Remesh::Off;  // the patches are remeshed already
-  FairingResult result = fair(X, T, free, nullptr, fairing);
-  result.faces = std::move(T);
-  result.free = std::move(free);
-  result.remeshed = true;
-  result.phase_seconds.insert(result.phase_seconds.begin(), {"fill", seconds});
-  return result;
+  if (first == FillMethod::Intrinsic && time_left() &&
+      attempt(hole, removed, L_hole, FillMethod::G0))
+    return finish();
+  attempt(hole, removed, L_hole, FillMethod::Linear);
+  return finish();
+}
+
+std::string plural(size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// result.message of fill_holes: one clause per method, the folds and what was removed.
+std::string fill_summary(const std::vector<HoleFill>& holes, bool cancelled) {
+  std::map<FillMethod, size_t> by_method;
+  size_t filled = 0, open = 0, unconverged = 0, removed = 0;
+  int folds = 0;
+  for (const HoleFill& h : holes) {
+    if (h.method == FillMethod::None) {
+      ++open;
+      continue;
+    }
+    ++filled, ++by_method[h.method];
+    unconverged += !h.converged;
+    folds += h.folds;
+    removed += h.removed_faces.size();
+  }
+  std::string text = plural(filled, "hole", "holes") + " filled";
+  std::string parts;
+  for (const auto& [method, count] : by_method)
+    parts += std::string(parts.empty() ? "" : ", ") + std::to_string(count) + " " +
+             fill_method_name(method);
+  if (!parts.empty()) text += " (" + parts + ")";
+  text += unconverged ? ", " + std::to_string(unconverged) + " not converged" : ", converged";
+  text += ", " + plural(size_t(folds), "folded edge", "folded edges");
+  if (removed) text += ", " + plural(removed, "input face", "input faces") + " removed at the rim";
+  if (open) text += "; " + plural(open, "hole", "holes") + " not filled";
+  if (cancelled) text = "cancelled; " + text;
+  return text;
 }
 
 // fill_holes on V in the working scale (positions divided by `unit`, a power of two).
-FairingResult fill_scaled(const Positions& V, const Triangles& F,
-                          const std::vector<std::vector<int>>& loops,
-                          const FairingOptions& options, double target_edge_length,
-                          const HoleRule& rule, double unit) {
+FillResult fill_scaled(const Positions& V, const Triangles& F,
+                       const std::vector<std::vector<int>>& loops, const FairingOptions& options,
+                       double target_edge_length, const HoleRule& rule, Rim rim, double unit) {
+  Laps laps;
   const DirectedEdges edges(F);
   std::vector<OpenLoop> left_open;
   const auto holes = hole_filling::holes_to_fill(V, F, loops, edges, rule, &left_open);
-  std::vector<double> lengths;
-  for (const auto& loop : holes)
-    lengths.push_back(target_edge_length > 0.0 ? target_edge_length
-                                               : mean_loop_edge_length(V, loop));
-  Laps laps;
-  FairingResult result = fill_and_fair(V, F, edges, holes, lengths, 1.0, options, unit);
-  const bool failed = !result.converged || result.new_folds > 0;
-  const double spent = laps.lap();
-  const bool time_left = !(options.time_limit >= 0.0) || spent < options.time_limit;
-  const auto added = result.vertices.rows() - V.rows();
-  const std::string open_note =
-      left_open.empty() ? "" : "; left open: " + hole_filling::describe_open(left_open);
-  if (!failed || target_edge_length > 0.0 || !time_left || 4 * added > kMaxFillVertices ||
-      result.stop_reason == StopReason::Cancelled) {
-    result.message += open_note;
-    return result;
+  // Vertices on a border: a trimmed rim must not reach another hole or border.
+  std::vector<bool> border(size_t(V.rows()), false);
+  edges.for_each_border_edge([&](int a, int b) { border[size_t(a)] = border[size_t(b)] = true; });
+  std::vector<int> committed;
+  std::vector<Chain> chains;
+  double spent = laps.lap();
+  bool cancelled = false;
+  for (const auto& loop : holes) {
+    if (cancelled) {
+      Chain skipped;
+      skipped.record.loop = loop;
+      skipped.record.reason = "cancelled";
+      chains.push_back(std::move(skipped));
+      continue;
+    }
+    for (int v : loop) border[size_t(v)] = false;
+    Chain chain = fill_one_hole(V, F, edges, loop, committed, border, target_edge_length, rim,
+                                options, unit, spent);
+    for (int v : loop) border[size_t(v)] = true;
+    cancelled = chain.cancelled;
+    if (chain.kept.made && chain.kept.removed.size() > committed.size()) {
+      committed = chain.kept.removed;
+      for (int f : chain.record.removed_faces)
+        for (int c = 0; c < 3; ++c) border[size_t(F(f, c))] = true;
+    }
+    chains.push_back(std::move(chain));
   }
-  // A ragged loop asks for a finer fill next to it: once more at half the edge length.
-  FairingResult finer = fill_and_fair(V, F, edges, holes, lengths, 0.5,
-                                      options_after(options, spent), unit);
-  const bool finer_ok = finer.converged && finer.new_folds == 0;
-  if (finer_ok || (finer.converged && !result.converged)) {
-    finer.message += "; filled at half the loops' edge length (at their own it did not " +
-                     std::string(result.converged ? "stay free of folds)" : "converge)") +
-                     open_note;
-    return finer;
+  // Refused: no hole can be filled (each over the size limit).
+  if (!cancelled && std::none_of(chains.begin(), chains.end(),
+                                 [](const Chain& c) { return c.kept.made; }))
+    throw InvalidInputError("fill_holes: the hole at vertex " +
+                            std::to_string(chains.front().record.loop[0]) + " would take " +
+                            chains.front().record.attempts.front().message +
+                            ": give a larger target_edge_length");
+  // The input's rows, then each fill's new vertices; the input's faces less the removed
+  // ones (in order), then each fill's triangles.
+  FillResult result;
+  Eigen::Index rows = V.rows(), faces = F.rows() - Eigen::Index(committed.size());
+  for (const Chain& c : chains) rows += c.kept.vertices.rows(), faces += c.kept.faces.rows();
+  result.vertices.resize(rows, 3);
+  result.faces.resize(faces, 3);
+  result.vertices.topRows(V.rows()) = V;
+  Eigen::Index row = V.rows(), face = 0;
+  for (int f = 0; f < F.rows(); ++f)
+    if (!std::binary_search(committed.begin(), committed.end(), f)) result.faces.row(face++) = F.row(f);
+  result.converged = true;
+  result.stop_reason = cancelled ? StopReason::Cancelled : StopReason::Converged;
+  std::map<std::string, size_t> phase_index;
+  Eigen::Index largest = -1;
+  bool first_fill = true;
+  for (Chain& c : chains) {
+    const Tried& k = c.kept;
+    if (k.made) {
+      result.vertices.middleRows(row, k.vertices.rows()) = k.vertices;
+      for (Eigen::Index t = 0; t < k.faces.rows(); ++t, ++face)
+        for (int j = 0; j < 3; ++j) {
+          const int v = k.faces(t, j);
+          result.faces(face, j) = v >= 0 ? v : int(row) - v - 1;
+        }
+      row += k.vertices.rows();
+      const FairingResult& r = k.fairing;
+      if (!r.converged && result.converged && !cancelled) result.stop_reason = r.stop_reason;
+      result.converged = result.converged && r.converged;
+      result.residual = std::max(result.residual, r.residual);
+      result.folds += k.attempt.folds;
+      result.iterations += r.iterations;
+      result.newton_iterations += r.newton_iterations;
+      if (first_fill) result.iteration = r.iteration, first_fill = false;
+      if (k.vertices.rows() > largest) {
+        largest = k.vertices.rows();
+        result.iterations_per_level = r.iterations_per_level;
+        result.vertices_per_level = r.vertices_per_level;
+      }
+      for (const auto& [name, seconds] : r.phase_seconds) {
+        const auto [it, fresh] = phase_index.emplace(name, result.phase_seconds.size());
+        if (fresh) result.phase_seconds.push_back({name, 0.0});
+        result.phase_seconds[it->second].second += seconds;
+      }
+    } else {
+      result.converged = false;
+    }
+    result.holes.push_back(std::move(c.record));
   }
-  result.message += "; at half the loops' edge length neither (" + finer.message + ")" + open_note;
+  result.new_folds = result.folds;
+  result.message = fill_summary(result.holes, cancelled);
+  if (!left_open.empty()) result.message += "; left open: " + hole_filling::describe_open(left_open);
+  for (auto& open : left_open) {
+    HoleFill h;
+    h.loop = std::move(open.loop);
+    h.reason = std::move(open.reason);
+    result.holes.push_back(std::move(h));
+  }
+  result.free.assign(size_t(rows), false);
+  for (Eigen::Index v = V.rows(); v < rows; ++v) result.free[size_t(v)] = true;
+  result.remeshed = true;
+  result.origin_face.assign(size_t(rows), -1);
+  result.origin_barycentric = Positions::Zero(rows, 3);
+  result.removed_faces = committed;
+  if (!committed.empty()) {  // rows the trim left in no face
+    std::vector<bool> used(size_t(rows), false), was(size_t(V.rows()), false);
+    for (Eigen::Index t = 0; t < result.faces.rows(); ++t)
+      for (int j = 0; j < 3; ++j) used[size_t(result.faces(t, j))] = true;
+    for (int f : committed)
+      for (int j = 0; j < 3; ++j) was[size_t(F(f, j))] = true;
+    for (int v = 0; v < int(V.rows()); ++v)
+      if (was[size_t(v)] && !used[size_t(v)]) result.unreferenced.push_back(v);
+  }
   return result;
 }
 
 }  // namespace
 
-FairingResult fill_holes(const Positions& V, const Triangles& F,
-                         const std::vector<std::vector<int>>& loops,
-                         const FairingOptions& options, double target_edge_length,
-                         const HoleRule& rule) {
+FillResult fill_holes(const Positions& V, const Triangles& F,
+                      const std::vector<std::vector<int>>& loops, const FairingOptions& options,
+                      double target_edge_length, const HoleRule& rule, Rim rim) {
   if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
     throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
   check_mesh(V, F, "fill_holes");
   const double scale = working_scale(V, F, "fill_holes");
-  if (scale == 1.0) return fill_scaled(V, F, loops, options, target_edge_length, rule, 1.0);
+  if (scale == 1.0) return fill_scaled(V, F, loops, options, target_edge_length, rule, rim, 1.0);
   // Divided and multiplied by a power of two: exact, the fill sees edges about 1 long.
-  FairingResult result =
-      fill_scaled(V / scale, F, loops, options, target_edge_length / scale, rule, scale);
+  FillResult result =
+      fill_scaled(V / scale, F, loops, options, target_edge_length / scale, rule, rim, scale);
   result.vertices *= scale;
   result.vertices.topRows(V.rows()) = V;  // the input's rows, also where V / scale was subnormal
   return result;

@@ -23,6 +23,11 @@ class DirectedEdges {
     return k < 0 ? -1 : third_[k];
   }
   bool has(int a, int b) const { return slot(a, b) >= 0; }
+  /// The triangle (row of F) with the directed edge a -> b, or -1.
+  int triangle(int a, int b) const {
+    const int k = slot(a, b);
+    return k < 0 ? -1 : triangle_[k];
+  }
   /// Calls f(t) for each triangle t (a row of F) with a corner at vertex v.
   template <class Function>
   void for_each_triangle_at(int v, Function f) const {
@@ -95,5 +100,19 @@ struct SplitPatch {
 };
 SplitPatch split_inner_edges(const Positions& V, const Triangles& patch,
                              const std::vector<int>& loop);
+
+/// A hole with its rim trimmed (Rim::Trim): the loop of the hole grown by the removed faces.
+struct TrimmedHole {
+  std::vector<int> loop;     ///< oriented like boundary_loops' loops; the input loop if none removed
+  std::vector<int> removed;  ///< rows of F removed, sorted
+};
+
+/// Trims the rim of one oriented hole loop of a valid F: up to kTrimRounds rounds, each
+/// removing the teeth (triangles with two edges on the current loop) and the triangles at
+/// loop vertices whose remaining triangles span less than kTrimSpikeAngle there; a removal
+/// is made only where the hole stays one simple loop that touches no other border (a vertex
+/// with `other_border` true) and at most as many faces as the loop has vertices are removed.
+TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                     const std::vector<int>& loop, const std::vector<bool>& other_border);
 
 }  // namespace geofair::hole_filling

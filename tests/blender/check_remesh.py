@@ -232,7 +232,7 @@ class CorruptingModule:
 
 FIELDS = (
     "vertices faces free remeshed unreferenced origin_face origin_barycentric converged iterations residual "
-    "iterations_per_level vertices_per_level iteration folds new_folds message stop_reason"
+    "iterations_per_level vertices_per_level iteration folds new_folds message stop_reason holes removed_faces"
 ).split()
 
 
@@ -523,6 +523,89 @@ def check_fill_sphere(addon):
     bpy.data.objects.remove(obj)
 
 
+def ragged_sphere(name):
+    """A triangulated unit sphere (an ico sphere, like a scan) with a hole at its pole whose rim keeps a few
+    teeth (triangles with two boundary edges) with their tips sunk to 70 % of the radius, in Edit Mode with a UV
+    map and nothing selected; and the teeth's face indices."""
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=4, radius=1.0)
+    obj = bpy.context.active_object
+    obj.name = name
+    if not obj.data.uv_layers:  # Blender 3.4's ico sphere has none
+        obj.data.uv_layers.new(name="UVMap")
+    bpy.ops.object.mode_set(mode="EDIT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    uv = bm.loops.layers.uv.active
+    for face in bm.faces:
+        for loop in face.loops:
+            loop[uv].uv = (0.5 + 0.5 * loop.vert.co.x, 0.5 + 0.5 * loop.vert.co.y)
+    pole = np.array([0.0, 0.0, 1.0])
+    doomed = {f for f in bm.faces if np.linalg.norm(np.array(f.calc_center_median()) - pole) < 0.45}
+    # Teeth: doomed triangles with one edge on the rim whose tip has no other face left, apart.
+    teeth, taken = [], set()
+    for face in sorted(doomed, key=lambda f: f.index):
+        rim = [e for e in face.edges if any(g not in doomed for g in e.link_faces)]
+        if len(rim) != 1 or taken & set(face.verts):
+            continue
+        (tip,) = set(face.verts) - set(rim[0].verts)
+        if all(g in doomed for g in tip.link_faces) and len(teeth) < 5:
+            teeth.append(face)
+            taken |= {v for f in face.verts for v in [f]} | {v for e in tip.link_edges for v in e.verts}
+    bmesh.ops.delete(bm, geom=list(doomed - set(teeth)), context="FACES")
+    tips = [v for v in bm.verts if len(v.link_faces) == 1]
+    for vertex in tips:
+        vertex.co *= 0.7
+    for element in (*bm.verts, *bm.edges, *bm.faces):
+        element.select = False
+    bm.faces.ensure_lookup_table()
+    bm.faces.index_update()
+    teeth = sorted(f.index for v in tips for f in v.link_faces)
+    bmesh.update_edit_mesh(obj.data)
+    return obj, teeth
+
+
+def topology(obj):
+    """The polygons' corner vertices, as bytes (edit_state compares positions, UVs and selection)."""
+    obj.update_from_editmode()
+    corners = np.empty(len(obj.data.loops), dtype=np.int32)
+    obj.data.loops.foreach_get("vertex_index", corners)
+    return corners.tobytes()
+
+
+def check_fill_ragged(addon):
+    """A ragged rim (teeth with sunk tips): with Clean Rim (the default) the teeth are removed and named, the
+    hole closed without a folded edge; undo restores the mesh byte for byte; without it every face stays."""
+    obj, teeth = ragged_sphere("Ragged sphere")
+    assert len(teeth) >= 3, teeth
+    bm = bmesh.from_edit_mesh(obj.data)
+    old_faces = {tuple(sorted(v.index for v in f.verts)) for f in bm.faces}
+    bpy.ops.ed.undo_push(message="ragged hole")
+    before, corners = edit_state(obj), topology(obj)
+    # Edge Length given: no second fill at half of it (time), as for the library's test.
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1)
+    last = bpy.context.window_manager.geometric_fairing.last_run
+    assert result == {"FINISHED"}, error
+    bm = bmesh.from_edit_mesh(obj.data)
+    assert open_edges(bm) == 0, f"{open_edges(bm)} edges without two faces after the fill"
+    named = f"after cleaning its rim ({len(teeth)} faces removed: {', '.join(map(str, teeth))})"
+    assert STAND_IN or (named in last.message and "folded" not in last.message), (named, last.message)
+    new_verts = [v for v in bm.verts if v.link_faces and all(f.select for f in v.link_faces)]
+    distance = max(abs(v.co.length - 1.0) for v in new_verts)
+    assert STAND_IN or distance < 2e-3, distance
+    assert STAND_IN or not any(abs(v.co.length - 0.7) < 1e-6 for v in bm.verts), "a sunk tip is left"
+    print(f"ok: Fill Holes with Clean Rim on a ragged rim: max |‖p‖ − r|/r {distance:.2e}: {last.message}")
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before and topology(obj) == corners, "undo did not restore the ragged hole"
+    print("ok: undo restored the ragged hole byte for byte (positions, UVs, selection, faces)")
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1, clean_rim=False)
+    assert result == {"FINISHED"}, error
+    bm = bmesh.from_edit_mesh(obj.data)
+    assert open_edges(bm) == 0 and "removed" not in bpy.context.window_manager.geometric_fairing.last_run.message
+    assert old_faces <= {tuple(sorted(v.index for v in f.verts)) for f in bm.faces}, "a face was removed"
+    print("ok: without Clean Rim every face stays")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+
 def height_grid(name, hole_radius):
     """Blender's Grid (about 20 × 20 quads over [-1, 1]²) lifted to a smooth height field, the faces within
     ``hole_radius`` of its centre deleted, nothing selected, in Edit Mode; and its border's edge count."""
@@ -635,6 +718,7 @@ def main():
         check_fill_errors(addon)
         check_fill_open_mesh(addon)
         check_fill_sphere(addon)
+        check_fill_ragged(addon)
         check_bad_fill(addon)
     if "--remesh" in parts:
         check_bad_results(addon)
