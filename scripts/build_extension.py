@@ -7,14 +7,16 @@ blender_manifest.toml as the CMake build stamped them (build/addon/geometric_fai
 ``cmake --build build`` first), without the compiled module and the OpenMesh libraries,
 plus the wheels (scripts/build_wheel.sh) in wheels/, listed in the manifest as
 ``wheels = [...]``: by default the cp311 wheel (Blender 4.2 to 5.0) and, if built, the
-cp313 one (Blender 5.1 and later), Blender installing the one of its Python, and for each
+cp313 one (Blender 5.1 and later), Blender installing the one of its Python, of Linux
+(scripts/build_wheel.sh) and, where built, Windows (scripts/build_windows.py), and for each
 platform the wheel of their dependency scipy-openblas32 (the OpenBLAS the module loads),
 downloaded from PyPI. Then runs what
 ``blender --command extension build --split-platforms``
 and ``... validate`` run, Blender's bl_pkg command line, here through the bpy module from
 PyPI (no Blender binary of 4.2+ needed), and writes one zip per platform of the wheels,
-dist/geometric_fairing-<version>-<platform>.zip (linux_x64 from this machine's wheels; the
-release workflow adds linux_arm64, macos_arm64, macos_x64 and windows_x64). Blender 4.2+ installs it with
+dist/geometric_fairing-<version>-<platform>.zip (linux_x64 and windows_x64 from this
+machine's wheels; the release workflow adds linux_arm64, macos_arm64 and macos_x64).
+Blender 4.2+ installs it with
 ``blender --command extension install-file -r user_default -e <zip>`` or Preferences ›
 Get Extensions › Install from Disk, and installs the wheel for the add-on.
 """
@@ -193,6 +195,8 @@ def main():
                     f"expected one dist/geofair-{VERSION}-{tag}-*manylinux*.whl, found {found}: scripts/build_wheel.sh"
                 )
             wheels += found
+            if tag != "cp310":  # scripts/build_windows.py's, where built
+                wheels += sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-win_amd64.whl"))
     wheels = [wheel.resolve() for wheel in wheels]
     wheels += dependency_wheels(sorted({blender_platform(wheel) for wheel in wheels}))
     args.out.mkdir(parents=True, exist_ok=True)

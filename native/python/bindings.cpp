@@ -386,8 +386,9 @@ void set_tuning(const py::object& tuning, SolverTuning& t) {
   if (!py::isinstance<py::dict>(tuning))
     throw InvalidInputError("fair: tuning must be a dict or None, got " +
                             std::string(py::str(py::type::of(tuning).attr("__name__"))));
-  for (const auto& [key, value] : tuning.cast<py::dict>()) {
-    const std::string name = py::str(key);
+  for (const auto& item : tuning.cast<py::dict>()) {
+    const std::string name = py::str(item.first);
+    const py::handle value = item.second;  // (a lambda may not capture a structured binding in C++17)
     bool found = false;
     for_each_tuning_field(t, [&](const char* field_name, auto& field, double, double, bool,
                                  bool) {

@@ -47,13 +47,14 @@ void check_options(const FairingOptions& o) {
 // (docs/DESIGN_NOTES.md, "Threads of a solve"). Declared in parallel.h.
 int solve_threads() {
   int runnable = 0, own = 0;
+#ifdef __linux__
   if (FILE* f = std::fopen("/proc/loadavg", "r")) {
     if (std::fscanf(f, "%*f %*f %*f %d", &runnable) != 1) runnable = 0;
     std::fclose(f);
   }
   std::error_code error;
   for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", error)) {
-    if (FILE* f = std::fopen((task.path() / "stat").c_str(), "r")) {
+    if (FILE* f = std::fopen((task.path() / "stat").string().c_str(), "r")) {
       // pid (comm) state ...: the state follows the last ')'.
       char line[512];
       if (std::fgets(line, sizeof line, f))
@@ -62,6 +63,7 @@ int solve_threads() {
       std::fclose(f);
     }
   }
+#endif
   const int busy_elsewhere = std::max(0, runnable - std::max(own, 1));
   return std::clamp(machine_cores() - busy_elsewhere, 1, max_threads());
 }

@@ -101,9 +101,11 @@ def main():
     bpy.ops.object.mode_set(mode="OBJECT")
     before = positions(obj)
     bpy.ops.object.mode_set(mode="EDIT")
-    given = {f.name: getattr(options, f.name) for f in dataclasses.fields(options) if f.name not in ("use_hidden",)}
+    # The operator's properties (OPTION_NAMES); the options only scripts pass are not among them.
     given = {
-        k: addon.properties.property_value(k, v) for k, v in given.items() if k not in ("region_group", "pin_group")
+        name: addon.properties.property_value(name, getattr(options, name))
+        for name in addon.properties.OPTION_NAMES
+        if name not in ("use_hidden", "region_group", "pin_group")
     }
     assert bpy.ops.mesh.geometric_fairing("EXEC_DEFAULT", **given) == {"FINISHED"}
     bpy.ops.object.mode_set(mode="OBJECT")
