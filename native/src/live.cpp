@@ -11,6 +11,8 @@
 #include "region.h"
 #include "sparse_lu.h"
 
+#include <Eigen/SparseCholesky>
+
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -35,6 +37,47 @@ double diagonal(const Positions& X) {
   return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
 }
 
+// The warm start's predictor: the harmonic extension (uniform weights, Δu = 0 at the free
+// vertices) of the fixed vertices' moves since the last frame into the free ones, so that the
+// vertices next to a moving handle move with it instead of being squashed against it (a
+// start within Newton's reach where the last frame alone folds its triangles).
+class DisplacementPredictor {
+ public:
+  explicit DisplacementPredictor(const FairingRegion& region) : region_(region) {
+    const OneRings& rings = region.rings;
+    const int nf = region.n_free;
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < nf; ++i) {
+      entries.emplace_back(i, i, double(rings.valence(i)));
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+        if (rings.ring[k] < nf) entries.emplace_back(i, rings.ring[k], -1.0);
+    }
+    Eigen::SparseMatrix<double> L(nf, nf);
+    L.setFromTriplets(entries.begin(), entries.end());
+    ldlt_.compute(L);
+  }
+
+  // Adds to the free rows of Y the extension of `moves` (#V_B×3, the fixed rows' moves);
+  // false (Y unchanged) where the factorization or the solve failed.
+  bool predict(const Positions& moves, Positions& Y) const {
+    if (ldlt_.info() != Eigen::Success) return false;
+    const OneRings& rings = region_.rings;
+    const int nf = region_.n_free;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
+    for (int i = 0; i < nf; ++i)
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+        if (rings.ring[k] >= nf) rhs.row(i) += moves.row(rings.ring[k] - nf);
+    const Eigen::MatrixXd u = ldlt_.solve(rhs);
+    if (ldlt_.info() != Eigen::Success || !u.allFinite()) return false;
+    Y.topRows(nf) += u;
+    return true;
+  }
+
+ private:
+  const FairingRegion& region_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
 }  // namespace
 
 struct LiveFairing::State {
@@ -49,6 +92,7 @@ struct LiveFairing::State {
   FairingRegion region;     // in the caller's ids (global), its boundary normals the last frame's
   FairingRegion finest;     // the same with region-local ids: what the construction works on
   std::unique_ptr<Construction> construction;  // kept between frames (the warm start)
+  std::unique_ptr<DisplacementPredictor> predictor;
   Positions X;              // the last converged frame's region positions (local ids, / scale)
   bool warm = false;        // X is a converged solution to start from
   FairingResult last;
@@ -102,9 +146,12 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
       construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
   }
   construction->set_boundary(finest.g1_normals, L);
+  // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
+  const int nb = region.n - region.n_free;
   Positions Y = X;
-  Y.bottomRows(region.n - region.n_free) = X0.bottomRows(region.n - region.n_free);
-  phases.emplace_back("boundary data", laps.lap());
+  predictor->predict(X0.bottomRows(nb) - X.bottomRows(nb), Y);
+  Y.bottomRows(nb) = X0.bottomRows(nb);
+  phases.emplace_back("boundary data and predictor", laps.lap());
 
   NewtonRun run;
   run.max_iterations = live.max_warm_steps;
@@ -119,6 +166,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     why = error.what();
     return std::nullopt;
   }
+  laps.lap();  // run_newton's own seconds, below
   phases.emplace_back("warm inner fairness", report.relax_seconds);
   phases.emplace_back("warm Newton steps", report.step_seconds);
   phases.emplace_back("warm polishes", report.polish_seconds);
@@ -167,6 +215,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
   if (options.remesh != Remesh::Off)
     throw InvalidInputError("LiveFairing: remesh must be off");
   if (live.max_warm_steps < 1) throw InvalidInputError("LiveFairing: max_warm_steps must be >= 1");
+  if (live.details) throw InvalidInputError("LiveFairing: details=True is not implemented yet");
   s.F = F;
   s.free = free;
   if (polygon_ids) s.polygon_ids = *polygon_ids;
@@ -185,6 +234,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
   s.construction = std::make_unique<Construction>(
       s.finest, inner_fairness_weights(s.finest, X0, options.inner_fairness), s.options, L);
   s.construction->prepare_newton();  // the symbolic analysis, once
+  s.predictor = std::make_unique<DisplacementPredictor>(s.finest);
   std::vector<bool> used(std::size_t(V.rows()), false);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
@@ -220,7 +270,6 @@ FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_
                             std::to_string(n) + " vertices");
   set_loop_threads(solve_threads());
   const BlasThreads blas_threads(1);
-  ++s.frames;
   Laps laps;
   const Positions W = s.frame_input(V);
   Phases phases;
@@ -230,14 +279,16 @@ FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
       result->phase_seconds = std::move(phases);
       s.last = *result;
+      ++s.frames;
       return std::move(*result);
     }
   }
   // The cold path: fair() of the frame's input, its whole schedule.
-  ++s.cold_frames;
   const double warm_seconds = laps.lap();
   FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, s.options,
                             s.polygon_ids ? &*s.polygon_ids : nullptr);
+  ++s.frames;
+  ++s.cold_frames;
   for (int v = 0; v < int(n); ++v)  // fixed rows bit-identical to V's
     if (!s.free[std::size_t(v)]) cold.vertices.row(v) = V.row(v);
   cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
