@@ -1515,30 +1515,31 @@ geofair.InvalidInputError (a ValueError) if vertices has another number of rows 
 construction, a fixed vertex of a triangle has a non-finite coordinate (the vertex is
 named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
 the cold path raises. Either leaves the state as it was.)doc");
+  // The properties and __repr__ first, with the signatures pybind11 writes; then the
+  // checked functions, whose docstrings carry their own (self first, as a Python method's).
+  cls.def_property_readonly("result", &LiveFairing::result,
+                            "The last converged frame's FairingResult (the constructor's cold "
+                            "fair until then, converged or not).");
+  cls.def_property_readonly("frames", &LiveFairing::frames,
+                            "Updates finished so far (returned, converged or not).");
+  cls.def_property_readonly("cold_frames", &LiveFairing::cold_frames,
+                            "Finished updates that ran the cold path (geofair.fair).");
+  cls.def("__repr__", [](const LiveFairing& live) {
+    return "LiveFairing(frames=" + std::to_string(live.frames()) +
+           ", cold_frames=" + std::to_string(live.cold_frames()) + ")";
+  });
+  static const std::string init_docstring = "__init__(self, " + make.docstring.substr(9);
+  const std::string& update_docstring = update.docstring;
   py::options options;
   options.disable_function_signatures();
   cls.def(py::init([make](const py::args& args, const py::kwargs& kwargs) {
             return make(args, kwargs).cast<std::shared_ptr<LiveFairing>>();
           }),
-          make.docstring.c_str());
-  static const std::string update_docstring = [&] {
-    std::string doc = update.docstring;
-    return doc.replace(0, std::string("update(self").size(), "update($self");
-  }();
+          init_docstring.c_str());
   cls.def(
       "update",
       [update](const py::args& args, const py::kwargs& kwargs) { return update(args, kwargs); },
       update_docstring.c_str());
-  cls.def_property_readonly("result", &LiveFairing::result,
-                            "The last converged frame's FairingResult (the constructor's cold "
-                            "fair until then, converged or not).");
-  cls.def_property_readonly("frames", &LiveFairing::frames, "Updates so far.");
-  cls.def_property_readonly("cold_frames", &LiveFairing::cold_frames,
-                            "Updates that ran the cold path (geofair.fair).");
-  cls.def("__repr__", [](const LiveFairing& live) {
-    return "LiveFairing(frames=" + std::to_string(live.frames()) +
-           ", cold_frames=" + std::to_string(live.cold_frames()) + ")";
-  });
 }
 
 // The OpenBLAS of a build that loads its BLAS at run time (geofair/blas.h): the file that

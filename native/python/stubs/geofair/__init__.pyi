@@ -9,7 +9,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'holes_to_fill', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
+__all__: list[str] = ['FairingResult', 'InvalidInputError', 'LiveFairing', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'holes_to_fill', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -150,6 +150,113 @@ class RemeshedRegion:
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
+        """
+class LiveFairing:
+    """
+    A fairing region prepared once and faired again for new positions of its
+    fixed vertices: live intrinsic modelling, a handle dragged through the surface (beyond the
+    paper; Schneider & Kobbelt 2001, section 8, asks for it).
+    
+        live = geofair.LiveFairing(vertices, faces, free, **fair_options)
+        result = live.update(new_vertices)  # a FairingResult, as geofair.fair's
+    
+    The constructor fairs the region cold (geofair.fair; live.result) and keeps what does not
+    depend on the fixed vertices' positions: the region, its one-rings, the symbolic analysis
+    of the Newton preconditioner, the inner fairness pattern. Each update starts from the last
+    converged frame with the new fixed positions (a warm start): a tangential relaxation
+    towards inner fairness and Newton's method on the region (eq. (12)), preconditioned by the
+    last frame's factorizations where GMRES still converges on them, then fair's polishes. A
+    frame whose warm start does not converge in max_warm_steps Newton steps runs the cold path,
+    geofair.fair's whole schedule, and its .message says so.
+    
+    Fixed vertices inside the region (a handle: fixed vertices with free neighbours, surrounded
+    by the region) are boundary conditions like the outer ones, as in geofair.fair: their
+    positions and, with boundary="g1", their tangent planes, estimated from their own
+    triangles (those without a free vertex) as geofair.boundary_normals does, again from the
+    new positions at every update: a rigid handle turns its tangent planes with it. A handle
+    needs such triangles (two rings of fixed vertices give the estimate its samples), or
+    boundary_normals at each update.
+    
+    A frame's input is its positions of the fixed vertices with the free vertices' positions
+    given to the constructor: update(v) returns the surface of geofair.fair of that input
+    within the tolerance wherever fair converges (the conformal inner fairness weights and the
+    bounding box of the residual's length read the free rows, as fair does).
+    
+    Parameters
+    ----------
+    vertices : (n, 3) float64 array, positions in mesh units.
+    faces : (m, 3) integer array, consistently oriented triangles.
+    free : (n,) bool array, True where a vertex may move.
+    details : False (default): the region is the fair surface itself. True: detail
+        preservation (Kobbelt et al. 1998, Botsch & Kobbelt 2004): the region is split into its
+        own faired base (Δ_B H = 0 with the input's boundary and handle) and the details, the
+        input's offsets from the base in the base's local frames (normal and a tangent from a
+        neighbour edge); every update adds them back onto the new base, so live.result at the
+        start is the input itself.
+    max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
+        the frame runs the cold path.
+    boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
+    tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning :
+        as for geofair.fair; boundary_normals are those of the constructor's vertices (an
+        update estimates them unless given its own); iteration, levels and time_limit apply to
+        the cold solves (the warm start is Newton's method on the region alone).
+    
+    Attributes
+    ----------
+    result : the last converged frame's FairingResult (the constructor's cold fair until then).
+    frames, cold_frames : updates so far, and those that ran the cold path.
+    
+    Raises
+    ------
+    geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
+    geofair.fair, and for max_warm_steps < 1.
+    """
+    def __init__(self, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, details: bool = False, max_warm_steps: typing.SupportsInt | typing.SupportsIndex = 8, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def update(self, vertices: numpy.typing.NDArray[numpy.float64], boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None) -> FairingResult:
+        """
+        Fair the region for new positions of its fixed vertices, starting from the last
+        converged frame (see LiveFairing).
+        
+        Parameters
+        ----------
+        vertices : (n, 3) float64 array, mesh units, n as at construction: the rows of fixed
+            vertices are the frame's positions (the handle's and the surroundings'); the rows of
+            free vertices are not read (any values, NaN too).
+        boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
+            handle's included), or None (default): estimated from vertices as geofair.fair does.
+        
+        Returns
+        -------
+        FairingResult as geofair.fair's for the frame's input: .vertices (n, 3) with the fixed rows
+        bit-identical to vertices; .message says how the frame was solved ("warm start from the
+        last frame (k Newton steps)", or "cold path (fair): the warm start did not converge (...)").
+        A frame that did not converge even on the cold path is returned unconverged, with the
+        reason in .message, and leaves .result and the next warm start at the last converged frame.
+        
+        Raises
+        ------
+        geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
+        construction, a fixed vertex of a triangle has a non-finite coordinate (the vertex is
+        named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
+        the cold path raises. Either leaves the state as it was.
+        """
+    @property
+    def cold_frames(self) -> int:
+        """
+        Finished updates that ran the cold path (geofair.fair).
+        """
+    @property
+    def frames(self) -> int:
+        """
+        Updates finished so far (returned, converged or not).
+        """
+    @property
+    def result(self) -> FairingResult:
+        """
+        The last converged frame's FairingResult (the constructor's cold fair until then, converged or not).
         """
 def boundary_loops(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
