@@ -29,7 +29,10 @@ below the wall time where other processes take the cores), the median Newton ste
 the cold path, frames that did not converge, the largest fold count, the largest radial
 error of the slide; then a cold geofair.fair of every --cold-every-th frame's same input (and
 the last): its median time (s), the ratio of that median to the warm frames' median, and the
-largest distance between update()'s and fair()'s vertices over the region's diameter L.
+largest distance between update()'s and fair()'s vertices over the region's diameter L
+where fair() converged without new folds, and "cold bad": the cold solves that did not (of
+those run). A long slide can fold the cold solve from the frame's input while the warm
+frame, started from the last one, does not fold.
 
     PYTHONPATH=build/python python3 bench/live.py [n_free ...] [--caps irregular,regular,random,icosphere]
         [--handle DEG] [--slide DEG] [--slide-frames N] [--inner uniform|conformal]
@@ -144,14 +147,15 @@ def run(n, kind, args):
                 f"folds {r.folds}{rad_text}{'' if r.converged else '  NOT CONVERGED'}",
                 flush=True,
             )
-    cold_times, distance = [], 0.0
+    cold_times, distance, cold_bad = [], 0.0, 0
     picks = sorted(set(range(args.cold_every - 1, len(frames), args.cold_every)) | {len(frames) - 1})
     for i in picks:
         _, w, n_w = frames[i]
         t = time.perf_counter()
         c = geofair.fair(w, f, free, boundary_normals=n_w, inner_fairness=args.inner)
         cold_times.append(time.perf_counter() - t)
-        if c.converged and results[i].converged:
+        cold_bad += not c.converged or c.new_folds > 0
+        if c.converged and c.new_folds == 0 and results[i].converged:
             L = region_diagonal(w, f, free)
             distance = max(distance, float(np.abs(c.vertices - results[i].vertices).max()) / L)
     ms = np.array(times) * 1000
@@ -161,7 +165,8 @@ def run(n, kind, args):
         f"{kind:9s} {int(free.sum()):6d} {warm_median:8.1f} {np.percentile(ms, 95):8.1f} {ms.max():8.1f} "
         f"{np.median(cpu) * 1000:8.1f} "
         f"{np.median(steps) if steps else float('nan'):5.1f} {cold_paths:4d} {failed:4d} {max(folds):5d} "
-        f"{max(radial):9.1e} {cold_median:7.2f} {cold_median * 1000 / warm_median:7.1f} {distance:9.1e}",
+        f"{max(radial):9.1e} {cold_median:7.2f} {cold_median * 1000 / warm_median:7.1f} {distance:9.1e} "
+        f"{cold_bad}/{len(picks)}",
         flush=True,
     )
     print("  warm phases, median ms: " + ", ".join(f"{k} {np.median(t):.1f}" for k, t in phases.items()))
@@ -186,7 +191,7 @@ def main():
         f"handle {args.handle}°, inner fairness {args.inner}"
     )
     header = "cap          free   med ms   p95 ms   max ms  cpu med steps cold fail folds    radial"
-    header += "  cold s   ratio  |Δ|/L"
+    header += "  cold s   ratio     |Δ|/L cold bad"
     print(header)
     for n in args.sizes:
         for kind in args.caps.split(","):

@@ -191,3 +191,43 @@ def test_g0_handle_on_a_plane_is_the_cold_fair():
     assert cold.converged
     L = region_diagonal(w, s.faces, free)
     assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * L
+
+
+def bumpy(vertices, free, amplitude=0.01):
+    """The free vertices moved along the sphere's normal by small bumps (about 12 per
+    half circle)."""
+    x = vertices.copy()
+    theta = np.arccos(np.clip(vertices[:, 2], -1.0, 1.0))
+    phi = np.arctan2(vertices[:, 1], vertices[:, 0])
+    bump = amplitude * np.sin(12.0 * theta) * np.sin(6.0 * phi)
+    x[free] *= (1.0 + bump[free])[:, None]
+    return x
+
+
+def rms_radial(vertices, free):
+    return float(np.sqrt(np.mean((np.linalg.norm(vertices[free], axis=1) - 1.0) ** 2)))
+
+
+def test_details_ride_on_the_dragged_base(handle_scene):
+    # The base of the bumpy region is the sphere; a slide along it keeps the base, and the
+    # bumps come back in the base's frames: their RMS stays (within 5 %); without details
+    # the region is the fair surface itself and they are gone.
+    v, f, free, handle = handle_scene
+    x = bumpy(v, free)
+    before = rms_radial(x, free)
+    assert before > 3e-3
+    with_details = geofair.LiveFairing(x, f, free, details=True)
+    without = geofair.LiveFairing(x, f, free)
+    assert np.array_equal(with_details.result.vertices, x)  # the first frame is the input
+    same = with_details.update(x)
+    L = region_diagonal(x, f, free)
+    assert same.converged and np.abs(same.vertices - x).max() <= 1e-4 * L
+    for k in range(1, 6):
+        w = x.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        r = with_details.update(w)
+        check_frame(r, w, free)
+        assert r.converged and "cold path" not in r.message, r.message
+        assert abs(rms_radial(r.vertices, free) - before) <= 0.05 * before
+        plain = without.update(w)
+        assert plain.converged and rms_radial(plain.vertices, free) < 1e-4

@@ -1413,8 +1413,8 @@ details : False (default): the region is the fair surface itself. True: detail
     preservation (Kobbelt et al. 1998, Botsch & Kobbelt 2004): the region is split into its
     own faired base (Δ_B H = 0 with the input's boundary and handle) and the details, the
     input's offsets from the base in the base's local frames (normal and a tangent from a
-    neighbour edge); every update adds them back onto the new base, so live.result at the
-    start is the input itself.
+    neighbour edge); every update adds them back onto the new base (its residual and folds
+    are the base's), and live.result at the start is the input itself.
 max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
     the frame runs the cold path.
 boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
@@ -1426,12 +1426,13 @@ tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit
 Attributes
 ----------
 result : the last converged frame's FairingResult (the constructor's cold fair until then).
-frames, cold_frames : updates so far, and those that ran the cold path.
+frames, cold_frames : updates finished so far, and those that ran the cold path.
 
 Raises
 ------
 geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
-geofair.fair, and for max_warm_steps < 1.)doc");
+geofair.fair; InvalidInputError for max_warm_steps < 1; SolverError with details=True where
+the input's base (its cold fair) did not converge.)doc");
   py::class_<LiveFairing, std::shared_ptr<LiveFairing>> cls(m, "LiveFairing",
                                                             class_docstring.c_str());
   const FairingOptions d;

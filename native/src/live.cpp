@@ -78,6 +78,68 @@ class DisplacementPredictor {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
 };
 
+// Detail coding (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the offsets x_i − b_i of a
+// region x from its base b, per free vertex in the base's local frame (n_i, t_i, n_i × t_i),
+// so that a new base b' gets them back in its own frames: x'_i = b'_i + α n'_i + β t'_i +
+// γ n'_i × t'_i. n_i is the area-weighted normal of b's triangles at i, t_i the direction to
+// the first ring neighbour (with a tangential part) projected into the tangent plane.
+class DetailCoding {
+ public:
+  // base, x: #region×3 (local ids); only the free rows are coded.
+  DetailCoding(const FairingRegion& region, const Positions& base, const Positions& x)
+      : region_(region), coefficients_(region.n_free, 3) {
+    const Positions frames = local_frames(base);
+    for (int i = 0; i < region.n_free; ++i) {
+      const Vec3 d = (x.row(i) - base.row(i)).transpose();
+      const Vec3 n = frames.row(2 * i).transpose(), t = frames.row(2 * i + 1).transpose();
+      coefficients_.row(i) << d.dot(n), d.dot(t), d.dot(n.cross(t));
+    }
+  }
+
+  // The free rows of `base` with the details added in its frames.
+  void decode(Positions& base) const {
+    const Positions frames = local_frames(base);
+    for (int i = 0; i < region_.n_free; ++i) {
+      const Vec3 n = frames.row(2 * i).transpose(), t = frames.row(2 * i + 1).transpose();
+      const Eigen::RowVector3d c = coefficients_.row(i);
+      base.row(i) += (c(0) * n + c(1) * t + c(2) * n.cross(t)).transpose();
+    }
+  }
+
+ private:
+  // Rows 2i and 2i + 1: the unit normal and tangent of free vertex i at X (zero where
+  // degenerate: its details are then dropped, not made up).
+  Positions local_frames(const Positions& X) const {
+    const OneRings& rings = region_.rings;
+    Positions normals = Positions::Zero(region_.n, 3);
+    for (Eigen::Index f = 0; f < region_.triangles.rows(); ++f) {
+      const int a = region_.triangles(f, 0), b = region_.triangles(f, 1),
+                c = region_.triangles(f, 2);
+      const Eigen::RowVector3d area = (X.row(b) - X.row(a)).cross(X.row(c) - X.row(a));
+      normals.row(a) += area, normals.row(b) += area, normals.row(c) += area;
+    }
+    Positions frames = Positions::Zero(2 * region_.n_free, 3);
+    for (int i = 0; i < region_.n_free; ++i) {
+      const double length = normals.row(i).norm();
+      if (!(length > 0.0)) continue;
+      const Vec3 n = normals.row(i).transpose() / length;
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
+        const Vec3 e = (X.row(rings.ring[k]) - X.row(i)).transpose();
+        const Vec3 t = e - e.dot(n) * n;
+        if (t.norm() > 1e-3 * e.norm()) {
+          frames.row(2 * i) = n.transpose();
+          frames.row(2 * i + 1) = t.normalized().transpose();
+          break;
+        }
+      }
+    }
+    return frames;
+  }
+
+  const FairingRegion& region_;
+  Positions coefficients_;  // #V_I×3: (α, β, γ), mesh units / scale
+};
+
 }  // namespace
 
 struct LiveFairing::State {
@@ -93,7 +155,9 @@ struct LiveFairing::State {
   FairingRegion finest;     // the same with region-local ids: what the construction works on
   std::unique_ptr<Construction> construction;  // kept between frames (the warm start)
   std::unique_ptr<DisplacementPredictor> predictor;
-  Positions X;              // the last converged frame's region positions (local ids, / scale)
+  std::unique_ptr<DetailCoding> details;  // details=True: the input's details over its base
+  Positions X;              // the last converged frame's region positions (local ids, / scale);
+                            // with details its base
   bool warm = false;        // X is a converged solution to start from
   FairingResult last;
   int frames = 0, cold_frames = 0;
@@ -105,17 +169,21 @@ struct LiveFairing::State {
     return W;
   }
 
-  // The caller's positions of the result: V's rows, the free rows from the region's Y.
-  Positions caller_positions(const Positions& V, const Positions& Y) const {
+  // The caller's positions of the result: V's rows, the free rows from the region's Y (with
+  // details, Y's base with the details added).
+  Positions caller_positions(const Positions& V, Positions Y) const {
+    if (details) details->decode(Y);
     Positions out = V;
     for (int i = 0; i < region.n_free; ++i) out.row(region.global[i]) = scale * Y.row(i);
     return out;
   }
 
-  // The warm start adopts a converged result (caller's positions).
-  void adopt(const FairingResult& result) {
+  // The warm start adopts a converged cold result (caller's positions; with details its base,
+  // which gets them here).
+  void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
     warm = true;
+    if (details) result.vertices = caller_positions(result.vertices, X);
     last = result;
   }
 
@@ -215,7 +283,6 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
   if (options.remesh != Remesh::Off)
     throw InvalidInputError("LiveFairing: remesh must be off");
   if (live.max_warm_steps < 1) throw InvalidInputError("LiveFairing: max_warm_steps must be >= 1");
-  if (live.details) throw InvalidInputError("LiveFairing: details=True is not implemented yet");
   s.F = F;
   s.free = free;
   if (polygon_ids) s.polygon_ids = *polygon_ids;
@@ -240,6 +307,18 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
     for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (used[std::size_t(v)] && !free[std::size_t(v)]) s.used_fixed.push_back(int(v));
+  if (live.details) {
+    // The input's details over its base (the cold fair): the first frame is the input.
+    if (!first.converged)
+      throw SolverError("LiveFairing: details=True needs the input's base, and its fair did not "
+                        "converge (" + first.message + ")");
+    s.X = gather(first.vertices / s.scale, s.region.global);
+    s.details = std::make_unique<DetailCoding>(s.finest, s.X, X0);
+    s.warm = true;
+    first.vertices = V;
+    s.last = std::move(first);
+    return;
+  }
   if (first.converged)
     s.adopt(first);
   else
@@ -295,7 +374,10 @@ FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_
   if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
   phases.insert(phases.end(), cold.phase_seconds.begin(), cold.phase_seconds.end());
   cold.phase_seconds = std::move(phases);
-  if (cold.converged) s.adopt(cold);
+  if (cold.converged)
+    s.adopt(cold);
+  else if (s.details)
+    cold.vertices = s.caller_positions(cold.vertices, gather(cold.vertices / s.scale, s.region.global));
   return cold;
 }
 

@@ -16,9 +16,11 @@ struct LiveOptions {
   /// the frame falls back to the cold path; >= 1.
   int max_warm_steps = 8;
   /// Detail preservation (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the region is split
-  /// into its own faired base (Δ_B H = 0 with the input's boundary and handle) and the
-  /// details, the input's offsets from that base in the base's local frames; every frame
-  /// adds them back onto the new base. False: the region is the fair surface itself.
+  /// into its own faired base (Δ_B H = 0 with the input's boundary and handle: the
+  /// constructor's cold fair) and the details, the input's offsets from that base per free
+  /// vertex in the base's local frame (n_i the area-weighted normal, t_i the direction to a
+  /// ring neighbour projected into the tangent plane, n_i × t_i); every frame adds them
+  /// back onto the new base in its frames. False: the region is the fair surface itself.
   bool details = false;
 };
 
@@ -47,11 +49,12 @@ struct LiveOptions {
 /// same surface as fair() of that input, within the tolerance, wherever fair() converges.
 class LiveFairing {
  public:
-  /// Prepares the region of (V, F, free) and fairs it cold (fair(); result()).
+  /// Prepares the region of (V, F, free) and fairs it cold (fair(); result(), with
+  /// live.details the input V itself, its details coded over that fair base).
   /// \param V, F, free, boundary_normals, options, polygon_ids  as for fair (fairing.h);
   ///        options.remesh must be Off; options.progress is not called.
   /// \throw InvalidInputError as fair, or for options.remesh or live.max_warm_steps out of
-  ///        range; SolverError as fair.
+  ///        range; SolverError as fair, or with live.details where the base did not converge.
   LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
               const Positions* boundary_normals, const FairingOptions& options,
               const LiveOptions& live = {}, const std::vector<int>* polygon_ids = nullptr);
@@ -65,7 +68,8 @@ class LiveFairing {
   /// \param boundary_normals  #V×3 unit normals read at the G1 boundary vertices (handle
   ///           included), or nullptr: estimated from V as fair does
   /// \return the frame's FairingResult as fair's (rows of fixed vertices bit-identical to
-  ///         V); a frame that did not converge (the cold path failed too) is returned
+  ///         V; with details the base's fair surface plus the details, the residual and
+  ///         folds the base's); a frame that did not converge (the cold path failed too) is returned
   ///         unconverged, with the reason in message, and leaves result() and the next
   ///         warm start at the last converged frame
   /// \throw InvalidInputError if V has another number of rows than the construction's, a

@@ -191,8 +191,8 @@ class LiveFairing:
         preservation (Kobbelt et al. 1998, Botsch & Kobbelt 2004): the region is split into its
         own faired base (Δ_B H = 0 with the input's boundary and handle) and the details, the
         input's offsets from the base in the base's local frames (normal and a tangent from a
-        neighbour edge); every update adds them back onto the new base, so live.result at the
-        start is the input itself.
+        neighbour edge); every update adds them back onto the new base (its residual and folds
+        are the base's), and live.result at the start is the input itself.
     max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
         the frame runs the cold path.
     boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
@@ -204,12 +204,13 @@ class LiveFairing:
     Attributes
     ----------
     result : the last converged frame's FairingResult (the constructor's cold fair until then).
-    frames, cold_frames : updates so far, and those that ran the cold path.
+    frames, cold_frames : updates finished so far, and those that ran the cold path.
     
     Raises
     ------
     geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
-    geofair.fair, and for max_warm_steps < 1.
+    geofair.fair; InvalidInputError for max_warm_steps < 1; SolverError with details=True where
+    the input's base (its cold fair) did not converge.
     """
     def __init__(self, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, details: bool = False, max_warm_steps: typing.SupportsInt | typing.SupportsIndex = 8, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> None:
         ...
