@@ -65,6 +65,10 @@ def test_update_is_the_cold_fair_of_its_input(handle_scene, inner):
     assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * L
     # The surface moved with the handle: the free vertices next to it rose.
     assert r.vertices[free, 2].max() > v[free, 2].max() + 0.1
+    held = live.result  # a copy: the next frame does not change it
+    live.update(lifted(v, handle, 0.24))
+    assert np.array_equal(held.vertices, r.vertices)
+    assert not np.array_equal(live.result.vertices, r.vertices)
 
 
 def test_update_of_free_rows_is_not_read(handle_scene):

@@ -1518,9 +1518,11 @@ named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeE
 the cold path raises. Either leaves the state as it was.)doc");
   // The properties and __repr__ first, with the signatures pybind11 writes; then the
   // checked functions, whose docstrings carry their own (self first, as a Python method's).
-  cls.def_property_readonly("result", &LiveFairing::result,
-                            "The last converged frame's FairingResult (the constructor's cold "
-                            "fair until then, converged or not).");
+  // A copy: a reference into the object would change under the caller with the next update.
+  cls.def_property_readonly(
+      "result", [](const LiveFairing& live) { return live.result(); },
+      "A copy of the last converged frame's FairingResult (the constructor's cold fair until "
+      "then, converged or not).");
   cls.def_property_readonly("frames", &LiveFairing::frames,
                             "Updates finished so far (returned, converged or not).");
   cls.def_property_readonly("cold_frames", &LiveFairing::cold_frames,

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -161,6 +162,7 @@ struct LiveFairing::State {
   bool warm = false;        // X is a converged solution to start from
   FairingResult last;
   int frames = 0, cold_frames = 0;
+  mutable std::mutex mutex;  // update() and result() take turns
 
   // The frame's input (/ scale): V's fixed rows, the original free rows.
   Positions frame_input(const Positions& V) const {
@@ -329,12 +331,22 @@ LiveFairing::~LiveFairing() = default;
 LiveFairing::LiveFairing(LiveFairing&&) noexcept = default;
 LiveFairing& LiveFairing::operator=(LiveFairing&&) noexcept = default;
 
-const FairingResult& LiveFairing::result() const { return state_->last; }
-int LiveFairing::frames() const { return state_->frames; }
-int LiveFairing::cold_frames() const { return state_->cold_frames; }
+FairingResult LiveFairing::result() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->last;
+}
+int LiveFairing::frames() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->frames;
+}
+int LiveFairing::cold_frames() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->cold_frames;
+}
 
 FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_normals) {
   State& s = *state_;
+  const std::lock_guard<std::mutex> lock(s.mutex);
   const Eigen::Index n = Eigen::Index(s.free.size());
   if (V.rows() != n)
     throw InvalidInputError(std::string(kUpdate) + ": vertices has " + std::to_string(V.rows()) +

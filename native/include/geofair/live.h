@@ -43,6 +43,8 @@ struct LiveOptions {
 /// rings of fixed vertices at its centre give the quadric fit its samples), or
 /// boundary_normals.
 ///
+/// update() and result() may be called from several threads: they take turns.
+///
 /// Each frame's input is the frame's positions of the fixed vertices with the free
 /// vertices' positions of the construction's V (which the conformal inner fairness weights
 /// and the bounding box of the residual's length read, as fair does): update() returns the
@@ -78,8 +80,9 @@ class LiveFairing {
   ///        state unchanged.
   FairingResult update(const Positions& V, const Positions* boundary_normals = nullptr);
 
-  /// The last converged frame (the construction's cold fair until then, converged or not).
-  const FairingResult& result() const;
+  /// A copy of the last converged frame (the construction's cold fair until then, converged
+  /// or not).
+  FairingResult result() const;
 
   /// Frames since the construction: all of them, and those that ran the cold path.
   int frames() const;

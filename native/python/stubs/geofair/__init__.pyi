@@ -257,7 +257,7 @@ class LiveFairing:
     @property
     def result(self) -> FairingResult:
         """
-        The last converged frame's FairingResult (the constructor's cold fair until then, converged or not).
+        A copy of the last converged frame's FairingResult (the constructor's cold fair until then, converged or not).
         """
 def boundary_loops(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]]) -> list[numpy.typing.NDArray[numpy.int32]]:
     """
