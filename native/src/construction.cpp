@@ -151,7 +151,8 @@ bool Construction::relax_before_steps(Positions& X, bool warm) {
   // inner fairness turning planes made the base level of a large hierarchy stall.
   // Long moves are put back onto the surface of X and its normals as the relaxations
   // found them (the projection is set up the first time it is needed). A warm start is near
-  // inner fairness: turning planes and the last factorization from the first solve on.
+  // inner fairness: turning planes and the last factorization from the first solve on, and
+  // one solve unless the stretch limit cut it short (the polish at convergence follows).
   const NewtonTuning& newton = options_.tuning.newton;
   Positions surface, surface_normals;
   std::unique_ptr<SurfaceProjection> projection;
@@ -170,7 +171,7 @@ bool Construction::relax_before_steps(Positions& X, bool warm) {
                                                          std::move(surface_normals));
       for (int i = 0; i < region_.n_free; ++i) projection->project(i, X);
     }
-    if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
+    if (scale <= 0.0 || ((p > 0 || warm) && scale == 1.0)) break;
   }
   return true;
 }

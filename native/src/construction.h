@@ -40,7 +40,8 @@ struct NewtonRun {
   double crawl_merit = 0.0;
   /// X the solution of nearby boundary data, with the new data's fixed rows (LiveFairing's
   /// warm start): the tangential relaxations before the steps turn their planes from the
-  /// first one on and are preconditioned by the factorization of the last call's.
+  /// first one on, are preconditioned by the factorization of the last call's, and stop after
+  /// the first that the stretch limit did not cut short.
   bool warm = false;
 };
 
