@@ -28,12 +28,14 @@ struct LiveOptions {
 /// (beyond the paper; its section 8 asks for interactive modelling with interior
 /// constraints): the connectivity, the region and its one-rings, the symbolic analysis of
 /// the Newton preconditioner and the inner fairness pattern are kept, and each frame starts
-/// from the last frame's solution with the new fixed positions (a warm start): the
+/// from the last frame's solution (a warm start), its free vertices moved with the fixed
+/// ones by the harmonic extension of their moves (uniform weights, factorized once): one
 /// tangential relaxation towards inner fairness and Newton's method on the finest level
 /// (Construction::run_newton), both preconditioned by the factorizations of the last frame
 /// where GMRES still converges on them, then the polishes of fair. A frame whose warm start
 /// does not converge in LiveOptions::max_warm_steps Newton steps (or fails) runs the cold
-/// path, fair() with the whole schedule, and says so in FairingResult::message.
+/// path, fair() with the whole schedule (bounded by options.time_limit, as fair), and says
+/// so in FairingResult::message. Design and measurements: docs/LIVE.md.
 ///
 /// Fixed vertices inside the region (a handle) are boundary conditions like the outer ones
 /// (fair does the same): their positions and, with G1, the tangent planes estimated from
