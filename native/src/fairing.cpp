@@ -44,7 +44,7 @@ void check_options(const FairingOptions& o) {
 // now (the runnable tasks of /proc/loadavg, not counting this process's own; none known
 // where there is no /proc). On a busy machine the threads of a parallel loop wait for each
 // other at every barrier, so a core taken by another process is left to it
-// (docs/DESIGN_NOTES.md, "Threads of a solve"). Declared in parallel.h.
+// (docs/DESIGN_NOTES.md, "Threads"). Declared in parallel.h.
 int solve_threads() {
   int runnable = 0, own = 0;
 #ifdef __linux__

@@ -58,7 +58,7 @@ void prolongate(const FairingRegion& level, const VertexSplits& splits,
 /// none of those in its ring, the mean of its ring's rows. Columns: the coarser level's free
 /// vertices, in increasing level-local id. The coarse space of the finest level's tangential
 /// solves (TangentialSolver::set_coarse_space); the replayed splits of prolongate
-/// interpolate too, but their rows fill up (docs/DESIGN_NOTES.md, "coarse_space"). The
+/// interpolate too, but their rows fill up (docs/DESIGN_NOTES.md, "Multigrid cycles"). The
 /// levels are those of the progressive mesh of section 7.4.
 /// \param level    the finer level's region
 /// \param splits   its vertex splits, in level-local ids

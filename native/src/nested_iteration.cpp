@@ -311,7 +311,7 @@ class NewtonLevels final : public LevelIteration {
     // The finest level's construction does not depend on the hierarchy: it is set up, with
     // the symbolic analysis of its Newton preconditioner, on another thread while this one
     // decimates and solves the coarser levels, which take longer (docs/DESIGN_NOTES.md,
-    // "Threads of a solve").
+    // "Threads").
     finest_ = std::async(std::launch::async, [&p] {
       auto construction =
           std::make_unique<Construction>(p.finest_level, p.lambda_finest, p.options, p.L);

@@ -30,7 +30,7 @@ int stored_entry(const Sparse& A, int outer, int inner) {
 /// fair() runs on one BLAS thread and gives OpenBLAS the solve's threads only for the
 /// factorizations of at least kThreadedBlasMin unknowns (PatternLU::factorize, the linear
 /// initial mesh): OpenBLAS's threads wait for work by spinning, which takes the cores from
-/// the OpenMP loops between the BLAS calls (docs/DESIGN_NOTES.md, "BLAS threads").
+/// the OpenMP loops between the BLAS calls (docs/DESIGN_NOTES.md, "Threads").
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);

@@ -101,13 +101,13 @@ struct TangentialTuning {
   /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
   /// blocks' values from the start of the sweep, one thread per block above kParallelMin
   /// unknowns. Fixed, so results do not depend on the thread count (docs/DESIGN_NOTES.md,
-  /// "TangentialTuning::two_grid_blocks").
+  /// "Tangential solves").
   int two_grid_blocks = 2;
   /// GMRES's iteration limit on the two-grid preconditioner; beyond it the system is
   /// factorized.
   int two_grid_iterations = 40;
   /// ... and its relative residual: a solve's error only leaves the next polish a little
-  /// more to do (docs/DESIGN_NOTES.md, "TangentialTuning::two_grid_tolerance").
+  /// more to do (docs/DESIGN_NOTES.md, "Tangential solves").
   double two_grid_tolerance = 1e-3;
 };
 
@@ -122,11 +122,11 @@ struct MultigridTuning {
   /// ... and after r undone in a row paused for 2^(r−1) − 1 cycles, at most this many.
   int max_skip = 15;
   /// Smoothing iterations before and after each coarse-grid correction
-  /// (docs/DESIGN_NOTES.md, "MultigridTuning::smoothing").
+  /// (docs/DESIGN_NOTES.md, "Multigrid cycles").
   int smoothing = 10;
   /// The base level of a cycle iterates until its residual fell by this factor: a cheaper
-  /// base solve needs more cycles and costs more (docs/DESIGN_NOTES.md, "The cycles'
-  /// base") ...
+  /// base solve needs more cycles and costs more (docs/DESIGN_NOTES.md, "Multigrid
+  /// cycles") ...
   double base_reduction = 0.05;
   /// ... or this many iterations.
   int base_iterations = 200;

@@ -88,7 +88,7 @@ enum class BoundaryNormalEstimate {
 /// I + ℓ_i D_i), Newton's linearization. ℓ_i D_i is of order (h·κ)²/2, as small as the
 /// smallest eigenvalues of the fixed-plane system on a smooth surface: without it repeated
 /// solves reduce the distance to inner fairness only by a constant factor, with it
-/// quadratically (docs/DESIGN_NOTES.md, "Turning tangent planes").
+/// quadratically (docs/DESIGN_NOTES.md, "Tangential solves").
 enum class TangentPlanes { Fixed, Turning };
 
 /// Whether fair() replaces the region's triangles by an isotropic remesh (remesh_region,
