@@ -59,6 +59,8 @@ PARAMETER_TYPES = {
     "path": "str",
     "colors": "numpy.typing.NDArray[numpy.uint8] | None",
     "texcoords": f"{FLOAT64_ARRAY} | None",
+    "details": "bool",
+    "max_warm_steps": INT,
 }
 # mean_curvature's normals may be None (then estimated); relax_inner_fairness' may not.
 PARAMETER_TYPES_OF = {("mean_curvature", "normals"): f"{FLOAT64_ARRAY} | None"}
@@ -79,6 +81,9 @@ RETURN_TYPES = {
     "remesh_region": "RemeshedRegion",
     "write_mesh": "None",
 }
+# Methods of the classes, by (class, method): their return types. __init__'s parameters are
+# those of the class (its signature, without self).
+METHOD_RETURN_TYPES = {("LiveFairing", "__init__"): "None", ("LiveFairing", "update"): "FairingResult"}
 IMPORTS = ("collections.abc", "numpy", "numpy.typing", "scipy.sparse", "typing")
 
 
@@ -127,16 +132,27 @@ def annotation(function, parameter):
     raise LookupError(f"no stub type for {function.__name__}({parameter.name})")
 
 
-def typed_def(function):
-    """The ``def`` line of ``function`` with the types of its parameters and result."""
-    parts, star = [], False
+def typed_def(function, name=None, returns=None, method=False):
+    """The ``def`` line of ``function`` with the types of its parameters and result; a
+    method's (``name``, ``returns``) with self first, untyped."""
+    parts, star = (["self"] if method else []), False
     for p in inspect.signature(function).parameters.values():
+        if method and p.name == "self":
+            continue
         if p.kind is inspect.Parameter.KEYWORD_ONLY and not star:
             parts.append("*")
             star = True
         part = f"{p.name}: {annotation(function, p)}"
         parts.append(part if p.default is inspect.Parameter.empty else f"{part} = {p.default!r}")
-    return f"def {function.__name__}({', '.join(parts)}) -> {RETURN_TYPES[function.__name__]}:"
+    name = name or function.__name__
+    returns = returns or RETURN_TYPES[name]
+    return f"def {name}({', '.join(parts)}) -> {returns}:"
+
+
+def typed_method(cls, name):
+    """The ``def`` line of method ``name`` of class ``cls`` (METHOD_RETURN_TYPES)."""
+    function = cls if name == "__init__" else getattr(cls, name)
+    return typed_def(function, name, METHOD_RETURN_TYPES[(cls.__name__, name)], method=True)
 
 
 def generate():
@@ -169,6 +185,11 @@ def generate():
 
     text, count = re.subn(r"^def (\w+)\(.*\):$", typed, text, flags=re.MULTILINE)
     assert count == len(RETURN_TYPES), f"{count} functions, {len(RETURN_TYPES)} return types"
+    for cls_name, method in METHOD_RETURN_TYPES:
+        head = re.compile(rf"^(class {cls_name}:\n(?:(?!class ).*\n)*?)    def {method}\(.*\):$", re.MULTILINE)
+        line = "    " + typed_method(getattr(geofair, cls_name), method)
+        text, count = head.subn(lambda m, line=line: m.group(1) + line, text)
+        assert count == 1, f"no def {method} in class {cls_name}"
     # Properties that return a bool array (pybind11-stubgen cannot name numpy's bool).
     text = text.replace("numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]", BOOL_ARRAY)
     imports = re.compile(r"^import [\w.]+\n", re.MULTILINE)

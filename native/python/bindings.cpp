@@ -5,6 +5,7 @@
 #include "geofair/fairing.h"
 #include "geofair/hole_filling.h"
 #include "geofair/mesh_file.h"
+#include "geofair/live.h"
 #include "geofair/tuning.h"
 #include "geofair/types.h"
 
@@ -284,21 +285,40 @@ class Signature {
 // Defines geofair.<name>(...) = f as m.def(name, f, extra...) would, `extra` being py::arg,
 // py::arg_v, py::kw_only and the docstring: pybind11 converts the arguments as it would, after
 // the checks of Signature, and CPython reads the signature from the docstring's first line.
+// f as pybind11 converts its arguments (`inner`), the Signature that checks a call first, and
+// the docstring whose first line CPython reads as the text signature; `name` is the function's
+// name in messages, `signature_name` the one of the text signature ("__init__" for a class's).
+struct CheckedFunction {
+  std::shared_ptr<Signature> signature;
+  py::object inner;
+  std::string docstring;
+
+  py::object operator()(const py::args& args, const py::kwargs& kwargs) const {
+    return signature->call(inner, args, kwargs);
+  }
+};
+
 template <class Function, class... Extra>
-void def_checked(py::module_& m, const char* name, Function&& f, const Extra&... extra) {
+CheckedFunction checked_function(const char* name, const char* signature_name, Function&& f,
+                                 const Extra&... extra) {
   auto signature = std::make_shared<Signature>(name);
   (signature->add(extra), ...);
   signature->set_types(ParameterTypes<std::decay_t<Function>>::get());
   const py::object inner = py::cpp_function(std::forward<Function>(f), py::name(name), extra...);
-  const std::string docstring = name + signature->text() + "\n--\n\n" + signature->doc();
+  std::string docstring = signature_name + signature->text() + "\n--\n\n" + signature->doc();
+  return {std::move(signature), inner, std::move(docstring)};
+}
+
+template <class Function, class... Extra>
+void def_checked(py::module_& m, const char* name, Function&& f, const Extra&... extra) {
+  const CheckedFunction checked =
+      checked_function(name, name, std::forward<Function>(f), extra...);
   py::options options;
   options.disable_function_signatures();
   m.def(
       name,
-      [signature, inner](const py::args& args, const py::kwargs& kwargs) {
-        return signature->call(inner, args, kwargs);
-      },
-      docstring.c_str());
+      [checked](const py::args& args, const py::kwargs& kwargs) { return checked(args, kwargs); },
+      checked.docstring.c_str());
 }
 
 // The Python names of the options' values, one table per enum: parse() reads them, name()
@@ -1547,6 +1567,178 @@ geofair.InvalidInputError (a ValueError) for invalid input (shapes, indices, no 
 border, a region that is not a consistently oriented 2-manifold, invalid options).)doc");
 }
 
+// geofair.LiveFairing: a region prepared once, faired again per frame.
+void bind_live(py::module_& m) {
+  static const std::string class_docstring = fair_doc(R"doc(A fairing region prepared once and faired again for new positions of its
+fixed vertices: live intrinsic modelling, a handle dragged through the surface (beyond the
+paper; Schneider & Kobbelt 2001, section 8, asks for it).
+
+    live = geofair.LiveFairing(vertices, faces, free, **fair_options)
+    result = live.update(new_vertices)  # a FairingResult, as geofair.fair's
+
+The constructor fairs the region cold (geofair.fair; live.result) and keeps what does not
+depend on the fixed vertices' positions: the region, its one-rings, the symbolic analysis
+of the Newton preconditioner, the inner fairness pattern. Each update starts from the last
+converged frame with the new fixed positions (a warm start): a tangential relaxation
+towards inner fairness and Newton's method on the region (eq. (12)), preconditioned by the
+last frame's factorizations where GMRES still converges on them, then fair's polishes. A
+frame whose warm start does not converge in max_warm_steps Newton steps runs the cold path,
+geofair.fair's whole schedule, and its .message says so.
+
+Fixed vertices inside the region (a handle: fixed vertices with free neighbours, surrounded
+by the region) are boundary conditions like the outer ones, as in geofair.fair: their
+positions and, with boundary="g1", their tangent planes, estimated from their own
+triangles (those without a free vertex) as geofair.boundary_normals does, again from the
+new positions at every update: a rigid handle turns its tangent planes with it. A handle
+needs such triangles (two rings of fixed vertices give the estimate its samples), or
+boundary_normals at each update.
+
+A frame's input is its positions of the fixed vertices with the free vertices' positions
+given to the constructor: update(v) returns the surface of geofair.fair of that input
+within the tolerance wherever fair converges (the conformal inner fairness weights and the
+bounding box of the residual's length read the free rows, as fair does).
+
+Parameters
+----------
+vertices : (n, 3) float64 array, positions in mesh units.
+faces : (m, 3) integer array, consistently oriented triangles.
+free : (n,) bool array, True where a vertex may move.
+details : False (default): the region is the fair surface itself. True: detail
+    preservation (Kobbelt et al. 1998, Botsch & Kobbelt 2004): the region is split into its
+    own faired base (Δ_B H = 0 with the input's boundary and handle) and the details, the
+    input's offsets from the base in the base's local frames (normal and a tangent from a
+    neighbour edge); every update adds them back onto the new base (its residual and folds
+    are the base's), and live.result at the start is the input itself.
+max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
+    the frame runs the cold path.
+boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
+tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning :
+    as for geofair.fair; boundary_normals are those of the constructor's vertices (an
+    update estimates them unless given its own); iteration, levels and time_limit apply to
+    the cold solves (the warm start is Newton's method on the region alone).
+
+Attributes
+----------
+result : the last converged frame's FairingResult (the constructor's cold fair until then).
+frames, cold_frames : updates finished so far, and those that ran the cold path.
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
+geofair.fair; InvalidInputError for max_warm_steps < 1; SolverError with details=True where
+the input's base (its cold fair) did not converge.)doc");
+  py::class_<LiveFairing, std::shared_ptr<LiveFairing>> cls(m, "LiveFairing",
+                                                            class_docstring.c_str());
+  const FairingOptions d;
+  const LiveOptions live_defaults;
+  const CheckedFunction make = checked_function(
+      "LiveFairing", "__init__",
+      [](const py::object& vertices, const py::object& faces, const py::object& free,
+         bool details, int max_warm_steps, const std::string& boundary,
+         const py::object& boundary_normals, const py::object& polygon_ids,
+         const std::string& inner_fairness, const std::string& outer_fairness,
+         const std::string& normal_weighting, double tolerance, int max_iterations,
+         double damping, int cg_iterations, int levels, const std::string& iteration,
+         const py::object& time_limit, const py::object& tuning) {
+        const Positions V = to_positions(vertices, "vertices");
+        const Triangles F = to_triangles(faces, "LiveFairing", V.rows());
+        const std::vector<bool> mask = to_mask(free, V.rows());
+        std::optional<std::vector<int>> polygons;
+        if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
+        const FairingOptions options = fairing_options(
+            boundary, inner_fairness, outer_fairness, normal_weighting, tolerance,
+            max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning,
+            "LiveFairing");
+        std::optional<Positions> normals;
+        if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
+          normals = to_positions(boundary_normals, "boundary_normals");
+          if (normals->rows() != V.rows())
+            throw InvalidInputError("boundary_normals must have the shape of vertices " +
+                                    std::to_string(V.rows()) + "×3");
+        }
+        LiveOptions live;
+        live.details = details;
+        live.max_warm_steps = max_warm_steps;
+        py::gil_scoped_release release;
+        return std::make_shared<LiveFairing>(V, F, mask, normals ? &*normals : nullptr, options,
+                                             live, polygons ? &*polygons : nullptr);
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
+      py::arg("details") = live_defaults.details,
+      py::arg("max_warm_steps") = live_defaults.max_warm_steps,
+      py::arg("boundary") = name(d.boundary, kBoundaryNames),
+      py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
+      py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
+      py::arg("outer_fairness") = name(d.outer_fairness, kOuterFairnessNames),
+      py::arg("normal_weighting") = name(d.normal_weighting, kNormalWeightingNames),
+      py::arg("tolerance") = d.tolerance, py::arg("max_iterations") = d.max_iterations,
+      py::arg("damping") = d.damping, py::arg("cg_iterations") = d.cg_iterations,
+      py::arg("levels") = d.levels, py::arg("iteration") = name(d.iteration, kIterationNames),
+      py::arg("time_limit") = py::none(), py::arg("tuning") = py::none(), "");
+  const CheckedFunction update = checked_function(
+      "LiveFairing.update", "update",
+      [](LiveFairing& self, const py::object& vertices, const py::object& boundary_normals) {
+        const Positions V = to_positions(vertices, "vertices");
+        std::optional<Positions> normals;
+        if (!boundary_normals.is_none()) normals = to_positions(boundary_normals, "boundary_normals");
+        py::gil_scoped_release release;
+        return self.update(V, normals ? &*normals : nullptr);
+      },
+      py::arg("self"), py::arg("vertices"), py::arg("boundary_normals") = py::none(),
+      R"doc(Fair the region for new positions of its fixed vertices, starting from the last
+converged frame (see LiveFairing).
+
+Parameters
+----------
+vertices : (n, 3) float64 array, mesh units, n as at construction: the rows of fixed
+    vertices are the frame's positions (the handle's and the surroundings'); the rows of
+    free vertices are not read (any values, NaN too).
+boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
+    handle's included), or None (default): estimated from vertices as geofair.fair does.
+
+Returns
+-------
+FairingResult as geofair.fair's for the frame's input: .vertices (n, 3) with the fixed rows
+bit-identical to vertices; .message says how the frame was solved ("warm start from the
+last frame (k Newton steps)", or "cold path (fair): the warm start did not converge (...)").
+A frame that did not converge even on the cold path is returned unconverged, with the
+reason in .message, and leaves .result and the next warm start at the last converged frame.
+
+Raises
+------
+geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
+construction, a fixed vertex of a triangle has a non-finite coordinate (the vertex is
+named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
+the cold path raises. Either leaves the state as it was.)doc");
+  // The properties and __repr__ first, with the signatures pybind11 writes; then the
+  // checked functions, whose docstrings carry their own (self first, as a Python method's).
+  // A copy: a reference into the object would change under the caller with the next update.
+  cls.def_property_readonly(
+      "result", [](const LiveFairing& live) { return live.result(); },
+      "A copy of the last converged frame's FairingResult (the constructor's cold fair until "
+      "then, converged or not).");
+  cls.def_property_readonly("frames", &LiveFairing::frames,
+                            "Updates finished so far (returned, converged or not).");
+  cls.def_property_readonly("cold_frames", &LiveFairing::cold_frames,
+                            "Finished updates that ran the cold path (geofair.fair).");
+  cls.def("__repr__", [](const LiveFairing& live) {
+    return "LiveFairing(frames=" + std::to_string(live.frames()) +
+           ", cold_frames=" + std::to_string(live.cold_frames()) + ")";
+  });
+  static const std::string init_docstring = "__init__(self, " + make.docstring.substr(9);
+  const std::string& update_docstring = update.docstring;
+  py::options options;
+  options.disable_function_signatures();
+  cls.def(py::init([make](const py::args& args, const py::kwargs& kwargs) {
+            return make(args, kwargs).cast<std::shared_ptr<LiveFairing>>();
+          }),
+          init_docstring.c_str());
+  cls.def(
+      "update",
+      [update](const py::args& args, const py::kwargs& kwargs) { return update(args, kwargs); },
+      update_docstring.c_str());
+}
+
 // The OpenBLAS of a build that loads its BLAS at run time (geofair/blas.h): the file that
 // the environment variable GEOFAIR_BLAS names (the legacy add-on sets it to the copy beside
 // the module), else that of PyPI's scipy-openblas32, a dependency of the wheel.
@@ -1600,4 +1792,5 @@ PYBIND11_MODULE(geofair, m) {
   bind_geometry(m);
   bind_remesh(m);
   bind_holes(m);
+  bind_live(m);
 }

@@ -142,7 +142,7 @@ double Construction::longest_move(const Positions& before, const Positions& X) c
   return move;
 }
 
-bool Construction::relax_before_steps(Positions& X) {
+bool Construction::relax_before_steps(Positions& X, bool warm) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
   // do not move vertices tangentially (docs/NEWTON.md, NewtonTuning::relaxations). At least two
@@ -150,7 +150,9 @@ bool Construction::relax_before_steps(Positions& X) {
   // stretch limit cuts a solve short. The first holds the tangent planes fixed: far from
   // inner fairness turning planes made the base level of a large hierarchy stall.
   // Long moves are put back onto the surface of X and its normals as the relaxations
-  // found them (the projection is set up the first time it is needed).
+  // found them (the projection is set up the first time it is needed). A warm start is near
+  // inner fairness: turning planes and the last factorization from the first solve on, and
+  // one solve unless the stretch limit cut it short (the polish at convergence follows).
   const NewtonTuning& newton = options_.tuning.newton;
   Positions surface, surface_normals;
   std::unique_ptr<SurfaceProjection> projection;
@@ -160,15 +162,16 @@ bool Construction::relax_before_steps(Positions& X) {
     evaluate(X);  // the normals at X
     if (p == 0) surface = X, surface_normals = N_;
     const Positions before = X;
+    const bool near = p > 0 || warm;
     const double scale = tangential_solver_.relax(
-        lambda_, N_, X, /*lagged=*/p > 0, p > 0 ? TangentPlanes::Turning : TangentPlanes::Fixed);
+        lambda_, N_, X, /*lagged=*/near, near ? TangentPlanes::Turning : TangentPlanes::Fixed);
     if (longest_move(before, X) > newton.projection_move) {
       if (!projection)
         projection = std::make_unique<SurfaceProjection>(region_, std::move(surface),
                                                          std::move(surface_normals));
       for (int i = 0; i < region_.n_free; ++i) projection->project(i, X);
     }
-    if (scale <= 0.0 || (p > 0 && scale == 1.0)) break;
+    if (scale <= 0.0 || ((p > 0 || warm) && scale == 1.0)) break;
   }
   return true;
 }
@@ -278,7 +281,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   const NewtonTuning& newton = options_.tuning.newton;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
-  const bool relaxed = !tangential_ || relax_before_steps(X);
+  const bool relaxed = !tangential_ || relax_before_steps(X, newton_run.warm);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
   if (!relaxed) {

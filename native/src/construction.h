@@ -38,6 +38,11 @@ struct NewtonRun {
   /// a rejected step included (a coarse level crawling near its solution: the next level's
   /// steps do better).
   double crawl_merit = 0.0;
+  /// X the solution of nearby boundary data, with the new data's fixed rows (LiveFairing's
+  /// warm start): the tangential relaxations before the steps turn their planes from the
+  /// first one on, are preconditioned by the factorization of the last call's, and stop after
+  /// the first that the stretch limit did not cut short.
+  bool warm = false;
 };
 
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix
@@ -116,6 +121,23 @@ class Construction {
   /// for the finest level on its second thread while the coarser levels are built.
   void prepare_newton() { newton_.analyze(); }
 
+  /// New boundary data on the same mesh (LiveFairing): the unit normals of the G1 boundary
+  /// (#V_B×3, held fixed by the construction; with G0 only a start, re-estimated) and the
+  /// length L of the residual (see fairing.h).
+  void set_boundary(const Positions& g1_normals, double length) {
+    N_.bottomRows(region_.n - region_.n_free) = g1_normals;
+    length_ = length;
+  }
+
+  /// New inner fairness weights (LiveFairing: the conformal weights of a new original);
+  /// false, and nothing changed, where their neighbours are not those of the current ones
+  /// (the tangential solver's pattern).
+  bool set_lambda(InnerFairnessWeights lambda) {
+    if (lambda.offset != lambda_.offset || lambda.neighbour != lambda_.neighbour) return false;
+    lambda_ = std::move(lambda);
+    return true;
+  }
+
   /// Multigrid coarse-grid problems (multigrid.h): solve Σ_j w_ij (H_i − H_j) = τ_i
   /// (#V_I, kept by pointer; nullptr: eq. (12) itself) instead of 0, and move along the
   /// normals only (no inner fairness) if `tangential` is false.
@@ -157,7 +179,7 @@ class Construction {
   // of X); one polish at a converged shape (returns the largest move in mean distances to
   // the neighbours); the continuation's M_i = Σ_j |w_ij| / h_i² (#V_I, 1/length²); and
   // J v by a forward difference of the defects d0 at X, everything recomputed at X + ε v N.
-  bool relax_before_steps(Positions& X);
+  bool relax_before_steps(Positions& X, bool warm);
   // The largest move of a free vertex from `before` to X, in mean distances to its
   // neighbours at `before`.
   double longest_move(const Positions& before, const Positions& X) const;

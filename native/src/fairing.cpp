@@ -38,11 +38,13 @@ void check_options(const FairingOptions& o) {
   validate_tuning(o.tuning);
 }
 
+}  // namespace
+
 // The threads of one solve: max_threads() less the cores that other processes keep busy
 // now (the runnable tasks of /proc/loadavg, not counting this process's own; none known
 // where there is no /proc). On a busy machine the threads of a parallel loop wait for each
 // other at every barrier, so a core taken by another process is left to it
-// (docs/DESIGN_NOTES.md, "Threads").
+// (docs/DESIGN_NOTES.md, "Threads"). Declared in parallel.h.
 int solve_threads() {
   int runnable = 0, own = 0;
 #ifdef __linux__
@@ -65,6 +67,8 @@ int solve_threads() {
   const int busy_elsewhere = std::max(0, runnable - std::max(own, 1));
   return std::clamp(machine_cores() - busy_elsewhere, 1, max_threads());
 }
+
+namespace {
 
 std::string scientific(double x) {
   char text[32];

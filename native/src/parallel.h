@@ -18,6 +18,10 @@ constexpr int kParallelMin = 2500;
 int loop_threads();
 void set_loop_threads(int threads);
 
+/// The threads of one solve (fair, a LiveFairing frame): max_threads() less the cores that
+/// other processes keep busy now (fairing.cpp).
+int solve_threads();
+
 /// The cores of the machine (at least 1).
 int machine_cores();
 

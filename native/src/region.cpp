@@ -513,6 +513,15 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
   return region;
 }
 
+void set_boundary_normals(FairingRegion& region, const Positions& V, const Triangles& F,
+                          const std::vector<bool>& free, const Positions* boundary_normals,
+                          const char* caller) {
+  if (region.boundary == BoundaryCondition::G0)
+    set_g0_normals(region, V);
+  else
+    set_g1_normals(region, V, F, free, boundary_normals, true, caller);
+}
+
 FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
                       const std::vector<bool>& free) {
   // (edge key, triangle) of every edge with a free endpoint, sorted so that an edge's

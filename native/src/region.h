@@ -109,6 +109,15 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
                              const std::vector<int>* polygon_ids = nullptr,
                              BoundaryCondition boundary = BoundaryCondition::G1);
 
+/// The boundary normals of `region` (extracted from V, F, free) for new positions V of its
+/// vertices (LiveFairing, same mesh): G1 normals as extract_region sets them (the given ones
+/// checked against the surface's orientation, or the estimate of the surrounding surface),
+/// with G0 the one-sided normals of the region's triangles. Messages start with `caller`.
+/// \throw InvalidInputError as extract_region for the normals.
+void set_boundary_normals(FairingRegion& region, const Positions& V, const Triangles& F,
+                          const std::vector<bool>& free, const Positions* boundary_normals,
+                          const char* caller);
+
 /// Folded edges of a result (beyond the paper): edges with a free endpoint whose two
 /// triangles face apart (the cross products of their edges have a negative dot product).
 struct FoldCount {

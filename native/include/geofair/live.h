@@ -1,0 +1,98 @@
+// Live intrinsic modelling: one region faired again and again as its fixed vertices move
+// (Schneider & Kobbelt 2001, section 8; a handle dragged through the surface).
+#pragma once
+
+#include "geofair/fairing.h"
+#include "geofair/types.h"
+
+#include <memory>
+#include <vector>
+
+namespace geofair {
+
+/// Options of LiveFairing beyond fair's (FairingOptions).
+struct LiveOptions {
+  /// Newton steps a frame's warm start may take (after its tangential relaxation) before
+  /// the frame falls back to the cold path; >= 1.
+  int max_warm_steps = 8;
+  /// Detail preservation (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the region is split
+  /// into its own faired base (Δ_B H = 0 with the input's boundary and handle: the
+  /// constructor's cold fair) and the details, the input's offsets from that base per free
+  /// vertex in the base's local frame (n_i the area-weighted normal, t_i the direction to a
+  /// ring neighbour projected into the tangent plane, n_i × t_i); every frame adds them
+  /// back onto the new base in its frames. False: the region is the fair surface itself.
+  bool details = false;
+};
+
+/// A fairing region prepared once and faired again for new positions of its fixed vertices
+/// (beyond the paper; its section 8 asks for interactive modelling with interior
+/// constraints): the connectivity, the region and its one-rings, the symbolic analysis of
+/// the Newton preconditioner and the inner fairness pattern are kept, and each frame starts
+/// from the last frame's solution (a warm start), its free vertices moved with the fixed
+/// ones by the harmonic extension of their moves (uniform weights, factorized once): one
+/// tangential relaxation towards inner fairness and Newton's method on the finest level
+/// (Construction::run_newton), both preconditioned by the factorizations of the last frame
+/// where GMRES still converges on them, then the polishes of fair. A frame whose warm start
+/// does not converge in LiveOptions::max_warm_steps Newton steps (or fails) runs the cold
+/// path, fair() with the whole schedule (bounded by options.time_limit, as fair), and says
+/// so in FairingResult::message. Design and measurements: docs/LIVE.md.
+///
+/// Fixed vertices inside the region (a handle) are boundary conditions like the outer ones
+/// (fair does the same): their positions and, with G1, the tangent planes estimated from
+/// their own triangles (the triangles without a free vertex, estimate_boundary_normals of
+/// building_blocks.h), re-estimated from the new positions every frame, so a rigid handle
+/// turns its tangent planes with it. A handle needs triangles of its own (at least two
+/// rings of fixed vertices at its centre give the quadric fit its samples), or
+/// boundary_normals.
+///
+/// update() and result() may be called from several threads: they take turns.
+///
+/// Each frame's input is the frame's positions of the fixed vertices with the free
+/// vertices' positions of the construction's V (which the conformal inner fairness weights
+/// and the bounding box of the residual's length read, as fair does): update() returns the
+/// same surface as fair() of that input, within the tolerance, wherever fair() converges.
+class LiveFairing {
+ public:
+  /// Prepares the region of (V, F, free) and fairs it cold (fair(); result(), with
+  /// live.details the input V itself, its details coded over that fair base).
+  /// \param V, F, free, boundary_normals, options, polygon_ids  as for fair (fairing.h);
+  ///        options.remesh must be Off; options.progress is not called.
+  /// \throw InvalidInputError as fair, or for options.remesh or live.max_warm_steps out of
+  ///        range; SolverError as fair, or with live.details where the base did not converge.
+  LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+              const Positions* boundary_normals, const FairingOptions& options,
+              const LiveOptions& live = {}, const std::vector<int>* polygon_ids = nullptr);
+  ~LiveFairing();
+  LiveFairing(LiveFairing&&) noexcept;
+  LiveFairing& operator=(LiveFairing&&) noexcept;
+
+  /// Fairs the region for new positions of the fixed vertices.
+  /// \param V  #V×3 positions, mesh units: the rows of fixed vertices are the frame's data,
+  ///           those of free vertices are not read
+  /// \param boundary_normals  #V×3 unit normals read at the G1 boundary vertices (handle
+  ///           included), or nullptr: estimated from V as fair does
+  /// \return the frame's FairingResult as fair's (rows of fixed vertices bit-identical to
+  ///         V; with details the base's fair surface plus the details, the residual and
+  ///         folds the base's); a frame that did not converge (the cold path failed too) is returned
+  ///         unconverged, with the reason in message, and leaves result() and the next
+  ///         warm start at the last converged frame
+  /// \throw InvalidInputError if V has another number of rows than the construction's, a
+  ///        fixed vertex of a triangle has a non-finite coordinate, or for the normals (as
+  ///        fair); SolverError where the cold path raises (as fair). Either leaves the
+  ///        state unchanged.
+  FairingResult update(const Positions& V, const Positions* boundary_normals = nullptr);
+
+  /// A copy of the last converged frame (the construction's cold fair until then, converged
+  /// or not).
+  FairingResult result() const;
+
+  /// Frames since the construction: all of them, and those that ran the cold path.
+  int frames() const;
+  int cold_frames() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace geofair

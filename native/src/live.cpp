@@ -1,0 +1,396 @@
+// LiveFairing: a region faired again for new fixed positions, warm-started from the last
+// frame (live.h).
+#include "geofair/live.h"
+
+#include "common.h"
+#include "construction.h"
+#include "inner_fairness.h"
+#include "mesh_scale.h"
+#include "nested_iteration.h"
+#include "parallel.h"
+#include "region.h"
+#include "sparse_lu.h"
+
+#include <Eigen/SparseCholesky>
+
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <numeric>
+#include <optional>
+#include <string>
+
+namespace geofair {
+namespace {
+
+constexpr const char* kUpdate = "LiveFairing.update";
+
+std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1e", x);
+  return text;
+}
+
+std::string steps(int n) { return std::to_string(n) + (n == 1 ? " Newton step" : " Newton steps"); }
+
+// The bounding-box diagonal of the region's positions X (the residual's length L, fairing.h).
+double diagonal(const Positions& X) {
+  return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+}
+
+// The warm start's predictor: the harmonic extension (uniform weights, Δu = 0 at the free
+// vertices) of the fixed vertices' moves since the last frame into the free ones, so that the
+// vertices next to a moving handle move with it instead of being squashed against it (a
+// start within Newton's reach where the last frame alone folds its triangles).
+class DisplacementPredictor {
+ public:
+  explicit DisplacementPredictor(const FairingRegion& region) : region_(region) {
+    const OneRings& rings = region.rings;
+    const int nf = region.n_free;
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < nf; ++i) {
+      entries.emplace_back(i, i, double(rings.valence(i)));
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+        if (rings.ring[k] < nf) entries.emplace_back(i, rings.ring[k], -1.0);
+    }
+    Eigen::SparseMatrix<double> L(nf, nf);
+    L.setFromTriplets(entries.begin(), entries.end());
+    ldlt_.compute(L);
+  }
+
+  // Adds to the free rows of Y the extension of `moves` (#V_B×3, the fixed rows' moves);
+  // false (Y unchanged) where the factorization or the solve failed.
+  bool predict(const Positions& moves, Positions& Y) const {
+    if (ldlt_.info() != Eigen::Success) return false;
+    const OneRings& rings = region_.rings;
+    const int nf = region_.n_free;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
+    for (int i = 0; i < nf; ++i)
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
+        if (rings.ring[k] >= nf) rhs.row(i) += moves.row(rings.ring[k] - nf);
+    const Eigen::MatrixXd u = ldlt_.solve(rhs);
+    if (ldlt_.info() != Eigen::Success || !u.allFinite()) return false;
+    Y.topRows(nf) += u;
+    return true;
+  }
+
+ private:
+  const FairingRegion& region_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
+// Detail coding (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the offsets x_i − b_i of a
+// region x from its base b, per free vertex in the base's local frame (n_i, t_i, n_i × t_i),
+// so that a new base b' gets them back in its own frames: x'_i = b'_i + α n'_i + β t'_i +
+// γ n'_i × t'_i. n_i is the area-weighted normal of b's triangles at i, t_i the direction to
+// the first ring neighbour (with a tangential part) projected into the tangent plane.
+class DetailCoding {
+ public:
+  // base, x: #region×3 (local ids); only the free rows are coded.
+  DetailCoding(const FairingRegion& region, const Positions& base, const Positions& x)
+      : region_(region), coefficients_(region.n_free, 3) {
+    const Positions frames = local_frames(base);
+    for (int i = 0; i < region.n_free; ++i) {
+      const Vec3 d = (x.row(i) - base.row(i)).transpose();
+      const Vec3 n = frames.row(2 * i).transpose(), t = frames.row(2 * i + 1).transpose();
+      coefficients_.row(i) << d.dot(n), d.dot(t), d.dot(n.cross(t));
+    }
+  }
+
+  // The free rows of `base` with the details added in its frames.
+  void decode(Positions& base) const {
+    const Positions frames = local_frames(base);
+    for (int i = 0; i < region_.n_free; ++i) {
+      const Vec3 n = frames.row(2 * i).transpose(), t = frames.row(2 * i + 1).transpose();
+      const Eigen::RowVector3d c = coefficients_.row(i);
+      base.row(i) += (c(0) * n + c(1) * t + c(2) * n.cross(t)).transpose();
+    }
+  }
+
+ private:
+  // Rows 2i and 2i + 1: the unit normal and tangent of free vertex i at X (zero where
+  // degenerate: its details are then dropped, not made up).
+  Positions local_frames(const Positions& X) const {
+    const OneRings& rings = region_.rings;
+    Positions normals = Positions::Zero(region_.n, 3);
+    for (Eigen::Index f = 0; f < region_.triangles.rows(); ++f) {
+      const int a = region_.triangles(f, 0), b = region_.triangles(f, 1),
+                c = region_.triangles(f, 2);
+      const Eigen::RowVector3d area = (X.row(b) - X.row(a)).cross(X.row(c) - X.row(a));
+      normals.row(a) += area, normals.row(b) += area, normals.row(c) += area;
+    }
+    Positions frames = Positions::Zero(2 * region_.n_free, 3);
+    for (int i = 0; i < region_.n_free; ++i) {
+      const double length = normals.row(i).norm();
+      if (!(length > 0.0)) continue;
+      const Vec3 n = normals.row(i).transpose() / length;
+      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k) {
+        const Vec3 e = (X.row(rings.ring[k]) - X.row(i)).transpose();
+        const Vec3 t = e - e.dot(n) * n;
+        if (t.norm() > 1e-3 * e.norm()) {
+          frames.row(2 * i) = n.transpose();
+          frames.row(2 * i + 1) = t.normalized().transpose();
+          break;
+        }
+      }
+    }
+    return frames;
+  }
+
+  const FairingRegion& region_;
+  Positions coefficients_;  // #V_I×3: (α, β, γ), mesh units / scale
+};
+
+}  // namespace
+
+struct LiveFairing::State {
+  Triangles F;
+  std::vector<bool> free;
+  std::optional<std::vector<int>> polygon_ids;
+  FairingOptions options;  // the user's, without a progress callback
+  LiveOptions live;
+  double scale = 1.0;       // working_scale of the construction's V: positions are V / scale
+  Positions V0;             // the construction's V / scale: the free rows' original positions
+  std::vector<int> used_fixed;  // fixed vertices of a triangle, checked for finiteness
+  FairingRegion region;     // in the caller's ids (global), its boundary normals the last frame's
+  FairingRegion finest;     // the same with region-local ids: what the construction works on
+  std::unique_ptr<Construction> construction;  // kept between frames (the warm start)
+  std::unique_ptr<DisplacementPredictor> predictor;
+  std::unique_ptr<DetailCoding> details;  // details=True: the input's details over its base
+  Positions X;              // the last converged frame's region positions (local ids, / scale);
+                            // with details its base
+  bool warm = false;        // X is a converged solution to start from
+  FairingResult last;
+  int frames = 0, cold_frames = 0;
+  mutable std::mutex mutex;  // update() and result() take turns
+
+  // The frame's input (/ scale): V's fixed rows, the original free rows.
+  Positions frame_input(const Positions& V) const {
+    Positions W = V / scale;
+    for (int i = 0; i < region.n_free; ++i) W.row(region.global[i]) = V0.row(region.global[i]);
+    return W;
+  }
+
+  // The caller's positions of the result: V's rows, the free rows from the region's Y (with
+  // details, Y's base with the details added).
+  Positions caller_positions(const Positions& V, Positions Y) const {
+    if (details) details->decode(Y);
+    Positions out = V;
+    for (int i = 0; i < region.n_free; ++i) out.row(region.global[i]) = scale * Y.row(i);
+    return out;
+  }
+
+  // The warm start adopts a converged cold result (caller's positions; with details its base,
+  // which gets them here).
+  void adopt(FairingResult& result) {
+    X = gather(result.vertices / scale, region.global);
+    warm = true;
+    if (details) result.vertices = caller_positions(result.vertices, X);
+    last = result;
+  }
+
+  // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
+  // did not converge (`why` then says how it ended).
+  std::optional<FairingResult> warm_frame(const Positions& V, const Positions& W,
+                                          const Positions* boundary_normals, Phases& phases,
+                                          std::string& why);
+};
+
+std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
+                                                            const Positions& W,
+                                                            const Positions* boundary_normals,
+                                                            Phases& phases, std::string& why) {
+  Laps laps;
+  // The boundary data of the frame: normals (the given ones, or estimated from W), the
+  // residual's length, and for conformal inner fairness the weights of the frame's input.
+  std::optional<Positions> normals;
+  if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
+  set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
+  finest.g1_normals = region.g1_normals;
+  const Positions X0 = gather(W, region.global);
+  const double L = diagonal(X0);
+  if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
+  if (options.inner_fairness != InnerFairness::Uniform) {
+    InnerFairnessWeights lambda = inner_fairness_weights(finest, X0, options.inner_fairness);
+    if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
+      construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
+  }
+  construction->set_boundary(finest.g1_normals, L);
+  // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
+  const int nb = region.n - region.n_free;
+  Positions Y = X;
+  predictor->predict(X0.bottomRows(nb) - X.bottomRows(nb), Y);
+  Y.bottomRows(nb) = X0.bottomRows(nb);
+  phases.emplace_back("boundary data and predictor", laps.lap());
+
+  NewtonRun run;
+  run.max_iterations = live.max_warm_steps;
+  run.tolerance = options.tolerance;
+  run.patience = options.tuning.newton.patience;
+  run.polish_at_convergence = true;
+  run.warm = true;
+  IterationReport report;
+  try {
+    report = construction->run_newton(Y, run);
+  } catch (const SolverError& error) {
+    why = error.what();
+    return std::nullopt;
+  }
+  laps.lap();  // run_newton's own seconds, below
+  phases.emplace_back("warm inner fairness", report.relax_seconds);
+  phases.emplace_back("warm Newton steps", report.step_seconds);
+  phases.emplace_back("warm polishes", report.polish_seconds);
+  if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
+    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
+    return std::nullopt;
+  }
+  X = Y;
+  FairingResult result;
+  result.vertices = caller_positions(V, Y);
+  result.faces = F;
+  result.free = free;
+  result.origin_face.assign(free.size(), -1);
+  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+  result.converged = true;
+  result.iterations = report.iterations;
+  result.iterations_per_level = {report.iterations};
+  result.vertices_per_level = {region.n};
+  result.residual = report.residual;
+  result.stop_reason = StopReason::Converged;
+  result.iteration = Iteration::Newton;
+  result.newton_iterations = report.iterations;
+  result.message = "converged (residual " + scientific(report.residual) + ", tolerance " +
+                   scientific(options.tolerance) + "); warm start from the last frame (" +
+                   steps(report.iterations) + ")";
+  // Folds: only edges with a free vertex count, and both their triangles are the region's.
+  std::vector<bool> local_free(std::size_t(region.n), false);
+  std::fill(local_free.begin(), local_free.begin() + region.n_free, true);
+  const FoldCount folds = count_folds(X0, Y, region.triangles, local_free);
+  result.folds = folds.folds;
+  result.new_folds = folds.new_folds;
+  if (folds.folds > 0)
+    result.message += "; " + std::to_string(folds.folds) +
+                      (folds.folds == 1 ? " edge folds" : " edges fold") +
+                      " over (triangles flipped), " + std::to_string(folds.new_folds) +
+                      " of them not in the input";
+  phases.emplace_back("result", laps.lap());
+  return result;
+}
+
+LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                         const Positions* boundary_normals, const FairingOptions& options,
+                         const LiveOptions& live, const std::vector<int>* polygon_ids)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  if (options.remesh != Remesh::Off)
+    throw InvalidInputError("LiveFairing: remesh must be off");
+  if (live.max_warm_steps < 1) throw InvalidInputError("LiveFairing: max_warm_steps must be >= 1");
+  s.F = F;
+  s.free = free;
+  if (polygon_ids) s.polygon_ids = *polygon_ids;
+  s.options = options;
+  s.options.progress = nullptr;
+  s.live = live;
+  // The cold solve first: fair's checks of the input and options, and the first frame.
+  FairingResult first = fair(V, F, free, boundary_normals, s.options, polygon_ids);
+  s.scale = working_scale(V, F, "LiveFairing");
+  s.V0 = V / s.scale;
+  s.region = extract_region(s.V0, F, free, boundary_normals, true, polygon_ids, options.boundary);
+  s.finest = s.region;
+  std::iota(s.finest.global.begin(), s.finest.global.end(), 0);
+  const Positions X0 = gather(s.V0, s.region.global);
+  const double L = diagonal(X0);
+  s.construction = std::make_unique<Construction>(
+      s.finest, inner_fairness_weights(s.finest, X0, options.inner_fairness), s.options, L);
+  s.construction->prepare_newton();  // the symbolic analysis, once
+  s.predictor = std::make_unique<DisplacementPredictor>(s.finest);
+  std::vector<bool> used(std::size_t(V.rows()), false);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (used[std::size_t(v)] && !free[std::size_t(v)]) s.used_fixed.push_back(int(v));
+  if (live.details) {
+    // The input's details over its base (the cold fair): the first frame is the input.
+    if (!first.converged)
+      throw SolverError("LiveFairing: details=True needs the input's base, and its fair did not "
+                        "converge (" + first.message + ")");
+    s.X = gather(first.vertices / s.scale, s.region.global);
+    s.details = std::make_unique<DetailCoding>(s.finest, s.X, X0);
+    s.warm = true;
+    first.vertices = V;
+    s.last = std::move(first);
+    return;
+  }
+  if (first.converged)
+    s.adopt(first);
+  else
+    s.last = std::move(first);
+}
+
+LiveFairing::~LiveFairing() = default;
+LiveFairing::LiveFairing(LiveFairing&&) noexcept = default;
+LiveFairing& LiveFairing::operator=(LiveFairing&&) noexcept = default;
+
+FairingResult LiveFairing::result() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->last;
+}
+int LiveFairing::frames() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->frames;
+}
+int LiveFairing::cold_frames() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->cold_frames;
+}
+
+FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_normals) {
+  State& s = *state_;
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  const Eigen::Index n = Eigen::Index(s.free.size());
+  if (V.rows() != n)
+    throw InvalidInputError(std::string(kUpdate) + ": vertices has " + std::to_string(V.rows()) +
+                            " rows, the mesh " + std::to_string(n) + " vertices");
+  for (int v : s.used_fixed)
+    if (!V.row(v).allFinite())
+      throw InvalidInputError(std::string(kUpdate) + ": vertex " + std::to_string(v) +
+                              " has a non-finite coordinate");
+  if (boundary_normals && boundary_normals->rows() != n)
+    throw InvalidInputError(std::string(kUpdate) + ": boundary_normals has " +
+                            std::to_string(boundary_normals->rows()) + " rows for " +
+                            std::to_string(n) + " vertices");
+  set_loop_threads(solve_threads());
+  const BlasThreads blas_threads(1);
+  Laps laps;
+  const Positions W = s.frame_input(V);
+  Phases phases;
+  std::string why = "the last frame did not converge";
+  if (s.warm) {
+    // The boundary data are the frame's own; X changes only where the frame converged.
+    if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
+      result->phase_seconds = std::move(phases);
+      s.last = *result;
+      ++s.frames;
+      return std::move(*result);
+    }
+  }
+  // The cold path: fair() of the frame's input, its whole schedule.
+  const double warm_seconds = laps.lap();
+  FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, s.options,
+                            s.polygon_ids ? &*s.polygon_ids : nullptr);
+  ++s.frames;
+  ++s.cold_frames;
+  for (int v = 0; v < int(n); ++v)  // fixed rows bit-identical to V's
+    if (!s.free[std::size_t(v)]) cold.vertices.row(v) = V.row(v);
+  cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
+  if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
+  phases.insert(phases.end(), cold.phase_seconds.begin(), cold.phase_seconds.end());
+  cold.phase_seconds = std::move(phases);
+  if (cold.converged)
+    s.adopt(cold);
+  else if (s.details)
+    cold.vertices = s.caller_positions(cold.vertices, gather(cold.vertices / s.scale, s.region.global));
+  return cold;
+}
+
+}  // namespace geofair

@@ -1,0 +1,237 @@
+"""geofair.LiveFairing: a region prepared once and faired again as its fixed vertices move
+(a handle dragged through the surface; Schneider & Kobbelt 2001, section 8). Each frame is
+the surface of a cold geofair.fair of the same input; a handle dragged along a sphere keeps
+the sphere; a failed frame or bad input leaves the last converged frame."""
+
+import numpy as np
+import pytest
+
+import geofair
+from geofair_dev import scenes
+
+
+def rotation_x(degrees):
+    a = np.radians(degrees)
+    return np.array([[1.0, 0.0, 0.0], [0.0, np.cos(a), -np.sin(a)], [0.0, np.sin(a), np.cos(a)]])
+
+
+@pytest.fixture(scope="module")
+def handle_scene():
+    """An irregular unit sphere (3,000 vertices): the handle is the 8° cap around +z, the
+    region the 50° cap around it (about 520 free vertices), the rest of the sphere fixed."""
+    s = scenes.sphere(n_vertices=3000, irregular=True, seed=1)
+    polar = np.degrees(np.arccos(np.clip(s.vertices[:, 2], -1.0, 1.0)))
+    handle = polar < 8.0
+    free = (polar < 50.0) & ~handle
+    return s.vertices, s.faces, free, handle
+
+
+def region_diagonal(vertices, faces, free):
+    """The bounding-box diagonal of the free vertices and their neighbours (fair's L)."""
+    used = np.unique(faces[free[faces].any(axis=1)])
+    p = vertices[used]
+    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+
+
+def lifted(vertices, handle, lift):
+    w = vertices.copy()
+    w[handle, 2] += lift
+    return w
+
+
+def check_frame(result, w, free):
+    assert np.all(np.isfinite(result.vertices))
+    assert np.array_equal(result.vertices[~free], w[~free])
+
+
+@pytest.mark.parametrize("inner", ["uniform", "conformal"])
+def test_update_is_the_cold_fair_of_its_input(handle_scene, inner):
+    # The handle pulled out along +z in steps of about an edge length: every frame warm
+    # (no cold path), and the last one the surface of a cold fair of the same input within
+    # the tolerance (positions in units of the region's diameter L).
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free, inner_fairness=inner)
+    assert live.result.converged and live.frames == 0
+    for k in range(1, 6):
+        w = lifted(v, handle, 0.04 * k)
+        r = live.update(w)
+        check_frame(r, w, free)
+        assert r.converged and "cold path" not in r.message, r.message
+    assert live.frames == 5 and live.cold_frames == 0
+    assert r is not live.result and np.array_equal(r.vertices, live.result.vertices)
+    cold = geofair.fair(w, f, free, inner_fairness=inner)
+    assert cold.converged
+    L = region_diagonal(w, f, free)
+    assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * L
+    # The surface moved with the handle: the free vertices next to it rose.
+    assert r.vertices[free, 2].max() > v[free, 2].max() + 0.1
+    held = live.result  # a copy: the next frame does not change it
+    live.update(lifted(v, handle, 0.24))
+    assert np.array_equal(held.vertices, r.vertices)
+    assert not np.array_equal(live.result.vertices, r.vertices)
+
+
+def test_update_of_free_rows_is_not_read(handle_scene):
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    w = lifted(v, handle, 0.04)
+    a = live.update(w)
+    live = geofair.LiveFairing(v, f, free)
+    w_nan = w.copy()
+    w_nan[free] = np.nan
+    b = live.update(w_nan)
+    assert np.array_equal(a.vertices, b.vertices)
+
+
+def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
+    # Rotations about the centre: the sphere solves Δ_B H = 0 with the handle's positions and
+    # its (turned) tangent planes, so every frame lies on it up to the discretization error.
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    for k in range(1, 9):  # 2° per frame, 16° in all: the handle moves about an edge a frame
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        r = live.update(w)
+        check_frame(r, w, free)
+        assert r.converged and r.folds == 0, r.message
+        radial = np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max()
+        assert radial < 1e-4, (k, radial)
+    assert live.cold_frames == 0
+    # The handle's neighbourhood moved with it (not left where it was).
+    assert np.abs(r.vertices[free] - v[free]).max() > 0.1
+
+
+def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free, time_limit=0.5)
+    good = lifted(v, handle, 0.04)
+    first = live.update(good)
+    assert first.converged
+    # Pulled out by three radii: a tube far longer than its circumference has no fair
+    # solution (it pinches); the warm start fails, and so does the cold path.
+    failed = live.update(lifted(v, handle, 3.0))
+    assert not failed.converged
+    assert "cold path" in failed.message and "did not converge" in failed.message
+    check_frame(failed, lifted(v, handle, 3.0), free)
+    assert live.frames == 2 and live.cold_frames == 1
+    assert np.array_equal(live.result.vertices, first.vertices)
+    # The next frame starts from the last converged one, warm.
+    again = live.update(lifted(v, handle, 0.08))
+    assert again.converged and "cold path" not in again.message, again.message
+
+
+def nan_in_handle(w, handle):
+    w[np.flatnonzero(handle)[0], 1] = np.nan
+    return w
+
+
+def inf_in_surroundings(w, handle):
+    w[np.flatnonzero(~handle)[-1], 0] = np.inf
+    return w
+
+
+@pytest.mark.parametrize(
+    "change, words",
+    [
+        (nan_in_handle, "non-finite"),
+        (inf_in_surroundings, "non-finite"),
+        (lambda w, handle: w[:-1], "rows"),
+        (lambda w, handle: w[:, :2], "shape"),
+        (lambda w, handle: w.astype(np.float32), "float64"),
+        (lambda w, handle: w.tolist(), "numpy array"),
+    ],
+)
+def test_bad_update_raises_and_leaves_the_state(handle_scene, change, words):
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    before = live.update(lifted(v, handle, 0.04))
+    with pytest.raises(geofair.InvalidInputError, match=words):
+        live.update(change(lifted(v, handle, 0.08), handle))
+    assert live.frames == 1 and np.array_equal(live.result.vertices, before.vertices)
+    after = live.update(lifted(v, handle, 0.08))
+    assert after.converged and "cold path" not in after.message
+
+
+def test_bad_boundary_normals_raise(handle_scene):
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    w = lifted(v, handle, 0.04)
+    with pytest.raises(geofair.InvalidInputError, match="boundary_normals"):
+        live.update(w, boundary_normals=np.zeros((len(v) - 1, 3)))
+    with pytest.raises(geofair.InvalidInputError):
+        live.update(w, boundary_normals=-w)  # flipped against the surface's orientation
+    assert live.frames == 0
+    # The exact normals of the sphere, turned with the handle, give the estimate's surface.
+    r = live.update(w, boundary_normals=w / np.linalg.norm(w, axis=1)[:, None])
+    assert r.converged
+
+
+def test_constructor_checks_its_input(handle_scene):
+    v, f, free, _ = handle_scene
+    with pytest.raises(geofair.InvalidInputError, match="max_warm_steps"):
+        geofair.LiveFairing(v, f, free, max_warm_steps=0)
+    with pytest.raises(geofair.InvalidInputError, match="free"):
+        geofair.LiveFairing(v, f, free[:-1])
+    with pytest.raises(geofair.InvalidInputError, match="tolerance"):
+        geofair.LiveFairing(v, f, free, tolerance=-1.0)
+    with pytest.raises(TypeError):
+        geofair.LiveFairing(v, f, free, remesh="always")
+
+
+def test_g0_handle_on_a_plane_is_the_cold_fair():
+    # G0 (positions only): a handle lifted out of a flat disk; the frames are warm and the
+    # last is the cold fair of its input.
+    s = scenes.plane_disk(n_free=500, irregular=True, seed=3, boundary_rings=2)
+    r2 = (s.vertices[:, :2] ** 2).sum(axis=1)
+    handle = s.free & (r2 < (0.1 * r2[s.free].max()))
+    free = s.free & ~handle
+    live = geofair.LiveFairing(s.vertices, s.faces, free, boundary="g0")
+    for k in range(1, 4):
+        w = s.vertices.copy()
+        w[handle, 2] += 0.02 * k * np.sqrt(r2[s.free].max())
+        r = live.update(w)
+        assert r.converged and "cold path" not in r.message, r.message
+    cold = geofair.fair(w, s.faces, free, boundary="g0")
+    assert cold.converged
+    L = region_diagonal(w, s.faces, free)
+    assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * L
+
+
+def bumpy(vertices, free, amplitude=0.01):
+    """The free vertices moved along the sphere's normal by small bumps (about 12 per
+    half circle)."""
+    x = vertices.copy()
+    theta = np.arccos(np.clip(vertices[:, 2], -1.0, 1.0))
+    phi = np.arctan2(vertices[:, 1], vertices[:, 0])
+    bump = amplitude * np.sin(12.0 * theta) * np.sin(6.0 * phi)
+    x[free] *= (1.0 + bump[free])[:, None]
+    return x
+
+
+def rms_radial(vertices, free):
+    return float(np.sqrt(np.mean((np.linalg.norm(vertices[free], axis=1) - 1.0) ** 2)))
+
+
+def test_details_ride_on_the_dragged_base(handle_scene):
+    # The base of the bumpy region is the sphere; a slide along it keeps the base, and the
+    # bumps come back in the base's frames: their RMS stays (within 5 %); without details
+    # the region is the fair surface itself and they are gone.
+    v, f, free, handle = handle_scene
+    x = bumpy(v, free)
+    before = rms_radial(x, free)
+    assert before > 3e-3
+    with_details = geofair.LiveFairing(x, f, free, details=True)
+    without = geofair.LiveFairing(x, f, free)
+    assert np.array_equal(with_details.result.vertices, x)  # the first frame is the input
+    same = with_details.update(x)
+    L = region_diagonal(x, f, free)
+    assert same.converged and np.abs(same.vertices - x).max() <= 1e-4 * L
+    for k in range(1, 6):
+        w = x.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        r = with_details.update(w)
+        check_frame(r, w, free)
+        assert r.converged and "cold path" not in r.message, r.message
+        assert abs(rms_radial(r.vertices, free) - before) <= 0.05 * before
+        plain = without.update(w)
+        assert plain.converged and rms_radial(plain.vertices, free) < 1e-4
