@@ -9,7 +9,7 @@ import numpy
 import numpy.typing
 import scipy.sparse
 import typing
-__all__: list[str] = ['FairingResult', 'InvalidInputError', 'LiveFairing', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'holes_to_fill', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'relax_inner_fairness', 'remesh_region']
+__all__: list[str] = ['FairingResult', 'FillResult', 'HoleFill', 'InvalidInputError', 'LiveFairing', 'RemeshedRegion', 'SolverError', 'boundary_loops', 'boundary_normals', 'cotangent_laplacian', 'defaults', 'fair', 'fill_holes', 'holes_to_fill', 'intrinsic_delaunay', 'intrinsic_delaunay_laplacian', 'mean_curvature', 'progressive_mesh', 'read_mesh', 'relax_inner_fairness', 'remesh_region', 'write_mesh']
 class InvalidInputError(ValueError):
     pass
 class SolverError(RuntimeError):
@@ -150,6 +150,83 @@ class RemeshedRegion:
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         (n', 3) float64 positions, mesh units; rows of fixed vertices are bit-identical to the input, n' = max(n, #fixed + #new free).
+        """
+class HoleFill:
+    """
+    What geofair.fill_holes did with one hole.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def attempts(self) -> list:
+        """
+        Every fill tried, in order: a list of dicts with "method", "converged", "folds", "seconds" (wall-clock) and "message" (the solve's, or why it was not made).
+        """
+    @property
+    def converged(self) -> bool:
+        """
+        The kept fill's solve converged.
+        """
+    @property
+    def filled(self) -> bool:
+        """
+        True unless the hole was left open.
+        """
+    @property
+    def folds(self) -> int:
+        """
+        Folded edges of the kept fill: edges of its triangles, among them and with the input's triangles at the loop, whose two triangles' normals have a non-positive dot product.
+        """
+    @property
+    def loop(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (k,) int32: the hole's loop, input vertex indices in the direction of the missing face (as geofair.boundary_loops orders them).
+        """
+    @property
+    def method(self) -> str:
+        """
+        The fill kept: "intrinsic" (G1, Δ_B H = 0 at the loop's edge length), "intrinsic_finer" (at half of it), "intrinsic_trimmed" (after rim="trim" removed faces at the rim), "g0" (positions only at the loop: H = 0), "linear" (the linear Δ²f = 0 fill of the same patch), or "none": left open (.reason says why).
+        """
+    @property
+    def new_faces(self) -> int:
+        """
+        Triangles the fill added.
+        """
+    @property
+    def new_vertices(self) -> int:
+        """
+        Vertices the fill added.
+        """
+    @property
+    def reason(self) -> str:
+        """
+        Left open: why, one clause for a user; filled: "".
+        """
+    @property
+    def removed_faces(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (r,) int32: input face indices (rows of the input faces) removed at this hole's rim, sorted; empty unless rim="trim" trimmed it.
+        """
+    @property
+    def residual(self) -> float:
+        """
+        The kept fill's normalized residual (dimensionless, see geofair.fair).
+        """
+class FillResult(FairingResult):
+    """
+    Result of geofair.fill_holes: geofair.FairingResult's fields for the filled mesh, and a record per hole.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def holes(self) -> list[HoleFill]:
+        """
+        list of geofair.HoleFill: the holes in the order of the loops (given, or geofair.holes_to_fill's), then the loops the rule left open (method "none", with the reason).
+        """
+    @property
+    def removed_faces(self) -> numpy.typing.NDArray[numpy.int32]:
+        """
+        (r,) int32: the input face indices removed at the rims (rim="trim"), sorted; the result's faces are the other input faces in their order, then the fills'.
         """
 class LiveFairing:
     """
@@ -427,7 +504,7 @@ def fair(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDAr
         never returned.
     TypeError: an unknown keyword argument, or an argument of the wrong type.
     """
-def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, keep_outer_borders: bool = True, max_hole_edges: typing.SupportsInt | typing.SupportsIndex | None = None, boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FairingResult:
+def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], loops: collections.abc.Iterable[collections.abc.Iterable[typing.SupportsIndex]] | None = None, *, target_edge_length: typing.SupportsFloat | typing.SupportsIndex | None = None, keep_outer_borders: bool = True, max_hole_edges: typing.SupportsInt | typing.SupportsIndex | None = None, rim: typing.Literal['keep', 'trim'] = 'keep', boundary: typing.Literal['g1', 'g0'] = 'g1', inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', progress: collections.abc.Callable[[int, float], bool | None] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> FillResult:
     """
     Fill holes of a triangle mesh with intrinsically faired patches: each hole's
     loop keeps its positions and takes its unit normals from the faces around it (the G1
@@ -439,11 +516,20 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     in meshes", by the largest dihedral angle between adjacent triangles, the faces around the
     loop included, then the area; loops of more than 500 vertices get a fan around their
     centroid), the edges across the hole are split, the patch is remeshed isotropically at
-    target_edge_length (geofair.remesh_region), and all patches are faired together by
-    geofair.fair with the new vertices free. Where that does not converge or folds an edge and
-    target_edge_length is None, the holes are filled once more at half the loops' edge length
-    (ragged loops need a finer fill next to them) and the better result is returned; its
-    message says so.
+    target_edge_length (geofair.remesh_region), and faired by geofair.fair with the new
+    vertices free, each hole on its own (its patch and the faces within three rings of its loop).
+    
+    Every hole gets a fill: per hole the fills below are tried in order and the first that
+    converges without a folded edge is kept, else the one with the fewest folded edges
+    (converged first among equals): "intrinsic" (the fill above), "intrinsic_finer" (at half
+    the loop's edge length, where target_edge_length is None and the first fill has at most
+    5000 new vertices: ragged loops need a finer fill next to them), "intrinsic_trimmed" (rim="trim" only: the rim's teeth, triangles with two
+    loop edges, and the triangles at loop vertices whose faces span less than 90° removed, up to
+    three rounds, while the hole stays one simple loop; MeshFix's remove-and-fill, Attene
+    2010), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
+    Δ²f = 0 fill of the same patch, the method of CGAL's triangulate_refine_and_fair_hole; the
+    last two on the trimmed rim where it was trimmed). .holes says which fill each hole got.
+    A hole is left open only where no fill can be made (over 2000000 new vertices).
     
     Parameters
     ----------
@@ -468,6 +554,9 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
         when loops are given.
     max_hole_edges : with loops=None, leave loops of more edges than this open (like Blender's
         Fill Holes Sides or MeshLab's Close Holes size); None (default): no limit.
+    rim : "keep" (default): every input face is kept; "trim": where the fill of a loop as it is
+        folds or does not converge, input faces at its rim may be removed first (see above; named
+        in .removed_faces and each hole's .removed_faces).
     boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
     damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
         geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
@@ -475,20 +564,25 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     
     Returns
     -------
-    FairingResult: .vertices (n + k, 3), the input's n rows first and bit-identical, the k new
-    vertices after; .faces (m + l, 3), the input's m faces first and unchanged, the new ones
-    after, oriented like the faces around the holes; .free (n + k,) bool, True exactly at the
-    new vertices; .remeshed True (.origin_face -1: a fill has no input surface); .converged,
-    .residual, .message, .stop_reason, .folds, .new_folds and .phase_seconds (starting with
-    "fill") as for fair.
+    FillResult (a FairingResult): .vertices (n + k, 3), the input's n rows first and
+    bit-identical, the k new vertices after (with rim="trim", input rows whose every face was
+    removed stay, listed in .unreferenced); .faces, the input's m faces first and unchanged
+    (with rim="trim" less .removed_faces, the others in their order), then each hole's fill,
+    oriented like the faces around the holes; .free (n + k,) bool, True exactly at the new
+    vertices; .remeshed True (.origin_face -1: a fill has no input surface); .converged (every
+    fill converged), .residual (the largest), .folds and .new_folds (the fills' folded edges,
+    HoleFill.folds, summed), .message (one clause per method), .stop_reason and .phase_seconds
+    (starting with "fill", the holes' phases summed); .holes, a list of geofair.HoleFill (loop,
+    method, converged, folds, removed_faces, attempts, reason), the holes in the order of the
+    loops, then the loops the rule left open; .removed_faces (r,) int32, sorted.
     
     Raises
     ------
     geofair.InvalidInputError (a ValueError) when loops is not a list of sequences of vertex
     indices, a loop is not a boundary loop of the mesh (the offending pair of vertices is named),
-    a vertex is on two given loops, the mesh has no hole to fill (no boundary loop, or with
+    a vertex is on two given loops, rim is not "keep" or "trim", the mesh has no hole to fill (no boundary loop, or with
     loops=None every loop is left open: the message names them and why), max_hole_edges is not
-    None or a positive integer, a fill would take more than 2000000 new vertices, the mesh's
+    None or a positive integer, no hole can be filled under 2000000 new vertices, the mesh's
     squared lengths leave the normal doubles (a bounding-box diagonal above about 1.3e154 or a
     mean edge length below about 1.5e-154: the message names the size), or for the input fair
     refuses (the message names the problem and the vertex or face); geofair.SolverError (a
@@ -515,7 +609,9 @@ def holes_to_fill(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.ty
     (holes, left_open): holes a list of (k,) int32 arrays, the loops to fill as
     geofair.boundary_loops returns them (in its order); left_open a list of (loop, reason)
     tuples, the other loops with one clause for a user saying why (e.g. "an outer border: it
-    spans 95 % of the area of its part's triangles (a hole less than 30 %)"). Both empty for
+    spans 95 % of the area of its part's triangles (a hole less than 30 %)"; a piece of border
+    that passes more than once through a vertex, where holes touch: "not a simple loop: ...",
+    its vertices sorted). Both empty for
     a closed mesh. The same at any scale of the mesh.
     
     Raises
@@ -596,6 +692,28 @@ def progressive_mesh(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy
     
     Raises geofair.InvalidInputError (a ValueError) for invalid input.
     """
+def read_mesh(path: str) -> dict[str, typing.Any]:
+    """
+    Read an OBJ, PLY, OFF or STL file (by its extension) with OpenMesh's readers.
+    
+    Parameters
+    ----------
+    path : str, the file.
+    
+    Returns
+    -------
+    dict: "vertices" (n, 3) float64 positions in file units; "faces" (m, 3) int32 triangles
+    (polygons split into fans, oriented as in the file); "polygon" (m,) int32 the file's face of
+    each triangle; "colors" (n, 4) uint8 RGBA vertex colours (PLY, OFF) or None; "texcoords"
+    (n, 2) float64 vertex texture coordinates (OBJ's vt) or None. STL's repeated corners are
+    merged into shared vertices.
+    
+    Raises
+    ------
+    geofair.InvalidInputError (a ValueError) naming the file and the problem: an unknown
+    extension, an unreadable file, faces OpenMesh's reader skips as non-manifold, no face, or a
+    non-finite coordinate.
+    """
 def relax_inner_fairness(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], normals: numpy.typing.NDArray[numpy.float64], inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', tangent_planes: typing.Literal['fixed', 'turning'] = 'turning', polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None) -> tuple[numpy.typing.NDArray[numpy.float64], float]:
     """
     One global tangential solve of inner fairness, the step fair()'s Newton iteration
@@ -671,5 +789,24 @@ def remesh_region(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.ty
     ------
     geofair.InvalidInputError (a ValueError) for invalid input (shapes, indices, no free vertex, a free vertex on the mesh
     border, a region that is not a consistently oriented 2-manifold, invalid options).
+    """
+def write_mesh(path: str, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], *, colors: numpy.typing.NDArray[numpy.uint8] | None = None, texcoords: numpy.typing.NDArray[numpy.float64] | None = None) -> None:
+    """
+    Write a triangle mesh to an OBJ, PLY (binary), OFF or STL (binary) file (by its
+    extension) with OpenMesh's writers. The file is written under a temporary name beside the
+    destination and renamed over it at the end: an error never leaves a partial file.
+    
+    Parameters
+    ----------
+    path : str, the file.
+    vertices : (n, 3) float64 positions; faces : (m, 3) integer triangles.
+    colors : None or (n, 4) uint8 RGBA vertex colours (written to PLY and OFF).
+    texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY).
+    
+    Raises
+    ------
+    geofair.InvalidInputError (a ValueError) for an unknown extension, faces that index no
+    vertex, a non-finite coordinate, or triangles that do not form a manifold mesh; OSError if
+    the file cannot be written.
     """
 __version__: str
