@@ -42,7 +42,7 @@ def load_scene(cache, n, kind="irregular", seed=1):
             s = scenes.sphere_cap(n_free=n, irregular=kind == "irregular", seed=seed, boundary_rings=2)
             v = s.disturbed(seed=seed + 1, amplitude=0.1)
         os.makedirs(cache, exist_ok=True)
-        tmp = path + ".tmp.npz"
+        tmp = f"{path}.{os.getpid()}.tmp.npz"  # one per process: parallel test workers
         np.savez(tmp, vertices=v, faces=s.faces.astype(np.int32), free=s.free, normals=s.normals)
         os.replace(tmp, path)
         print(f"# generated {path} in {time.perf_counter() - t:.0f} s", file=sys.stderr, flush=True)

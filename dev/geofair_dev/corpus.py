@@ -214,8 +214,9 @@ def make_blender_meshes(cache):
         p = np.array([face[polygon] for face in bm.faces], np.int64)
         bm.free()
         path = os.path.join(cache, f"mesh_blender_{name}.npz")
-        np.savez(path + ".tmp.npz", vertices=v, faces=f, polygons=p)
-        os.replace(path + ".tmp.npz", path)
+        tmp = f"{path}.{os.getpid()}.tmp.npz"  # one per process: parallel test workers
+        np.savez(tmp, vertices=v, faces=f, polygons=p)
+        os.replace(tmp, path)
         print(f"{name}: {len(v)} vertices, {len(f)} triangles", flush=True)
 
 
