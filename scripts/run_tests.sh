@@ -16,4 +16,6 @@ bash scripts/run_fuzz.sh 30
 # a source build without SuiteSparse gets; no shipped package uses it).
 GEOFAIR_BUILD="$PWD/build-portable" PYTHONPATH="$PWD/build-portable/python" python3 -m pytest -q \
   -p no:cacheprovider tests/test_fairing.py tests/test_newton.py tests/test_bilaplacian.py
-exec python3 -m pytest -q "$@" tests
+# Two workers (pytest-xdist), each test file on one of them: a file's module fixtures (a
+# wheel's venv, Blender's profile, wine's prefix) are made once.
+exec python3 -m pytest -q -n 2 --dist loadfile "$@" tests

