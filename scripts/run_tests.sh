@@ -4,6 +4,11 @@
 # Blender 3.4 (Debian) and the bpy module from PyPI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The project venv that scripts/setup.sh makes (where it is: else the python3 on PATH).
+if [ -f .venv/bin/activate ]; then
+  # shellcheck disable=SC1091
+  source .venv/bin/activate
+fi
 export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
 python3 -m ruff check addon tests bench scripts examples dev

@@ -3,6 +3,11 @@
 # development module and add-on), dist/ (the manylinux_2_28 and win_amd64 wheels, the Blender
 # extension zips and the legacy add-on zip, docs/PACKAGING.md) and the bpy 5.0 and 5.2 venvs
 # the tests use. Run as root or with sudo available.
+#
+# The Python packages go into the project venv .venv (PEP 668: Debian's own python3 takes no
+# pip installs), made by $PYTHON (default: the python3 on PATH, Debian's /usr/bin/python3 on a
+# stock Debian 12); scripts/run_tests.sh activates it, and so can you:
+# `source .venv/bin/activate`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SUDO=""
@@ -17,7 +22,14 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   cmake g++ make libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev pybind11-dev \
   libcgal-dev libcgal-demo libgtest-dev \
   blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
-step "Python packages (pip)"
+step "Python packages into .venv (pip)"
+# The project venv, kept across runs (made again where its Python has gone).
+if ! .venv/bin/python -c "" 2>/dev/null; then
+  rm -rf .venv
+  "${PYTHON:-python3}" -m venv .venv
+fi
+# shellcheck disable=SC1091
+source .venv/bin/activate
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # pytest-xdist runs the tests on both cores; lizard measures the functions' length
 # (scripts/run_tests.sh). Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and

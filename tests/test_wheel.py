@@ -1,9 +1,8 @@
 """The self-contained wheels (scripts/build_wheel.sh) in fresh virtual environments.
 
 Each wheel ``dist/geofair-<version>-cpXY-cpXY-manylinux_2_28_x86_64.whl`` (CPython 3.11, 3.12
-and 3.13: this python3 and pyenv's) is installed into a new venv of its Python (3.11: with
-the system's site-packages for numpy, scipy, matplotlib, pytest and mypy; the others get
-them from PyPI; never build/python: PYTHONPATH is cleared); then
+and 3.13: this python3 and pyenv's) is installed into a new venv of its Python, with numpy,
+scipy, matplotlib, pytest and mypy from PyPI (never build/python: PYTHONPATH is cleared); then
 
 - the module's tests pass against it: BINDINGS_TESTS against every wheel (the wheels differ
   only in the bindings) and SOLVER_TESTS against the cp311 wheel too (its compiler and
@@ -62,11 +61,11 @@ def built_wheel(tag):
 
 
 def interpreter(tag):
-    """The Python of ``tag``: this one for cp311 (the system's packages), pyenv's for the others."""
+    """The Python of ``tag``: this one (its base, outside any venv) for cp311, pyenv's for the others."""
     if tag == "cp311":
         if sys.version_info[:2] != (3, 11):
             unavailable(f"the cp311 wheel needs Python 3.11, this is {sys.version.split()[0]}")
-        return pathlib.Path(sys.executable)
+        return pathlib.Path(getattr(sys, "_base_executable", sys.executable))
     minor = tag.removeprefix("cp3")
     found = sorted(PYENV.glob(f"versions/3.{minor}.*/bin/python3.{minor}"))
     if not found:
@@ -87,15 +86,13 @@ def venv(request, tmp_path_factory):
     wheel = built_wheel(tag)
     base = interpreter(tag)
     folder = tmp_path_factory.mktemp(f"venv-{tag}")
-    system = ["--system-site-packages"] if tag == "cp311" else []
-    subprocess.run([base, "-m", "venv", *system, str(folder)], check=True)
+    subprocess.run([base, "-m", "venv", str(folder)], check=True)
     python = folder / "bin" / "python"
-    if tag != "cp311":
-        subprocess.run(
-            [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", *TEST_REQUIREMENTS],
-            check=True,
-            env=clean_env(),
-        )
+    subprocess.run(
+        [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", *TEST_REQUIREMENTS],
+        check=True,
+        env=clean_env(),
+    )
     # With its dependencies, as a user installs it (numpy, and scipy-openblas32: the BLAS).
     subprocess.run(
         [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", wheel],

@@ -29,6 +29,13 @@ def parse(spec):
     return str(path), spec
 
 
+def _site_folders():
+    """This environment's site-packages folders (a venv's own, not its base Python's)."""
+    import sysconfig
+
+    return list(dict.fromkeys([sysconfig.get_path("purelib"), sysconfig.get_path("platlib")]))
+
+
 def _venv_for(wheel):
     """The venv with ``wheel`` installed (made on first use)."""
     wheel = pathlib.Path(wheel).resolve()
@@ -37,7 +44,14 @@ def _venv_for(wheel):
     folder = VENVS / f"{wheel.stem}-{wheel.stat().st_size}"
     python = folder / "bin" / "python"
     if not python.exists():
-        subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(folder)], check=True)
+        subprocess.run([sys.executable, "-m", "venv", str(folder)], check=True)
+        # This environment's packages after the venv's own (also where this is a venv, which
+        # --system-site-packages would skip for its base Python's).
+        site = subprocess.run([python, "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
+                              capture_output=True, text=True, check=True).stdout.strip()  # fmt: skip
+        parent = [p for p in _site_folders() if os.path.isdir(p)]
+        line = f"import site; [site.addsitedir(p) for p in {parent!r}]\n"
+        pathlib.Path(site, "geofair_bench_parent.pth").write_text(line)
         env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
         subprocess.run(
             [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheel)], check=True, env=env
