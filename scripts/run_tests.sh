@@ -11,8 +11,8 @@ if [ -f .venv/bin/activate ]; then
 fi
 export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
-python3 -m ruff check addon tests bench scripts examples dev
-python3 -m ruff format --check addon tests bench scripts examples dev
+python3 -m ruff check addon tests bench scripts examples dev native/python/cli
+python3 -m ruff format --check addon tests bench scripts examples dev native/python/cli
 # The C++ unit tests (native/tests, GoogleTest).
 ctest --test-dir build --output-on-failure --no-tests=error
 # A short libFuzzer run of the C++ entry points (scripts/run_fuzz.sh SECONDS for a long one).

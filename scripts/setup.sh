@@ -23,10 +23,12 @@ DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recomme
   libcgal-dev libcgal-demo libgtest-dev \
   blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
 step "Python packages into .venv (pip)"
-# The project venv, kept across runs (made again where its Python has gone).
+# The project venv, kept across runs (made again where its Python has gone); it sees its
+# Python's own packages (Debian's python3-numpy, or what a Python with pip has installed), and
+# pip installs what is missing or too old into it.
 if ! .venv/bin/python -c "" 2>/dev/null; then
   rm -rf .venv
-  "${PYTHON:-python3}" -m venv .venv
+  "${PYTHON:-python3}" -m venv --system-site-packages .venv
 fi
 # shellcheck disable=SC1091
 source .venv/bin/activate

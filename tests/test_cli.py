@@ -115,6 +115,11 @@ def test_a_region_is_faired_and_bad_input_writes_nothing(tmp_path):
     assert status == 1 and "unknown mesh format" in err, err
     status, _, err = run("fill", source, tmp_path / "other.obj", "-o", tmp_path / "x.obj")
     assert status == 2 and "--output-dir" in err, err
+    # Two inputs of one name would overwrite each other in --output-dir: refused, nothing written.
+    (tmp_path / "a").mkdir()
+    geofair.write_mesh(str(tmp_path / "a" / "sheet.obj"), v, f)
+    status, _, err = run("fill", source, tmp_path / "a" / "sheet.obj", "--output-dir", tmp_path / "o")
+    assert status == 2 and "overwrite each other" in err and not (tmp_path / "o").exists(), err
 
 
 @pytest.mark.parametrize("ext", ["obj", "ply", "off", "stl"])
@@ -131,3 +136,22 @@ def test_mesh_files_round_trip(tmp_path, ext):
         geofair.read_mesh(str(tmp_path / f"missing.{ext}"))
     with pytest.raises(OSError, match="cannot be written"):
         geofair.write_mesh(str(tmp_path / "no" / f"m.{ext}"), v, f)
+
+
+def test_mesh_files_read_and_written_from_threads_at_once(tmp_path):
+    """OpenMesh's readers and writers are process-wide: concurrent calls (without the GIL)
+    take turns, and every file comes back whole; the writes leave no temporary file."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    v, f, colors = scan(n=40, hole=0.0)  # every vertex in a triangle: STL keeps only those
+
+    def round_trip(k):
+        path = str(tmp_path / f"m{k}.{('obj', 'ply', 'off', 'stl')[k % 4]}")
+        geofair.write_mesh(path, v + k, f, colors=colors)
+        back = geofair.read_mesh(path)
+        return len(back["vertices"]), len(back["faces"]), float(np.sort(back["vertices"], axis=0)[0, 0]) - k
+
+    with ThreadPoolExecutor(4) as pool:
+        results = list(pool.map(round_trip, range(16)))
+    assert all(r[:2] == (len(v), len(f)) and abs(r[2] - v[:, 0].min()) < 1e-5 for r in results), results
+    assert len(os.listdir(tmp_path)) == 16, sorted(os.listdir(tmp_path))

@@ -103,7 +103,9 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
 
 def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
     v, f, free, handle = handle_scene
-    live = geofair.LiveFairing(v, f, free, time_limit=0.5)
+    # A time limit for the failing frame's cold path, with room for the good frames on a
+    # loaded machine (two test workers on two cores).
+    live = geofair.LiveFairing(v, f, free, time_limit=2.0)
     good = lifted(v, handle, 0.04)
     first = live.update(good)
     assert first.converged

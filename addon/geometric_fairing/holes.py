@@ -11,8 +11,8 @@ when it is made, solves (in the calling thread or a worker thread, like
 interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). Every hole gets
 a fill: the library tries its fills in turn and keeps the best (``geofair.FillResult.holes``
 says which), so a fill that did not converge is written too and the report says so. With
-*Clean Rim* (``clean_rim``, on in the panel) the library may remove the faces of a ragged rim
-(teeth, spikes) first; the report names them (face indices before the fill).
+*Clean Rim* (``clean_rim``, off by default: it deletes the user's faces) the library may remove
+the faces of a ragged rim (teeth, spikes) first; the report names them (face indices before the fill).
 """
 
 import threading

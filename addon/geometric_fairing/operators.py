@@ -330,9 +330,10 @@ class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator)
         name="Clean Rim",
         description=(
             "Where a hole's fill folds or does not converge, remove the ragged faces of its rim first (teeth with "
-            "two boundary edges, spikes narrower than 90°) and fill the larger hole; the report names the faces removed"
+            "two boundary edges, spikes narrower than 90°) and fill the larger hole; the report names the faces "
+            "removed. Off by default: it deletes faces of yours"
         ),
-        default=True,
+        default=False,
         options={"SKIP_SAVE"},
     )
     keep_unconverged: properties._keep_unconverged(options={"SKIP_SAVE"})

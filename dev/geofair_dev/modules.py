@@ -30,10 +30,10 @@ def parse(spec):
 
 
 def _site_folders():
-    """This environment's site-packages folders (a venv's own, not its base Python's)."""
-    import sysconfig
+    """This environment's site-packages folders (a venv's own, and its base Python's where it sees them)."""
+    import site
 
-    return list(dict.fromkeys([sysconfig.get_path("purelib"), sysconfig.get_path("platlib")]))
+    return site.getsitepackages()
 
 
 def _venv_for(wheel):

@@ -1235,7 +1235,8 @@ path : str, the file.
 
 Returns
 -------
-dict: "vertices" (n, 3) float64 positions in file units; "faces" (m, 3) int32 triangles
+dict: "vertices" (n, 3) float64 positions in file units (OpenMesh's readers keep single
+precision: about 1e-7 relative); "faces" (m, 3) int32 triangles
 (polygons split into fans, oriented as in the file); "polygon" (m,) int32 the file's face of
 each triangle; "colors" (n, 4) uint8 RGBA vertex colours (PLY, OFF) or None; "texcoords"
 (n, 2) float64 vertex texture coordinates (OBJ's vt) or None. STL's repeated corners are
@@ -1283,15 +1284,17 @@ non-finite coordinate.)doc");
       py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
       py::arg("colors") = py::none(), py::arg("texcoords") = py::none(),
       R"doc(Write a triangle mesh to an OBJ, PLY (binary), OFF or STL (binary) file (by its
-extension) with OpenMesh's writers. The file is written under a temporary name beside the
-destination and renamed over it at the end: an error never leaves a partial file.
+extension) with OpenMesh's writers, positions in single precision (about 1e-7 relative).
+The file is written under a temporary name beside the destination and renamed over it at the
+end: an error never leaves a partial file.
 
 Parameters
 ----------
 path : str, the file.
 vertices : (n, 3) float64 positions; faces : (m, 3) integer triangles.
 colors : None or (n, 4) uint8 RGBA vertex colours (written to PLY and OFF).
-texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY).
+texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY; per
+    vertex, so a UV seam is not kept).
 
 Raises
 ------
@@ -1713,17 +1716,29 @@ the cold path raises. Either leaves the state as it was.)doc");
   // The properties and __repr__ first, with the signatures pybind11 writes; then the
   // checked functions, whose docstrings carry their own (self first, as a Python method's).
   // A copy: a reference into the object would change under the caller with the next update.
+  // The getters wait for an update running in another thread: without the GIL meanwhile.
+  const auto released = [](auto getter) {
+    return py::cpp_function(getter, py::call_guard<py::gil_scoped_release>());
+  };
   cls.def_property_readonly(
-      "result", [](const LiveFairing& live) { return live.result(); },
+      "result", released([](const LiveFairing& live) { return live.result(); }),
       "A copy of the last converged frame's FairingResult (the constructor's cold fair until "
       "then, converged or not).");
-  cls.def_property_readonly("frames", &LiveFairing::frames,
+  cls.def_property_readonly("frames",
+                            released([](const LiveFairing& live) { return live.frames(); }),
                             "Updates finished so far (returned, converged or not).");
-  cls.def_property_readonly("cold_frames", &LiveFairing::cold_frames,
+  cls.def_property_readonly("cold_frames",
+                            released([](const LiveFairing& live) { return live.cold_frames(); }),
                             "Finished updates that ran the cold path (geofair.fair).");
   cls.def("__repr__", [](const LiveFairing& live) {
-    return "LiveFairing(frames=" + std::to_string(live.frames()) +
-           ", cold_frames=" + std::to_string(live.cold_frames()) + ")";
+    int frames = 0, cold = 0;
+    {
+      py::gil_scoped_release release;
+      frames = live.frames();
+      cold = live.cold_frames();
+    }
+    return "LiveFairing(frames=" + std::to_string(frames) +
+           ", cold_frames=" + std::to_string(cold) + ")";
   });
   static const std::string init_docstring = "__init__(self, " + make.docstring.substr(9);
   const std::string& update_docstring = update.docstring;

@@ -189,6 +189,10 @@ struct LiveFairing::State {
     last = result;
   }
 
+  // The FairingResult of a converged warm start Y (region-local, / scale) from X0.
+  FairingResult warm_result(const Positions& V, const Positions& X0, const Positions& Y,
+                            const IterationReport& report) const;
+
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).
   std::optional<FairingResult> warm_frame(const Positions& V, const Positions& W,
@@ -196,55 +200,9 @@ struct LiveFairing::State {
                                           std::string& why);
 };
 
-std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
-                                                            const Positions& W,
-                                                            const Positions* boundary_normals,
-                                                            Phases& phases, std::string& why) {
-  Laps laps;
-  // The boundary data of the frame: normals (the given ones, or estimated from W), the
-  // residual's length, and for conformal inner fairness the weights of the frame's input.
-  std::optional<Positions> normals;
-  if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
-  set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
-  finest.g1_normals = region.g1_normals;
-  const Positions X0 = gather(W, region.global);
-  const double L = diagonal(X0);
-  if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
-  if (options.inner_fairness != InnerFairness::Uniform) {
-    InnerFairnessWeights lambda = inner_fairness_weights(finest, X0, options.inner_fairness);
-    if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
-      construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
-  }
-  construction->set_boundary(finest.g1_normals, L);
-  // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
-  const int nb = region.n - region.n_free;
-  Positions Y = X;
-  predictor->predict(X0.bottomRows(nb) - X.bottomRows(nb), Y);
-  Y.bottomRows(nb) = X0.bottomRows(nb);
-  phases.emplace_back("boundary data and predictor", laps.lap());
-
-  NewtonRun run;
-  run.max_iterations = live.max_warm_steps;
-  run.tolerance = options.tolerance;
-  run.patience = options.tuning.newton.patience;
-  run.polish_at_convergence = true;
-  run.warm = true;
-  IterationReport report;
-  try {
-    report = construction->run_newton(Y, run);
-  } catch (const SolverError& error) {
-    why = error.what();
-    return std::nullopt;
-  }
-  laps.lap();  // run_newton's own seconds, below
-  phases.emplace_back("warm inner fairness", report.relax_seconds);
-  phases.emplace_back("warm Newton steps", report.step_seconds);
-  phases.emplace_back("warm polishes", report.polish_seconds);
-  if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
-    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
-    return std::nullopt;
-  }
-  X = Y;
+FairingResult LiveFairing::State::warm_result(const Positions& V, const Positions& X0,
+                                              const Positions& Y,
+                                              const IterationReport& report) const {
   FairingResult result;
   result.vertices = caller_positions(V, Y);
   result.faces = F;
@@ -273,6 +231,60 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
                       (folds.folds == 1 ? " edge folds" : " edges fold") +
                       " over (triangles flipped), " + std::to_string(folds.new_folds) +
                       " of them not in the input";
+  return result;
+}
+
+std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
+                                                            const Positions& W,
+                                                            const Positions* boundary_normals,
+                                                            Phases& phases, std::string& why) {
+  Laps laps;
+  // The boundary data of the frame: normals (the given ones, or estimated from W), the
+  // residual's length, and for conformal inner fairness the weights of the frame's input.
+  std::optional<Positions> normals;
+  if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
+  set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
+  finest.g1_normals = region.g1_normals;
+  const Positions X0 = gather(W, region.global);
+  const double L = diagonal(X0);
+  if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
+  const int nb = region.n - region.n_free;
+  Positions Y = X;
+  IterationReport report;
+  // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
+  // steps) leaves the frame to the cold path.
+  try {
+    if (options.inner_fairness != InnerFairness::Uniform) {
+      InnerFairnessWeights lambda = inner_fairness_weights(finest, X0, options.inner_fairness);
+      if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
+        construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
+    }
+    construction->set_boundary(finest.g1_normals, L);
+    // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
+    predictor->predict(X0.bottomRows(nb) - X.bottomRows(nb), Y);
+    Y.bottomRows(nb) = X0.bottomRows(nb);
+    phases.emplace_back("boundary data and predictor", laps.lap());
+    NewtonRun run;
+    run.max_iterations = live.max_warm_steps;
+    run.tolerance = options.tolerance;
+    run.patience = options.tuning.newton.patience;
+    run.polish_at_convergence = true;
+    run.warm = true;
+    report = construction->run_newton(Y, run);
+  } catch (const SolverError& error) {
+    why = error.what();
+    return std::nullopt;
+  }
+  laps.lap();  // run_newton's own seconds, below
+  phases.emplace_back("warm inner fairness", report.relax_seconds);
+  phases.emplace_back("warm Newton steps", report.step_seconds);
+  phases.emplace_back("warm polishes", report.polish_seconds);
+  if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
+    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
+    return std::nullopt;
+  }
+  X = Y;
+  FairingResult result = warm_result(V, X0, Y, report);
   phases.emplace_back("result", laps.lap());
   return result;
 }

@@ -7,10 +7,14 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
-#include <cstdio>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 namespace geofair {
 
@@ -42,11 +46,18 @@ void check_extension(const std::string& path, const char* caller) {
                             ": unknown mesh format (expected .obj, .ply, .off or .stl)");
 }
 
+// OpenMesh's readers, writers and its omerr/omlog streams are process-wide: one IO at a time
+// (read_mesh and write_mesh run without the GIL).
+std::mutex& io_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 // OpenMesh's warnings (omerr) during a read, e.g. its "complex edge" for a non-manifold face;
-// its log (omlog, "write file") is silenced meanwhile.
+// its log (omlog, "write file") is silenced meanwhile. Holds io_mutex while it lives.
 class CaptureOmerr {
  public:
-  CaptureOmerr() {
+  CaptureOmerr() : lock_(io_mutex()) {
     omerr().connect(text_);
     omlog().connect(log_);
     omlog().disable();
@@ -62,8 +73,21 @@ class CaptureOmerr {
   }
 
  private:
+  std::lock_guard<std::mutex> lock_;
   std::ostringstream text_, log_;
 };
+
+// A name beside ``path`` for the write in progress: a counter and the clock keep threads and
+// processes writing beside the same destination apart.
+std::string temporary_name(const std::string& path, const std::string& ext) {
+  static std::atomic<unsigned long> counter{0};
+  const auto slash = path.find_last_of("/\\");
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
+  return dir + "." + name + ".geofair-partial-" + std::to_string(now) + "-" +
+         std::to_string(counter++) + "." + ext;
+}
 
 int count(const std::string& text, const std::string& what) {
   int n = 0;
@@ -180,24 +204,18 @@ void write_mesh_file(const std::string& path, const MeshFile& in) {
   if (colors && (ext == "ply" || ext == "off")) options += OpenMesh::IO::Options::VertexColor;
   if (colors && ext == "ply") options += OpenMesh::IO::Options::ColorAlpha;
   if (texcoords && (ext == "obj" || ext == "ply")) options += OpenMesh::IO::Options::VertexTexCoord;
-  // Written under a temporary name beside the destination, then renamed over it.
-  const auto slash = path.find_last_of("/\\");
-  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const std::string temporary = dir + "." + name + ".geofair-partial." + ext;
+  // Written under a temporary name beside the destination, then renamed over it (replacing an
+  // existing file on Windows too: std::filesystem::rename, not std::rename).
+  const std::string temporary = temporary_name(path, ext);
   bool written = false;
   {
     CaptureOmerr capture;
     written = OpenMesh::IO::write_mesh(mesh, temporary, options, 17);
   }
-  // std::rename does not replace an existing file on Windows: remove it there first.
-  const auto moved = [&] {
-    if (std::rename(temporary.c_str(), path.c_str()) == 0) return true;
-    std::remove(path.c_str());
-    return std::rename(temporary.c_str(), path.c_str()) == 0;
-  };
-  if (!written || !moved()) {
-    std::remove(temporary.c_str());
+  std::error_code error;
+  if (written) std::filesystem::rename(temporary, path, error);
+  if (!written || error) {
+    std::filesystem::remove(temporary, error);
     throw std::runtime_error("write_mesh: " + path + ": cannot be written");
   }
 }

@@ -572,8 +572,8 @@ def topology(obj):
 
 
 def check_fill_ragged(addon):
-    """A ragged rim (teeth with sunk tips): with Clean Rim (the default) the teeth are removed and named, the
-    hole closed without a folded edge; undo restores the mesh byte for byte; without it every face stays."""
+    """A ragged rim (teeth with sunk tips): with Clean Rim the teeth are removed and named, the hole closed
+    without a folded edge; undo restores the mesh byte for byte; without it (the default) every face stays."""
     obj, teeth = ragged_sphere("Ragged sphere")
     assert len(teeth) >= 3, teeth
     bm = bmesh.from_edit_mesh(obj.data)
@@ -581,7 +581,7 @@ def check_fill_ragged(addon):
     bpy.ops.ed.undo_push(message="ragged hole")
     before, corners = edit_state(obj), topology(obj)
     # Edge Length given: no second fill at half of it (time), as for the library's test.
-    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1)
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1, clean_rim=True)
     last = bpy.context.window_manager.geometric_fairing.last_run
     assert result == {"FINISHED"}, error
     bm = bmesh.from_edit_mesh(obj.data)
@@ -596,7 +596,7 @@ def check_fill_ragged(addon):
     bpy.ops.ed.undo()
     assert edit_state(obj) == before and topology(obj) == corners, "undo did not restore the ragged hole"
     print("ok: undo restored the ragged hole byte for byte (positions, UVs, selection, faces)")
-    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1, clean_rim=False)
+    result, error = run(bpy.ops.mesh.geometric_fairing_fill_holes, edge_length=0.1)  # Clean Rim off
     assert result == {"FINISHED"}, error
     bm = bmesh.from_edit_mesh(obj.data)
     assert open_edges(bm) == 0 and "removed" not in bpy.context.window_manager.geometric_fairing.last_run.message

@@ -321,8 +321,12 @@ def _targets(parser, args):
         return [args.output]
     if not args.output_dir:
         parser.error("give -o OUT (one input) or --output-dir DIR")
+    targets = [os.path.join(args.output_dir, os.path.basename(path)) for path in args.inputs]
+    twice = sorted({t for t in targets if targets.count(t) > 1})
+    if twice:
+        parser.error(f"inputs of the same name would overwrite each other in --output-dir: {', '.join(twice)}")
     os.makedirs(args.output_dir, exist_ok=True)
-    return [os.path.join(args.output_dir, os.path.basename(path)) for path in args.inputs]
+    return targets
 
 
 def main(argv=None):
