@@ -702,7 +702,8 @@ def read_mesh(path: str) -> dict[str, typing.Any]:
     
     Returns
     -------
-    dict: "vertices" (n, 3) float64 positions in file units; "faces" (m, 3) int32 triangles
+    dict: "vertices" (n, 3) float64 positions in file units (OpenMesh's readers keep single
+    precision: about 1e-7 relative); "faces" (m, 3) int32 triangles
     (polygons split into fans, oriented as in the file); "polygon" (m,) int32 the file's face of
     each triangle; "colors" (n, 4) uint8 RGBA vertex colours (PLY, OFF) or None; "texcoords"
     (n, 2) float64 vertex texture coordinates (OBJ's vt) or None. STL's repeated corners are
@@ -793,15 +794,17 @@ def remesh_region(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.ty
 def write_mesh(path: str, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], *, colors: numpy.typing.NDArray[numpy.uint8] | None = None, texcoords: numpy.typing.NDArray[numpy.float64] | None = None) -> None:
     """
     Write a triangle mesh to an OBJ, PLY (binary), OFF or STL (binary) file (by its
-    extension) with OpenMesh's writers. The file is written under a temporary name beside the
-    destination and renamed over it at the end: an error never leaves a partial file.
+    extension) with OpenMesh's writers, positions in single precision (about 1e-7 relative).
+    The file is written under a temporary name beside the destination and renamed over it at the
+    end: an error never leaves a partial file.
     
     Parameters
     ----------
     path : str, the file.
     vertices : (n, 3) float64 positions; faces : (m, 3) integer triangles.
     colors : None or (n, 4) uint8 RGBA vertex colours (written to PLY and OFF).
-    texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY).
+    texcoords : None or (n, 2) float64 vertex texture coordinates (written to OBJ and PLY; per
+        vertex, so a UV seam is not kept).
     
     Raises
     ------
