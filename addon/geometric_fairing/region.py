@@ -149,6 +149,33 @@ def require_selected_faces(face_selected, vertex_selected=None):
     raise NothingSelectedError(NO_FACE_SELECTED)
 
 
+def _region_arguments(vertices, triangles, selected, pinned, present):
+    """:func:`find_region`'s arguments as arrays, ``pinned`` and ``present`` filled in when None, lengths checked."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    selected = np.asarray(selected, dtype=bool)
+    n = len(vertices)
+    if selected.shape != (len(triangles),):
+        raise ValueError("find_region: selected must have one entry per triangle")
+    present = np.ones(len(triangles), dtype=bool) if present is None else np.asarray(present, dtype=bool)
+    if present.shape != (len(triangles),):
+        raise ValueError("find_region: present must have one entry per triangle")
+    pinned = np.zeros(n, dtype=bool) if pinned is None else np.asarray(pinned, dtype=bool)
+    if pinned.shape != (n,):
+        raise ValueError("find_region: pinned must have one entry per vertex")
+    return vertices, triangles, selected, pinned, present
+
+
+def _selected_normals(vertices, triangles, selected, keeps_normal):
+    """``(n, 3)``: the area-weighted unit normal of the selected triangles at ``keeps_normal`` vertices, else zero."""
+    current = _vertex_sums(len(vertices), triangles[selected], face_cross_products(vertices, triangles)[selected])
+    current[~keeps_normal] = 0.0
+    length = np.linalg.norm(current, axis=1)
+    usable = length > 0.0
+    current[usable] /= length[usable, None]
+    return current
+
+
 def find_region(vertices, triangles, selected, pinned=None, present=None):
     """Compute the fairing region of a face selection.
 
@@ -184,18 +211,8 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
         RegionError: no free vertex, or a selected part with no fixed boundary
             (the whole closed mesh, or a whole closed piece of it).
     """
-    vertices = np.asarray(vertices, dtype=np.float64)
-    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
-    selected = np.asarray(selected, dtype=bool)
+    vertices, triangles, selected, pinned, present = _region_arguments(vertices, triangles, selected, pinned, present)
     n = len(vertices)
-    if selected.shape != (len(triangles),):
-        raise ValueError("find_region: selected must have one entry per triangle")
-    present = np.ones(len(triangles), dtype=bool) if present is None else np.asarray(present, dtype=bool)
-    if present.shape != (len(triangles),):
-        raise ValueError("find_region: present must have one entry per triangle")
-    pinned = np.zeros(n, dtype=bool) if pinned is None else np.asarray(pinned, dtype=bool)
-    if pinned.shape != (n,):
-        raise ValueError("find_region: pinned must have one entry per vertex")
     touches_absent = np.zeros(n, dtype=bool)
     touches_absent[triangles[~present].ravel()] = True
     triangles, selected = triangles[present], selected[present]
@@ -223,17 +240,11 @@ def find_region(vertices, triangles, selected, pinned=None, present=None):
     _check_every_part_has_boundary(triangles, free, boundary, closed)
 
     keeps_normal = boundary & (selected_at == faces_at)
-    current = _vertex_sums(n, triangles[selected], face_cross_products(vertices, triangles)[selected])
-    current[~keeps_normal] = 0.0
-    length = np.linalg.norm(current, axis=1)
-    usable = length > 0.0
-    current[usable] /= length[usable, None]
-
     return Region(
         free=free,
         boundary=boundary,
         keeps_normal=keeps_normal,
-        current_normals=current,
+        current_normals=_selected_normals(vertices, triangles, selected, keeps_normal),
         border_fixed=border_fixed,
         hidden_fixed=hidden_fixed,
         pinned=pinned,

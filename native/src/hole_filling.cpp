@@ -581,6 +581,112 @@ struct Tried {
 // (estimate_boundary_normals: two rings through the surrounding triangles) and one more.
 constexpr int kSurroundingRings = 3;
 
+// The first ring of a hole as a submesh of its own: local rows in order of first use by
+// the ring's triangles, then the loop's.
+struct LocalRing {
+  std::vector<int> global;             // local row -> input row
+  std::unordered_map<int, int> local;  // input row -> local row
+  Triangles faces;                     // the ring's triangles in local rows
+  std::vector<int> loop;               // the loop in local rows
+};
+
+LocalRing local_ring(const Triangles& F, const std::vector<int>& ring,
+                     const std::vector<int>& loop) {
+  LocalRing out;
+  auto add = [&](int v) {
+    if (out.local.emplace(v, int(out.global.size())).second) out.global.push_back(v);
+    return out.local.at(v);
+  };
+  out.faces.resize(Eigen::Index(ring.size()), 3);
+  for (size_t k = 0; k < ring.size(); ++k)
+    for (int c = 0; c < 3; ++c) out.faces(Eigen::Index(k), c) = add(F(ring[k], c));
+  for (int v : loop) out.loop.push_back(add(v));
+  return out;
+}
+
+// Why a patch of triangles T of X is refused before the remesh at edge length L (about one
+// vertex per two triangles of area sqrt(3)/4 L²); empty when it is not.
+std::string fill_size_refusal(const Positions& X, const Triangles& T, double L, double unit) {
+  double area = 0.0;
+  for (int t = 0; t < T.rows(); ++t) {
+    const auto a = X.row(T(t, 0)), b = X.row(T(t, 1)), c = X.row(T(t, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
+  if (estimate <= kMaxFillVertices) return {};
+  char text[160];
+  std::snprintf(text, sizeof text, "about %.3g new vertices at edge length %.3g (at most %d)",
+                estimate, L * unit, kMaxFillVertices);
+  return text;
+}
+
+// The remeshed first ring with the outer rings appended, for the G1 normals' samples: their
+// triangles after the remesh's, their vertices outside the first ring after its rows, fixed.
+struct FillSubmesh {
+  Positions vertices;
+  Triangles faces;
+  std::vector<bool> free;
+};
+
+FillSubmesh with_outer_rings(const Positions& V, const Triangles& F,
+                             const std::vector<std::vector<int>>& rings,
+                             const std::unordered_map<int, int>& local, const RemeshedRegion& r) {
+  FillSubmesh out{r.vertices, r.faces, r.free};
+  std::unordered_map<int, int> outer_row;
+  std::vector<int> outer_rows;
+  for (size_t ring = 1; ring < rings.size(); ++ring)
+    for (int f : rings[ring]) {
+      out.faces.conservativeResize(out.faces.rows() + 1, Eigen::NoChange);
+      for (int c = 0; c < 3; ++c) {
+        const int v = F(f, c);
+        const auto it = local.find(v);
+        int row;
+        if (it != local.end()) {
+          row = it->second;
+        } else {
+          const auto [o, fresh] =
+              outer_row.emplace(v, int(out.vertices.rows() + outer_rows.size()));
+          if (fresh) outer_rows.push_back(v);
+          row = o->second;
+        }
+        out.faces(out.faces.rows() - 1, c) = row;
+      }
+    }
+  append_rows(out.vertices, gather(V, outer_rows));
+  out.free.resize(size_t(out.vertices.rows()), false);
+  return out;
+}
+
+// fair()'s options for a fill by `method`: no remesh (the patch is a remesh already), and the
+// G0 or the linear fill where the method is one.
+FairingOptions fill_fairing_options(const FairingOptions& options, FillMethod method) {
+  FairingOptions fairing = options;
+  fairing.remesh = Remesh::Off;
+  if (method == FillMethod::G0) fairing.boundary = BoundaryCondition::G0;
+  if (method == FillMethod::Linear) fairing.outer_fairness = OuterFairness::Bilaplacian;
+  return fairing;
+}
+
+// Sets out.vertices and out.faces: the remesh's new rows (free, from n_fixed on) as faired,
+// and the fill's triangles S.row(first .. end - 1) in the caller's indices (fixed rows are
+// input rows, `global` of the local ones; a new vertex k is -(k + 1)).
+void fill_in_caller_indices(Tried& out, const std::vector<int>& global, const RemeshedRegion& r,
+                            int n_fixed, const Triangles& S, Eigen::Index first,
+                            Eigen::Index end) {
+  std::vector<int> to_caller(size_t(r.vertices.rows()), 0);
+  for (size_t k = 0; k < global.size(); ++k) to_caller[k] = global[k];
+  std::vector<int> rows;
+  for (int v = n_fixed; v < int(r.vertices.rows()); ++v)
+    if (r.free[size_t(v)]) {
+      to_caller[size_t(v)] = -(int(rows.size()) + 1);
+      rows.push_back(v);
+    }
+  out.vertices = gather(out.fairing.vertices, rows);
+  out.faces.resize(end - first, 3);
+  for (Eigen::Index t = first; t < end; ++t)
+    for (int c = 0; c < 3; ++c) out.faces(t - first, c) = to_caller[size_t(S(t, c))];
+}
+
 // Triangulates, splits and remeshes one hole at edge length L, and fairs it on its own
 // submesh: the patch and the input's triangles within kSurroundingRings rings of the loop
 // (the remesh sees the first ring alone, for the valences at the loop).
@@ -593,97 +699,34 @@ Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edge
   out.removed = removed;
   const auto rings = rings_around(F, edges, loop, removed, kSurroundingRings);
   // Local rows: the vertices of the first ring, then the split's midpoints, then the rest.
-  std::vector<int> global;
-  std::unordered_map<int, int> local;
-  auto add = [&](int v) {
-    if (local.emplace(v, int(global.size())).second) global.push_back(v);
-    return local.at(v);
-  };
-  Triangles T(Eigen::Index(rings[0].size()), 3);
-  for (size_t k = 0; k < rings[0].size(); ++k)
-    for (int c = 0; c < 3; ++c) T(Eigen::Index(k), c) = add(F(rings[0][k], c));
-  std::vector<int> local_loop;
-  for (int v : loop) local_loop.push_back(add(v));
-  Positions X = gather(V, global);
+  const LocalRing ring = local_ring(F, rings[0], loop);
+  Positions X = gather(V, ring.global);
+  Triangles T = ring.faces;
   const Triangles patch =
-      hole_filling::triangulate_loop(X, local_loop, hole_filling::DirectedEdges(T));
-  const auto split = hole_filling::split_inner_edges(X, patch, local_loop);
+      hole_filling::triangulate_loop(X, ring.loop, hole_filling::DirectedEdges(T));
+  const auto split = hole_filling::split_inner_edges(X, patch, ring.loop);
   const int n_fixed = int(X.rows());
   append_rows(X, split.new_vertices);
   append_rows(T, split.faces);
-  // About one vertex per two triangles of area sqrt(3)/4 L² (refused before the remesh).
-  double area = 0.0;
-  for (int t = 0; t < split.faces.rows(); ++t) {
-    const auto a = X.row(split.faces(t, 0)), b = X.row(split.faces(t, 1)),
-               c = X.row(split.faces(t, 2));
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
-  const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
-  if (!(estimate <= kMaxFillVertices)) {
-    char text[160];
-    std::snprintf(text, sizeof text, "about %.3g new vertices at edge length %.3g (at most %d)",
-                  estimate, L * unit, kMaxFillVertices);
-    out.attempt.message = text;
-    return out;
-  }
+  out.attempt.message = fill_size_refusal(X, split.faces, L, unit);
+  if (!out.attempt.message.empty()) return out;
   std::vector<bool> free(size_t(X.rows()), false);
   for (int v = n_fixed; v < int(X.rows()); ++v) free[size_t(v)] = true;
   RemeshOptions remesh;
   remesh.target_edge_length = L;
-  RemeshedRegion r = remesh_region(X, T, free, remesh);
+  const RemeshedRegion r = remesh_region(X, T, free, remesh);
   const Eigen::Index kept = Eigen::Index(rings[0].size());  // remesh_region keeps them first
   const Eigen::Index fill_end = r.faces.rows();
-  // The outer rings, for the G1 normals' samples.
-  Positions Y = r.vertices;
-  Triangles S = r.faces;
-  std::vector<bool> region_free = r.free;
-  std::vector<int> row_of(global.size(), -1);  // local fixed row -> row of Y (the same)
-  for (size_t k = 0; k < global.size(); ++k) row_of[k] = int(k);
-  std::unordered_map<int, int> outer_row;
-  std::vector<int> outer_rows;
-  for (size_t ring = 1; ring < rings.size(); ++ring)
-    for (int f : rings[ring]) {
-      S.conservativeResize(S.rows() + 1, Eigen::NoChange);
-      for (int c = 0; c < 3; ++c) {
-        const int v = F(f, c);
-        const auto it = local.find(v);
-        int row;
-        if (it != local.end()) {
-          row = it->second;
-        } else {
-          const auto [o, fresh] = outer_row.emplace(v, int(Y.rows() + outer_rows.size()));
-          if (fresh) outer_rows.push_back(v);
-          row = o->second;
-        }
-        S(S.rows() - 1, c) = row;
-      }
-    }
-  append_rows(Y, gather(V, outer_rows));
-  region_free.resize(size_t(Y.rows()), false);
+  const FillSubmesh sub = with_outer_rings(V, F, rings, ring.local, r);
   const double prepared = laps.lap();
-  FairingOptions fairing = options;
-  fairing.remesh = Remesh::Off;  // the patch is a remesh already
-  if (method == FillMethod::G0) fairing.boundary = BoundaryCondition::G0;
-  if (method == FillMethod::Linear) fairing.outer_fairness = OuterFairness::Bilaplacian;
-  out.fairing = fair(Y, S, region_free, nullptr, fairing);
+  const FairingOptions fairing = fill_fairing_options(options, method);
+  out.fairing = fair(sub.vertices, sub.faces, sub.free, nullptr, fairing);
   out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
   out.made = true;
   out.attempt.converged = out.fairing.converged;
-  out.attempt.folds = fill_folds(out.fairing.vertices, S, kept, fill_end);
+  out.attempt.folds = fill_folds(out.fairing.vertices, sub.faces, kept, fill_end);
   out.attempt.message = out.fairing.message;
-  // The fill in the caller's indices: fixed rows are input rows, new ones -(k + 1).
-  std::vector<int> to_caller(size_t(Y.rows()), 0);
-  for (size_t k = 0; k < global.size(); ++k) to_caller[k] = global[k];
-  std::vector<int> rows;
-  for (int v = n_fixed; v < int(r.vertices.rows()); ++v)
-    if (r.free[size_t(v)]) {
-      to_caller[size_t(v)] = -(int(rows.size()) + 1);
-      rows.push_back(v);
-    }
-  out.vertices = gather(out.fairing.vertices, rows);
-  out.faces.resize(fill_end - kept, 3);
-  for (Eigen::Index t = kept; t < fill_end; ++t)
-    for (int c = 0; c < 3; ++c) out.faces(t - kept, c) = to_caller[size_t(S(t, c))];
+  fill_in_caller_indices(out, ring.global, r, n_fixed, sub.faces, kept, fill_end);
   out.attempt.seconds = prepared + laps.lap();
   return out;
 }
@@ -816,6 +859,125 @@ std::string fill_summary(const std::vector<HoleFill>& holes, bool cancelled) {
   return text;
 }
 
+// The chains of the holes in order and the rows of F removed for them (sorted).
+struct Fills {
+  std::vector<Chain> chains;
+  std::vector<int> committed;
+  bool cancelled = false;
+};
+
+// Fills the holes one after another (fill_one_hole); once one is cancelled, the rest are
+// recorded as cancelled. `laps` has timed the call so far.
+Fills fill_each_hole(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                     const std::vector<std::vector<int>>& holes, double target_edge_length,
+                     Rim rim, const FairingOptions& options, double unit, Laps& laps) {
+  // Vertices on a border: a trimmed rim must not reach another hole or border.
+  std::vector<bool> border(size_t(V.rows()), false);
+  edges.for_each_border_edge([&](int a, int b) { border[size_t(a)] = border[size_t(b)] = true; });
+  Fills fills;
+  double spent = laps.lap();
+  for (const auto& loop : holes) {
+    if (fills.cancelled) {
+      Chain skipped;
+      skipped.record.loop = loop;
+      skipped.record.reason = "cancelled";
+      fills.chains.push_back(std::move(skipped));
+      continue;
+    }
+    for (int v : loop) border[size_t(v)] = false;
+    Chain chain = fill_one_hole(V, F, edges, loop, fills.committed, border, target_edge_length,
+                                rim, options, unit, spent);
+    for (int v : loop) border[size_t(v)] = true;
+    fills.cancelled = chain.cancelled;
+    if (chain.kept.made && chain.kept.removed.size() > fills.committed.size()) {
+      fills.committed = chain.kept.removed;
+      for (int f : chain.record.removed_faces)
+        for (int c = 0; c < 3; ++c) border[size_t(F(f, c))] = true;
+    }
+    fills.chains.push_back(std::move(chain));
+  }
+  return fills;
+}
+
+// result.vertices and result.faces: the input's rows, then each fill's new vertices; the
+// input's faces less the removed ones (in order), then each fill's triangles.
+void assemble_mesh(FillResult& result, const Positions& V, const Triangles& F,
+                   const Fills& fills) {
+  const std::vector<int>& committed = fills.committed;
+  Eigen::Index rows = V.rows(), faces = F.rows() - Eigen::Index(committed.size());
+  for (const Chain& c : fills.chains) rows += c.kept.vertices.rows(), faces += c.kept.faces.rows();
+  result.vertices.resize(rows, 3);
+  result.faces.resize(faces, 3);
+  result.vertices.topRows(V.rows()) = V;
+  Eigen::Index row = V.rows(), face = 0;
+  for (int f = 0; f < F.rows(); ++f)
+    if (!std::binary_search(committed.begin(), committed.end(), f))
+      result.faces.row(face++) = F.row(f);
+  for (const Chain& c : fills.chains) {
+    const Tried& k = c.kept;
+    if (!k.made) continue;
+    result.vertices.middleRows(row, k.vertices.rows()) = k.vertices;
+    for (Eigen::Index t = 0; t < k.faces.rows(); ++t, ++face)
+      for (int j = 0; j < 3; ++j) {
+        const int v = k.faces(t, j);
+        result.faces(face, j) = v >= 0 ? v : int(row) - v - 1;
+      }
+    row += k.vertices.rows();
+  }
+}
+
+// The fills' fair() results as the call's: converged and the stop reason over all, the largest
+// residual, the sums of folds, iterations and phase seconds (by name), the first fill's
+// iteration record and the largest fill's levels. A hole without a fill is not converged.
+void merge_fairings(FillResult& result, const std::vector<Chain>& chains, bool cancelled) {
+  result.converged = true;
+  result.stop_reason = cancelled ? StopReason::Cancelled : StopReason::Converged;
+  std::map<std::string, size_t> phase_index;
+  Eigen::Index largest = -1;
+  bool first_fill = true;
+  for (const Chain& c : chains) {
+    const Tried& k = c.kept;
+    if (!k.made) {
+      result.converged = false;
+      continue;
+    }
+    const FairingResult& r = k.fairing;
+    if (!r.converged && result.converged && !cancelled) result.stop_reason = r.stop_reason;
+    result.converged = result.converged && r.converged;
+    result.residual = std::max(result.residual, r.residual);
+    result.folds += k.attempt.folds;
+    result.iterations += r.iterations;
+    result.newton_iterations += r.newton_iterations;
+    if (first_fill) result.iteration = r.iteration, first_fill = false;
+    if (k.vertices.rows() > largest) {
+      largest = k.vertices.rows();
+      result.iterations_per_level = r.iterations_per_level;
+      result.vertices_per_level = r.vertices_per_level;
+    }
+    for (const auto& [name, seconds] : r.phase_seconds) {
+      const auto [it, fresh] = phase_index.emplace(name, result.phase_seconds.size());
+      if (fresh) result.phase_seconds.push_back({name, 0.0});
+      result.phase_seconds[it->second].second += seconds;
+    }
+  }
+}
+
+// Input rows the rim's trim left in no face of the result: vertices of the removed rows of F
+// (sorted) that no face uses.
+std::vector<int> unreferenced_rows(const FillResult& result, Eigen::Index n, const Triangles& F,
+                                   const std::vector<int>& removed) {
+  std::vector<int> out;
+  if (removed.empty()) return out;
+  std::vector<bool> used(size_t(result.vertices.rows()), false), was(size_t(n), false);
+  for (Eigen::Index t = 0; t < result.faces.rows(); ++t)
+    for (int j = 0; j < 3; ++j) used[size_t(result.faces(t, j))] = true;
+  for (int f : removed)
+    for (int j = 0; j < 3; ++j) was[size_t(F(f, j))] = true;
+  for (int v = 0; v < int(n); ++v)
+    if (was[size_t(v)] && !used[size_t(v)]) out.push_back(v);
+  return out;
+}
+
 // fill_holes on V in the working scale (positions divided by `unit`, a power of two).
 FillResult fill_scaled(const Positions& V, const Triangles& F,
                        const std::vector<std::vector<int>>& loops, const FairingOptions& options,
@@ -824,91 +986,20 @@ FillResult fill_scaled(const Positions& V, const Triangles& F,
   const DirectedEdges edges(F);
   std::vector<OpenLoop> left_open;
   const auto holes = hole_filling::holes_to_fill(V, F, loops, edges, rule, &left_open);
-  // Vertices on a border: a trimmed rim must not reach another hole or border.
-  std::vector<bool> border(size_t(V.rows()), false);
-  edges.for_each_border_edge([&](int a, int b) { border[size_t(a)] = border[size_t(b)] = true; });
-  std::vector<int> committed;
-  std::vector<Chain> chains;
-  double spent = laps.lap();
-  bool cancelled = false;
-  for (const auto& loop : holes) {
-    if (cancelled) {
-      Chain skipped;
-      skipped.record.loop = loop;
-      skipped.record.reason = "cancelled";
-      chains.push_back(std::move(skipped));
-      continue;
-    }
-    for (int v : loop) border[size_t(v)] = false;
-    Chain chain = fill_one_hole(V, F, edges, loop, committed, border, target_edge_length, rim,
-                                options, unit, spent);
-    for (int v : loop) border[size_t(v)] = true;
-    cancelled = chain.cancelled;
-    if (chain.kept.made && chain.kept.removed.size() > committed.size()) {
-      committed = chain.kept.removed;
-      for (int f : chain.record.removed_faces)
-        for (int c = 0; c < 3; ++c) border[size_t(F(f, c))] = true;
-    }
-    chains.push_back(std::move(chain));
-  }
+  Fills fills = fill_each_hole(V, F, edges, holes, target_edge_length, rim, options, unit, laps);
   // Refused: no hole can be filled (each over the size limit).
-  if (!cancelled && std::none_of(chains.begin(), chains.end(),
-                                 [](const Chain& c) { return c.kept.made; }))
+  if (!fills.cancelled && std::none_of(fills.chains.begin(), fills.chains.end(),
+                                       [](const Chain& c) { return c.kept.made; }))
     throw InvalidInputError("fill_holes: the hole at vertex " +
-                            std::to_string(chains.front().record.loop[0]) + " would take " +
-                            chains.front().record.attempts.front().message +
+                            std::to_string(fills.chains.front().record.loop[0]) + " would take " +
+                            fills.chains.front().record.attempts.front().message +
                             ": give a larger target_edge_length");
-  // The input's rows, then each fill's new vertices; the input's faces less the removed
-  // ones (in order), then each fill's triangles.
   FillResult result;
-  Eigen::Index rows = V.rows(), faces = F.rows() - Eigen::Index(committed.size());
-  for (const Chain& c : chains) rows += c.kept.vertices.rows(), faces += c.kept.faces.rows();
-  result.vertices.resize(rows, 3);
-  result.faces.resize(faces, 3);
-  result.vertices.topRows(V.rows()) = V;
-  Eigen::Index row = V.rows(), face = 0;
-  for (int f = 0; f < F.rows(); ++f)
-    if (!std::binary_search(committed.begin(), committed.end(), f)) result.faces.row(face++) = F.row(f);
-  result.converged = true;
-  result.stop_reason = cancelled ? StopReason::Cancelled : StopReason::Converged;
-  std::map<std::string, size_t> phase_index;
-  Eigen::Index largest = -1;
-  bool first_fill = true;
-  for (Chain& c : chains) {
-    const Tried& k = c.kept;
-    if (k.made) {
-      result.vertices.middleRows(row, k.vertices.rows()) = k.vertices;
-      for (Eigen::Index t = 0; t < k.faces.rows(); ++t, ++face)
-        for (int j = 0; j < 3; ++j) {
-          const int v = k.faces(t, j);
-          result.faces(face, j) = v >= 0 ? v : int(row) - v - 1;
-        }
-      row += k.vertices.rows();
-      const FairingResult& r = k.fairing;
-      if (!r.converged && result.converged && !cancelled) result.stop_reason = r.stop_reason;
-      result.converged = result.converged && r.converged;
-      result.residual = std::max(result.residual, r.residual);
-      result.folds += k.attempt.folds;
-      result.iterations += r.iterations;
-      result.newton_iterations += r.newton_iterations;
-      if (first_fill) result.iteration = r.iteration, first_fill = false;
-      if (k.vertices.rows() > largest) {
-        largest = k.vertices.rows();
-        result.iterations_per_level = r.iterations_per_level;
-        result.vertices_per_level = r.vertices_per_level;
-      }
-      for (const auto& [name, seconds] : r.phase_seconds) {
-        const auto [it, fresh] = phase_index.emplace(name, result.phase_seconds.size());
-        if (fresh) result.phase_seconds.push_back({name, 0.0});
-        result.phase_seconds[it->second].second += seconds;
-      }
-    } else {
-      result.converged = false;
-    }
-    result.holes.push_back(std::move(c.record));
-  }
+  assemble_mesh(result, V, F, fills);
+  merge_fairings(result, fills.chains, fills.cancelled);
+  for (Chain& c : fills.chains) result.holes.push_back(std::move(c.record));
   result.new_folds = result.folds;
-  result.message = fill_summary(result.holes, cancelled);
+  result.message = fill_summary(result.holes, fills.cancelled);
   if (!left_open.empty()) result.message += "; left open: " + hole_filling::describe_open(left_open);
   for (auto& open : left_open) {
     HoleFill h;
@@ -916,21 +1007,14 @@ FillResult fill_scaled(const Positions& V, const Triangles& F,
     h.reason = std::move(open.reason);
     result.holes.push_back(std::move(h));
   }
+  const Eigen::Index rows = result.vertices.rows();
   result.free.assign(size_t(rows), false);
   for (Eigen::Index v = V.rows(); v < rows; ++v) result.free[size_t(v)] = true;
   result.remeshed = true;
   result.origin_face.assign(size_t(rows), -1);
   result.origin_barycentric = Positions::Zero(rows, 3);
-  result.removed_faces = committed;
-  if (!committed.empty()) {  // rows the trim left in no face
-    std::vector<bool> used(size_t(rows), false), was(size_t(V.rows()), false);
-    for (Eigen::Index t = 0; t < result.faces.rows(); ++t)
-      for (int j = 0; j < 3; ++j) used[size_t(result.faces(t, j))] = true;
-    for (int f : committed)
-      for (int j = 0; j < 3; ++j) was[size_t(F(f, j))] = true;
-    for (int v = 0; v < int(V.rows()); ++v)
-      if (was[size_t(v)] && !used[size_t(v)]) result.unreferenced.push_back(v);
-  }
+  result.removed_faces = fills.committed;
+  result.unreferenced = unreferenced_rows(result, V.rows(), F, fills.committed);
   return result;
 }
 
