@@ -24,9 +24,8 @@
 #include <string>
 
 namespace geofair {
-namespace {
 
-void check_options(const FairingOptions& o) {
+void check_fairing_options(const FairingOptions& o) {
   if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance))
     throw InvalidInputError("fair: tolerance must be a positive finite number");
   if (o.max_iterations < 0) throw InvalidInputError("fair: max_iterations must be >= 0");
@@ -37,8 +36,6 @@ void check_options(const FairingOptions& o) {
   if (std::isnan(o.time_limit)) throw InvalidInputError("fair: time_limit must not be NaN");
   validate_tuning(o.tuning);
 }
-
-}  // namespace
 
 // The threads of one solve: max_threads() less the cores that other processes keep busy
 // now (the runnable tasks of /proc/loadavg, not counting this process's own; none known
@@ -385,7 +382,7 @@ FairingResult fair_scaled(const Positions& V, const Triangles& F, const std::vec
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options,
                    const std::vector<int>* polygon_ids) {
-  check_options(options);
+  check_fairing_options(options);
   const double scale = working_scale(V, F, "fair");
   if (scale == 1.0) return fair_scaled(V, F, free, boundary_normals, options, polygon_ids);
   // Divided and multiplied by a power of two: exact, the solve sees edges about 1 long.

@@ -690,6 +690,17 @@ void fill_in_caller_indices(Tried& out, const std::vector<int>& global, const Re
 // Triangulates, splits and remeshes one hole at edge length L, and fairs it on its own
 // submesh: the patch and the input's triangles within kSurroundingRings rings of the loop
 // (the remesh sees the first ring alone, for the valences at the loop).
+// An attempt whose fill raised: not made, its error as the message.
+Tried failed_fill(FillMethod method, const std::vector<int>& removed, const char* what,
+                  double seconds) {
+  Tried out;
+  out.attempt.method = method;
+  out.removed = removed;
+  out.attempt.message = std::string("failed: ") + what;
+  out.attempt.seconds = seconds;
+  return out;
+}
+
 Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                const std::vector<int>& loop, const std::vector<int>& removed, double L,
                FillMethod method, const FairingOptions& options, double unit) {
@@ -712,22 +723,30 @@ Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edge
   if (!out.attempt.message.empty()) return out;
   std::vector<bool> free(size_t(X.rows()), false);
   for (int v = n_fixed; v < int(X.rows()); ++v) free[size_t(v)] = true;
-  RemeshOptions remesh;
-  remesh.target_edge_length = L;
-  const RemeshedRegion r = remesh_region(X, T, free, remesh);
-  const Eigen::Index kept = Eigen::Index(rings[0].size());  // remesh_region keeps them first
-  const Eigen::Index fill_end = r.faces.rows();
-  const FillSubmesh sub = with_outer_rings(V, F, rings, ring.local, r);
-  const double prepared = laps.lap();
-  const FairingOptions fairing = fill_fairing_options(options, method);
-  out.fairing = fair(sub.vertices, sub.faces, sub.free, nullptr, fairing);
-  out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
-  out.made = true;
-  out.attempt.converged = out.fairing.converged;
-  out.attempt.folds = fill_folds(out.fairing.vertices, sub.faces, kept, fill_end);
-  out.attempt.message = out.fairing.message;
-  fill_in_caller_indices(out, ring.global, r, n_fixed, sub.faces, kept, fill_end);
-  out.attempt.seconds = prepared + laps.lap();
+  // A fill that fails (a linear solve with an explicit iteration, or a submesh that fair
+  // refuses, e.g. its cut-off outer ring touching itself) is recorded; the chain goes on.
+  try {
+    RemeshOptions remesh;
+    remesh.target_edge_length = L;
+    const RemeshedRegion r = remesh_region(X, T, free, remesh);
+    const Eigen::Index kept = Eigen::Index(rings[0].size());  // remesh_region keeps them first
+    const Eigen::Index fill_end = r.faces.rows();
+    const FillSubmesh sub = with_outer_rings(V, F, rings, ring.local, r);
+    const double prepared = laps.lap();
+    const FairingOptions fairing = fill_fairing_options(options, method);
+    out.fairing = fair(sub.vertices, sub.faces, sub.free, nullptr, fairing);
+    out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
+    out.made = true;
+    out.attempt.converged = out.fairing.converged;
+    out.attempt.folds = fill_folds(out.fairing.vertices, sub.faces, kept, fill_end);
+    out.attempt.message = out.fairing.message;
+    fill_in_caller_indices(out, ring.global, r, n_fixed, sub.faces, kept, fill_end);
+    out.attempt.seconds = prepared + laps.lap();
+  } catch (const SolverError& error) {
+    return failed_fill(method, removed, error.what(), laps.lap());
+  } catch (const InvalidInputError& error) {
+    return failed_fill(method, removed, error.what(), laps.lap());
+  }
   return out;
 }
 
@@ -1025,6 +1044,7 @@ FillResult fill_holes(const Positions& V, const Triangles& F,
                       double target_edge_length, const HoleRule& rule, Rim rim) {
   if (!(target_edge_length >= 0.0) || !std::isfinite(target_edge_length))
     throw InvalidInputError("fill_holes: target_edge_length must be finite and >= 0");
+  check_fairing_options(options);  // here: a fill's fair() that refuses is only recorded
   check_mesh(V, F, "fill_holes");
   const double scale = working_scale(V, F, "fill_holes");
   if (scale == 1.0) return fill_scaled(V, F, loops, options, target_edge_length, rule, rim, 1.0);

@@ -215,4 +215,8 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
                    const Positions* boundary_normals, const FairingOptions& options,
                    const std::vector<int>* polygon_ids = nullptr);
 
+/// The checks fair() makes of its options (InvalidInputError naming the option); fill_holes
+/// makes them first, since its per-hole fallbacks record a fair() that fails and go on.
+void check_fairing_options(const FairingOptions& options);
+
 }  // namespace geofair
