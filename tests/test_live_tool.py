@@ -72,7 +72,7 @@ def test_drag_is_the_cold_fair_of_its_input(sphere_region):
     # planes (they do not turn as along the sphere), so the region bulges a little (measured 0.031).
     radial = np.abs(np.linalg.norm(drag.positions[r.free], axis=1) - 1.0).max()
     assert radial < 0.05, radial
-    assert drag.positions[r.free, 1].max() > v[r.free, 1].max() + 0.01
+    assert (drag.positions[r.free, 1] - v[r.free, 1]).max() > 0.1  # next to the handle, nearly its 0.15
     assert "5 frames" in drag.summary()
 
 

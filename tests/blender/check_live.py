@@ -19,6 +19,7 @@ import sys
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
 # isort: split
+import bmesh
 import numpy as np
 
 from geofair_dev.blender import disable_addon, edit_state, enable_addon, parse_args, positions, select_faces
@@ -151,6 +152,27 @@ def check_refusals(obj, region_deg):
     bpy.ops.ed.undo_push(message="selected the region again")
 
 
+def check_region_group(addon, obj, handle):
+    """With a Region vertex group, the selected vertices inside it are the handle."""
+    bpy.ops.object.mode_set(mode="OBJECT")
+    inside = np.flatnonzero(angle_to_axis(positions(obj).astype(np.float64)) < 50.0)
+    obj.vertex_groups.new(name="Region").add(inside.tolist(), 1.0, "REPLACE")
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    for vertex in bm.verts:
+        vertex.select_set(vertex.index in set(handle.tolist()))
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    result, error = live(region_group="Region", pin_group="", offset=OFFSET)
+    assert result == {"FINISHED"}, (result, error)
+    drag = addon.operators.last_drag()
+    assert np.array_equal(np.flatnonzero(drag.handle), handle), "not the selection in Region"
+    print(f"ok: Region vertex group, the selected vertices the handle: {drag.summary()}")
+    bpy.ops.ed.undo()
+
+
 def frame_times(addon):
     """About 2,000 free vertices: a 128×64 UV sphere's 70° cap, 10 frames of 0.02."""
     obj, _ = add_sphere(128, 64, 70.0, 10.0)
@@ -172,6 +194,7 @@ def main():
     obj, handle = add_sphere(64, 32, 50.0, 10.0)
     check_refusals(obj, 50.0)
     check_drag(addon, obj, handle)
+    check_region_group(addon, obj, handle)
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
     frame_times(addon)
