@@ -23,6 +23,8 @@ but fails when the environment variable CI is set.
   cp310 module in Python 3.10.
 - examples/fair_object.py: the documented script runs.
 - check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.
+- check_live_modal.py (Blender under Xvfb): Live Fair Drag follows the mouse, Esc restores every
+  byte, a click confirms with one undo step.
 """
 
 import importlib.util
@@ -242,3 +244,24 @@ def test_modal_operator_under_xvfb():
     ]
     output = _run(command, timeout=180)
     assert "check_modal: all checks passed" in output, output
+
+
+def test_live_drag_under_xvfb():
+    blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
+    if blender is None or xvfb is None:
+        unavailable("the modal check needs blender and xvfb-run")
+    command = [
+        xvfb,
+        "-a",
+        "-s",
+        "-screen 0 1280x800x24",
+        blender,
+        "--factory-startup",
+        "--enable-event-simulate",
+        "--python",
+        str(CHECKS / "check_live_modal.py"),
+        "--",
+        str(_built_addon()),
+    ]
+    output = _run(command, timeout=180)
+    assert "check_live_modal: all checks passed" in output, output

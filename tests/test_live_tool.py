@@ -39,9 +39,9 @@ def sphere_region():
     return s.vertices, s.faces, r, normals
 
 
-def make_drag(sphere_region, details=False, **options):
+def make_drag(sphere_region, details=False, step=None, **options):
     v, f, r, normals = sphere_region
-    return live.LiveDrag(geofair, v, f, r.free, r.pinned, normals, None, options, details)
+    return live.LiveDrag(geofair, v, f, r.free, r.pinned, normals, None, options, details, step)
 
 
 def region_diagonal(vertices, faces, free):
@@ -77,7 +77,7 @@ def test_drag_is_the_cold_fair_of_its_input(sphere_region):
 
 
 def test_unconverged_frame_keeps_the_last_good_positions(sphere_region):
-    drag = make_drag(sphere_region, time_limit=0.5)
+    drag = make_drag(sphere_region, step=10.0, time_limit=0.5)  # no sub-steps
     good = drag.frame([0.0, 0.05, 0.0])
     assert good.converged
     kept = drag.positions.copy()
@@ -109,3 +109,14 @@ def test_no_handle_is_refused(sphere_region):
     v, f, r, normals = sphere_region
     with pytest.raises(live.NoHandleError, match="No handle: put vertices inside the region into the Pin"):
         live.LiveDrag(geofair, v, f, r.free, np.zeros(len(v), dtype=bool), normals, None, {}, False)
+
+
+def test_a_long_jump_is_split_into_warm_steps(sphere_region):
+    # A jump of the mouse by 0.3 (several edges) in one frame: split into sub-steps of at most the
+    # mean edge length at the handle, each warm, instead of one cold-path solve.
+    drag = make_drag(sphere_region)
+    assert 0.0 < drag.step < 0.2
+    frame = drag.frame([0.0, 0.3, 0.0])
+    assert frame.converged and not frame.cold, frame.message
+    assert frame.substeps == int(np.ceil(0.3 / drag.step)) > 1 and "sub-steps" in frame.status()
+    assert np.array_equal(drag.offset, [0.0, 0.3, 0.0])
