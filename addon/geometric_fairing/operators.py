@@ -435,6 +435,16 @@ def last_drag():
     return _last_drag
 
 
+def view_region(context):
+    """The main region of the 3D View the operator runs in (the sidebar's button: its area's), or None."""
+    area = context.area
+    if area is None or area.type != "VIEW_3D":
+        return None
+    if context.region is not None and context.region.type == "WINDOW":
+        return context.region
+    return next((region for region in area.regions if region.type == "WINDOW"), None)
+
+
 class MESH_OT_geometric_fairing_live(bpy.types.Operator):
     """Drag a handle through the surface, the region refaired as the mouse moves (Schneider & Kobbelt 2001,
     section 8). The region is Fair's (the selected faces, or the Region vertex group); the handle is the Pin vertex
@@ -476,6 +486,7 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
 
     _drag = None  # live.LiveDrag while the mouse drags
     _obj = None
+    _region = None  # the 3D View's main region: the mouse moves in its view
     _centre = None  # the handle's centre (world): the view plane of the drag goes through it
     _start = None  # the mouse's point in that plane at invoke (world)
     _to_object = None  # world to object space, for the offset
@@ -538,8 +549,8 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
         return {"FINISHED"}
 
     def invoke(self, context, event):
-        rv3d = context.region_data
-        if bpy.app.background or context.window is None or not isinstance(rv3d, bpy.types.RegionView3D):
+        self._region = view_region(context)
+        if bpy.app.background or context.window is None or self._region is None:
             return self.execute(context)
         drag = self._drag = self.prepare(context)
         if drag is None:
@@ -555,9 +566,11 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def mouse_point(self, context, event):
-        """The mouse's point in the view plane through the handle's centre (world)."""
-        mouse = (event.mouse_region_x, event.mouse_region_y)
-        return view3d_utils.region_2d_to_location_3d(context.region, context.region_data, mouse, self._centre)
+        """The mouse's point in the view plane through the handle's centre (world), also when the
+        operator was started from the sidebar (window coordinates into the 3D View's main region)."""
+        region = self._region
+        mouse = (event.mouse_x - region.x, event.mouse_y - region.y)
+        return view3d_utils.region_2d_to_location_3d(region, region.data, mouse, self._centre)
 
     def modal(self, context, event):
         if event.type == "MOUSEMOVE":

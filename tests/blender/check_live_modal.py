@@ -56,8 +56,11 @@ class Steps:
             finish(1)
 
 
-def invoke_live():
+def invoke_live(sidebar=False):
+    """Invoke as the Mesh menu does (in the main region) or as the sidebar's button (its UI region)."""
     window, area, region = view3d()
+    if sidebar:
+        region = next(r for r in area.regions if r.type == "UI")
     with bpy.context.temp_override(window=window, area=area, region=region):
         return bpy.ops.mesh.geometric_fairing_live("INVOKE_DEFAULT", pin_group="Handle")
 
@@ -93,7 +96,7 @@ def checks(addon, obj):
 
     mouse(0, 0)
     yield 0.2
-    assert invoke_live() == {"RUNNING_MODAL"}
+    assert invoke_live(sidebar=True) == {"RUNNING_MODAL"}
     yield from drag_a_little()
     mouse(0, 40, "LEFTMOUSE", "PRESS")
     mouse(0, 40, "LEFTMOUSE", "RELEASE")
@@ -105,7 +108,7 @@ def checks(addon, obj):
     last = bpy.context.window_manager.operators[-1]
     assert last.bl_idname == "MESH_OT_geometric_fairing_live", last.bl_idname
     assert np.allclose(last.properties.offset, drag.offset), (last.properties.offset[:], drag.offset)
-    print(f"ok: click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)} kept for redo")
+    print(f"ok: from the sidebar, click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)} for redo")
     window, area, region = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.ed.undo()
