@@ -425,7 +425,8 @@ class MESH_OT_geometric_fairing_curvature(bpy.types.Operator):
 # Keys of the live drag: confirm, cancel (as G's).
 CONFIRM_EVENTS = {"LEFTMOUSE", "RET", "NUMPAD_ENTER", "SPACE"}
 CANCEL_EVENTS = {"RIGHTMOUSE", "ESC"}
-LIVE_HINT = "LMB/Enter confirm, RMB/Esc cancel"
+LIVE_HINT = "LMB/Enter confirm, RMB/Esc cancel, X/Y/Z along a global axis"
+AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
 
 _last_drag = None  # the live.LiveDrag of the last Live Fair Drag
 
@@ -490,6 +491,8 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
     _centre = None  # the handle's centre (world): the view plane of the drag goes through it
     _start = None  # the mouse's point in that plane at invoke (world)
     _to_object = None  # world to object space, for the offset
+    _axis = None  # X/Y/Z: the drag along that global axis (0, 1, 2), or None
+    _mouse = None  # the last mouse move's world point
 
     @classmethod
     def poll(cls, context):
@@ -558,7 +561,8 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
         obj = self._obj
         mesh_io.write_positions(obj, drag.positions, drag.moving)  # the region faired at rest
         self._centre = obj.matrix_world @ Vector(drag.base[drag.handle].mean(axis=0).tolist())
-        self._start = self.mouse_point(context, event)
+        self._start = self._mouse = self.mouse_point(context, event)
+        self._axis = None
         self._to_object = obj.matrix_world.inverted().to_3x3()
         self.report({"INFO"}, f"{self.label}: prepared in {drag.prepare_seconds:.2f} s; {live.HANDLE_RULE}")
         self.show(context, f"prepared in {drag.prepare_seconds * 1e3:.0f} ms")
@@ -574,11 +578,12 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
 
     def modal(self, context, event):
         if event.type == "MOUSEMOVE":
-            world = self.mouse_point(context, event) - self._start
-            frame = self._drag.frame(np.array(self._to_object @ world))
-            if frame.converged:
-                mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
-            self.show(context, frame.status())
+            self._mouse = self.mouse_point(context, event)
+            self.drag_to(context)
+        elif event.type in AXIS_EVENTS and event.value == "PRESS":
+            axis = AXIS_EVENTS[event.type]
+            self._axis = None if self._axis == axis else axis
+            self.drag_to(context)
         elif event.type in CONFIRM_EVENTS and event.value == "PRESS":
             return self.confirm(context)
         elif event.type in CANCEL_EVENTS and event.value == "PRESS":
@@ -588,9 +593,20 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
             return {"PASS_THROUGH"}
         return {"RUNNING_MODAL"}
 
+    def drag_to(self, context):
+        """One frame with the handle at the mouse (along the chosen axis); written if it converged."""
+        world = self._mouse - self._start
+        if self._axis is not None:  # the mouse's move along that global axis only
+            world = Vector([world[i] if i == self._axis else 0.0 for i in range(3)])
+        frame = self._drag.frame(np.array(self._to_object @ world))
+        if frame.converged:
+            mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
+        self.show(context, frame.status())
+
     def show(self, context, text):
         offset = live.distance_text(self._drag.offset)
-        context.area.header_text_set(f"{self.label}: offset {offset}, {text} — {LIVE_HINT}")
+        along = f" along {'XYZ'[self._axis]}" if self._axis is not None else ""
+        context.area.header_text_set(f"{self.label}: offset {offset}{along}, {text} — {LIVE_HINT}")
 
     def confirm(self, context):
         """Keep the last good frame (one undo step); the offset it reached is the redo panel's."""

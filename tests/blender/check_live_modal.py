@@ -98,6 +98,12 @@ def checks(addon, obj):
     yield 0.2
     assert invoke_live(sidebar=True) == {"RUNNING_MODAL"}
     yield from drag_a_little()
+    mouse(0, 15, "Z", "PRESS")  # along global Z only (the sphere's object space is the world's)
+    mouse(0, 15, "Z", "RELEASE")
+    yield 0.3
+    along_z = addon.operators.last_drag().offset
+    assert along_z[0] == along_z[1] == 0.0 and along_z[2] > 0.0, along_z
+    print(f"ok: Z: the handle moves along Z only, offset {np.round(along_z, 4)}")
     mouse(0, 40, "LEFTMOUSE", "PRESS")
     mouse(0, 40, "LEFTMOUSE", "RELEASE")
     yield 0.3
