@@ -121,3 +121,17 @@ def test_remesh_values_are_taken_by_the_library():
     for value in literal("REMESH_VALUES").values():
         result = geofair.fair(vertices, faces, free, boundary="g0", remesh=value)
         assert result.faces.shape[1] == 3 and len(result.free) == len(result.vertices)
+
+
+def test_live_fair_drag_options_are_live_fairings():
+    # Live Fair Drag passes the panel's library options to geofair.LiveFairing (Remesh stays off there),
+    # and Keep Details as its details.
+    mapping = definitions("LIBRARY_OPTION_NAMES", "LIVE_OPTION_NAMES")
+    keywords = inspect.signature(geofair.LiveFairing).parameters
+    assert set(mapping.LIBRARY_OPTION_NAMES) <= set(keywords) and "details" in keywords
+    assert "remesh" not in keywords and "remesh" not in mapping.LIVE_OPTION_NAMES
+    assert set(mapping.LIVE_OPTION_NAMES) - set(mapping.LIBRARY_OPTION_NAMES) == {
+        "region_group",
+        "pin_group",
+        "use_hidden",
+    }

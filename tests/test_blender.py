@@ -12,6 +12,8 @@ but fails when the environment variable CI is set.
 - check_mesh_data.py: only positions change (shape keys, modifiers, custom normals, UV maps, colour
   attributes byte-identical); Edit and Object Mode store the same shape keys; hidden faces.
 - check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
+- check_live.py: Live Fair Drag run as a script (its offset in frames) on a UV sphere: the cold fair of
+  the same input, only positions change, one undo; no handle or region refused; frame times.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion,
   Blender's UV sphere with its cap flattened (quads split at random) faired back onto the sphere.
 - check_remesh.py: Remesh Always / If Needed on Suzanne's ear (no UV flip, the rest byte-identical),
@@ -21,6 +23,8 @@ but fails when the environment variable CI is set.
   cp310 module in Python 3.10.
 - examples/fair_object.py: the documented script runs.
 - check_modal.py (Blender under Xvfb): the modal operator in a window, Esc cancels.
+- check_live_modal.py (Blender under Xvfb): Live Fair Drag follows the mouse, Esc restores every
+  byte, a click confirms with one undo step.
 """
 
 import importlib.util
@@ -48,6 +52,7 @@ CHECKS_IN_BOTH = [
     "check_errors",
     "check_mesh_data",
     "check_multi_object",
+    "check_live",
 ]
 
 
@@ -239,3 +244,24 @@ def test_modal_operator_under_xvfb():
     ]
     output = _run(command, timeout=180)
     assert "check_modal: all checks passed" in output, output
+
+
+def test_live_drag_under_xvfb():
+    blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
+    if blender is None or xvfb is None:
+        unavailable("the modal check needs blender and xvfb-run")
+    command = [
+        xvfb,
+        "-a",
+        "-s",
+        "-screen 0 1280x800x24",
+        blender,
+        "--factory-startup",
+        "--enable-event-simulate",
+        "--python",
+        str(CHECKS / "check_live_modal.py"),
+        "--",
+        str(_built_addon()),
+    ]
+    output = _run(command, timeout=180)
+    assert "check_live_modal: all checks passed" in output, output

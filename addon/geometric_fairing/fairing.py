@@ -324,6 +324,17 @@ class _WorkerThread:
         return self.done
 
 
+def _pinned(obj, options, mesh, pin_selected):
+    """``(n,)`` bool vertices of the Pin group (non-zero weight), and the selected ones with ``pin_selected``;
+    None when neither applies."""
+    pinned = None
+    if options.pin_group:
+        pinned = mesh_io.vertex_group_weights(obj, options.pin_group) > 0.0
+    if pin_selected:
+        pinned = mesh.vertex_selected if pinned is None else pinned | mesh.vertex_selected
+    return pinned
+
+
 class FairingRun(_WorkerThread):
     """A fairing run on the mesh of ``obj`` (Edit Mode or Object Mode).
 
@@ -341,6 +352,8 @@ class FairingRun(_WorkerThread):
             (uniform inner fairness runs over the polygons' edges); None: each triangle
             of the tessellation is a polygon (its diagonals count as edges). Default: each
             face is a polygon.
+        pin_selected: the selected vertices are pinned too (Live Fair Drag's handle when a
+            Region vertex group gives the region).
 
     Raises:
         ValueError: no usable region (:class:`region.RegionError`), a missing
@@ -350,7 +363,9 @@ class FairingRun(_WorkerThread):
 
     remesh_hint = REMESH_SCRIPT_HINT  # added to a solver failure with Remesh off (the operator's: REMESH_HINT)
 
-    def __init__(self, obj, options, faces=None, progress=None, boundary_normals=None, polygon_ids=_FACES):
+    def __init__(
+        self, obj, options, faces=None, progress=None, boundary_normals=None, polygon_ids=_FACES, pin_selected=False
+    ):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
         if obj is None or obj.type != "MESH":
@@ -379,9 +394,7 @@ class FairingRun(_WorkerThread):
         faces = np.asarray(faces, dtype=bool)
         if faces.shape != (len(mesh.loop_start),):
             raise ValueError(f"the face mask must have one entry per face ({len(mesh.loop_start)}), not {faces.shape}")
-        pinned = None
-        if options.pin_group:
-            pinned = mesh_io.vertex_group_weights(obj, options.pin_group) > 0.0
+        pinned = _pinned(obj, options, mesh, pin_selected)
         self.present_triangles = present[mesh.triangle_face]
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles

@@ -23,9 +23,12 @@ a warning.
 """
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty
+import numpy as np
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty
+from bpy_extras import view3d_utils
+from mathutils import Vector
 
-from . import fairing, holes, overlays, properties
+from . import fairing, holes, live, mesh_io, native, overlays, properties
 from .properties import OPTION_NAMES, FairingProperties, option_values
 from .region import NothingSelectedError
 
@@ -420,9 +423,221 @@ class MESH_OT_geometric_fairing_curvature(bpy.types.Operator):
         return {"FINISHED"}
 
 
+# Keys of the live drag: confirm, cancel (as G's).
+CONFIRM_EVENTS = {"LEFTMOUSE", "RET", "NUMPAD_ENTER", "SPACE"}
+CANCEL_EVENTS = {"RIGHTMOUSE", "ESC"}
+LIVE_HINT = "LMB/Enter confirm, RMB/Esc cancel, X/Y/Z along a global axis"
+AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
+
+_last_drag = None  # the live.LiveDrag of the last Live Fair Drag
+
+
+def last_drag():
+    """The :class:`live.LiveDrag` of the last Live Fair Drag (its ``frames``, ``prepare_seconds``), or None."""
+    return _last_drag
+
+
+def view_region(context):
+    """The main region of the 3D View the operator runs in (the sidebar's button: its area's), or None."""
+    area = context.area
+    if area is None or area.type != "VIEW_3D":
+        return None
+    if context.region is not None and context.region.type == "WINDOW":
+        return context.region
+    return next((region for region in area.regions if region.type == "WINDOW"), None)
+
+
+class MESH_OT_geometric_fairing_live(bpy.types.Operator):
+    """Drag a handle through the surface, the region refaired as the mouse moves (Schneider & Kobbelt 2001,
+    section 8). The region is Fair's (the selected faces, or the Region vertex group); the handle is the Pin vertex
+    group's vertices inside it (with a Region vertex group, the selected vertices inside it too)"""
+
+    bl_idname = "mesh.geometric_fairing_live"
+    bl_label = "Live Fair Drag"
+    bl_options = {"REGISTER", "UNDO", "BLOCKING"}
+
+    label = "Live Fair Drag"
+
+    inner_fairness: properties._inner_fairness(options={"SKIP_SAVE"})
+    outer_fairness: properties._outer_fairness(options={"SKIP_SAVE"})
+    boundary: properties._boundary(options={"SKIP_SAVE"})
+    tolerance: properties._tolerance(options={"SKIP_SAVE"})
+    max_iterations: properties._max_iterations(options={"SKIP_SAVE"})
+    levels: properties._levels(options={"SKIP_SAVE"})
+    iteration: properties._iteration(options={"SKIP_SAVE"})
+    time_limit: properties._time_limit(options={"SKIP_SAVE"})
+    region_group: properties._region_group(options={"SKIP_SAVE"})
+    pin_group: properties._pin_group(options={"SKIP_SAVE"})
+    use_hidden: properties._use_hidden(options={"SKIP_SAVE"})
+    details: properties._live_details(options={"SKIP_SAVE"})
+    offset: FloatVectorProperty(
+        name="Offset",
+        description="Translation of the handle, object space",
+        subtype="TRANSLATION",
+        size=3,
+        options={"SKIP_SAVE"},
+    )
+    frames: IntProperty(
+        name="Frames",
+        description="Frames in which Offset is reached without the mouse (scripts, redo): each refairs from the last",
+        default=4,
+        min=1,
+        soft_max=50,
+        options={"SKIP_SAVE"},
+    )
+
+    _drag = None  # live.LiveDrag while the mouse drags
+    _obj = None
+    _region = None  # the 3D View's main region: the mouse moves in its view
+    _centre = None  # the handle's centre (world): the view plane of the drag goes through it
+    _start = None  # the mouse's point in that plane at invoke (world)
+    _to_object = None  # world to object space, for the offset
+    _axis = None  # X/Y/Z: the drag along that global axis (0, 1, 2), or None
+    _mouse = None  # the last mouse move's world point
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        if obj is not None and obj.type == "MESH" and obj.mode == "EDIT":
+            return True
+        cls.poll_message_set("Needs a mesh object in Edit Mode")
+        return False
+
+    def resolve_options(self, context):
+        """Options given to the operator; the others from the panel, as Fair's (Remesh stays off)."""
+        settings = context.scene.geometric_fairing
+        for name in properties.LIVE_OPTION_NAMES:
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
+        if not self.properties.is_property_set("details"):
+            self.details = settings.live_details
+        values = {name: getattr(self, name) for name in properties.LIVE_OPTION_NAMES}
+        values["time_limit"] = values["time_limit"] or None
+        return fairing.FairingOptions(**values)
+
+    def prepare(self, context):
+        """Read the active mesh, its region and handle, and prepare LiveFairing; the
+        :class:`live.LiveDrag` (its ``base`` the positions as read), or None after a report."""
+        options = self.resolve_options(context)
+        obj = context.active_object
+        try:
+            run = fairing.FairingRun(obj, options, pin_selected=bool(options.region_group))
+            drag = live.LiveDrag(
+                native.geofair,
+                run.mesh.vertices,
+                run.mesh.triangles[run.present_triangles],
+                run.region.free,
+                run.region.pinned,
+                run.boundary_normals,
+                run.polygon_ids,
+                options.library_options(),
+                self.details,
+            )
+        except Exception as error:  # noqa: BLE001 (reported; the mesh was not touched)
+            self.report({"ERROR"}, f"{self.label}: {fairing.error_text(error)}")
+            return None
+        global _last_drag
+        self._obj, _last_drag = obj, drag
+        return drag
+
+    def execute(self, context):
+        drag = self.prepare(context)
+        if drag is None:
+            return {"CANCELLED"}
+        frame = drag.drag(np.array(self.offset), self.frames)
+        if not frame.converged:
+            self.report({"ERROR"}, f"{self.label}: did not converge at the offset ({frame.message}); mesh unchanged")
+            return {"CANCELLED"}
+        mesh_io.write_positions(self._obj, drag.positions, drag.moving)
+        self.report({"INFO"}, f"{self.label}: {drag.summary()}")
+        return {"FINISHED"}
+
+    def invoke(self, context, event):
+        self._region = view_region(context)
+        if bpy.app.background or context.window is None or self._region is None:
+            return self.execute(context)
+        drag = self._drag = self.prepare(context)
+        if drag is None:
+            return {"CANCELLED"}
+        obj = self._obj
+        mesh_io.write_positions(obj, drag.positions, drag.moving)  # the region faired at rest
+        self._centre = obj.matrix_world @ Vector(drag.base[drag.handle].mean(axis=0).tolist())
+        self._start = self._mouse = self.mouse_point(context, event)
+        self._axis = None
+        self._to_object = obj.matrix_world.inverted().to_3x3()
+        self.report({"INFO"}, f"{self.label}: prepared in {drag.prepare_seconds:.2f} s; {live.HANDLE_RULE}")
+        self.show(context, f"prepared in {drag.prepare_seconds * 1e3:.0f} ms")
+        context.window_manager.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def mouse_point(self, context, event):
+        """The mouse's point in the view plane through the handle's centre (world), also when the
+        operator was started from the sidebar (window coordinates into the 3D View's main region)."""
+        region = self._region
+        mouse = (event.mouse_x - region.x, event.mouse_y - region.y)
+        return view3d_utils.region_2d_to_location_3d(region, region.data, mouse, self._centre)
+
+    def modal(self, context, event):
+        if event.type == "MOUSEMOVE":
+            self._mouse = self.mouse_point(context, event)
+            self.drag_to(context)
+        elif event.type in AXIS_EVENTS and event.value == "PRESS":
+            axis = AXIS_EVENTS[event.type]
+            self._axis = None if self._axis == axis else axis
+            self.drag_to(context)
+        elif event.type in CONFIRM_EVENTS and event.value == "PRESS":
+            return self.confirm(context)
+        elif event.type in CANCEL_EVENTS and event.value == "PRESS":
+            self.cancel(context)
+            return {"CANCELLED"}
+        elif event.type in NAVIGATION_EVENTS:
+            return {"PASS_THROUGH"}
+        return {"RUNNING_MODAL"}
+
+    def drag_to(self, context):
+        """One frame with the handle at the mouse (along the chosen axis); written if it converged."""
+        world = self._mouse - self._start
+        if self._axis is not None:  # the mouse's move along that global axis only
+            world = Vector([world[i] if i == self._axis else 0.0 for i in range(3)])
+        frame = self._drag.frame(np.array(self._to_object @ world))
+        if frame.converged:
+            mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
+        self.show(context, frame.status())
+
+    def show(self, context, text):
+        offset = live.distance_text(self._drag.offset)
+        along = f" along {'XYZ'[self._axis]}" if self._axis is not None else ""
+        context.area.header_text_set(f"{self.label}: offset {offset}{along}, {text} — {LIVE_HINT}")
+
+    def confirm(self, context):
+        """Keep the last good frame (one undo step); the offset it reached is the redo panel's."""
+        drag = self._drag
+        self.offset = drag.offset.tolist()
+        self.end(context)
+        try:
+            overlays.refresh_curvature(self._obj, context)
+        except RuntimeError as error:
+            self.report({"WARNING"}, f"{self.label}: curvature not updated: {error}")
+        self.report({"INFO"}, f"{self.label}: {drag.summary()}")
+        return {"FINISHED"}
+
+    def cancel(self, context):
+        """Esc, RMB, or Blender ending the operator: every position back as it was, byte for byte."""
+        drag = self._drag
+        if drag is not None:
+            mesh_io.write_positions(self._obj, drag.base, drag.moving)
+        self.end(context)
+
+    def end(self, context):
+        self._drag = None
+        if context.area is not None:
+            context.area.header_text_set(None)
+
+
 CLASSES = (
     MESH_OT_geometric_fairing,
     MESH_OT_geometric_fairing_fill_holes,
+    MESH_OT_geometric_fairing_live,
     VIEW3D_OT_geometric_fairing_zebra,
     MESH_OT_geometric_fairing_curvature,
 )

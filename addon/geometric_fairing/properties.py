@@ -142,6 +142,9 @@ LIBRARY_OPTION_NAMES = (
     "time_limit",
 )
 OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "remesh", "region_group", "pin_group", "use_hidden")
+# Live Fair Drag's options taken from the panel when not given: Fair's but Remesh (a live region keeps its
+# triangles); it adds Keep Details (LiveFairing's details), the offset and the frames.
+LIVE_OPTION_NAMES = (*LIBRARY_OPTION_NAMES, "region_group", "pin_group", "use_hidden")
 # geofair.fair's options that no property holds: scripts pass them (fair_object, fill_holes); the
 # operators and the panel leave them at the library's defaults.
 SCRIPT_OPTION_NAMES = ("normal_weighting", "damping", "cg_iterations", "tuning")
@@ -318,6 +321,16 @@ def _keep_unconverged(**options):
     )
 
 
+def _live_details(**options):
+    return BoolProperty(
+        name="Keep Details",
+        description="Live Fair Drag keeps the region's details (its offsets from its own faired base) and moves them "
+        "with the surface. Off: the region becomes the fair surface through the handle",
+        default=False,
+        **options,
+    )
+
+
 def addon_preferences(context=None):
     """The add-on's :class:`FairingPreferences`, or None when it was not enabled through the preferences."""
     context = context or bpy.context
@@ -402,6 +415,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     region_group: _region_group()
     pin_group: _pin_group()
     use_hidden: _use_hidden()
+    live_details: _live_details()
 
 
 @dataclass(frozen=True)

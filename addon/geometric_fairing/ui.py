@@ -7,14 +7,16 @@ from .operators import (
     MESH_OT_geometric_fairing,
     MESH_OT_geometric_fairing_curvature,
     MESH_OT_geometric_fairing_fill_holes,
+    MESH_OT_geometric_fairing_live,
     VIEW3D_OT_geometric_fairing_zebra,
 )
 
 
 def draw_menu_entry(self, context):
-    """Append the operators to a menu: Fair, and Fill Holes next to it."""
+    """Append the operators to a menu: Fair, Live Fair Drag and Fill Holes next to it."""
     self.layout.separator()
     self.layout.operator(MESH_OT_geometric_fairing.bl_idname)
+    self.layout.operator(MESH_OT_geometric_fairing_live.bl_idname)
     self.layout.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname)
 
 
@@ -63,6 +65,11 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         row = layout.row()
         row.scale_y = 1.4
         row.operator(MESH_OT_geometric_fairing.bl_idname, text="Fair", icon="MOD_SMOOTH")
+        column = layout.column(align=True)
+        row = column.row(align=True)
+        row.operator(MESH_OT_geometric_fairing_live.bl_idname, text="Live Fair Drag", icon="VIEW_PAN")
+        row.prop(settings, "live_details", text="", icon="MOD_DISPLACE")
+        column.label(text=_handle_text(settings), icon="PINNED")
         row = layout.row()
         row.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname, text="Fill Holes", icon="MOD_TRIANGULATE")
         layout.label(text="Esc cancels: mesh unchanged")
@@ -148,6 +155,15 @@ class VIEW3D_PT_geometric_fairing_inspect(FairingPanel, bpy.types.Panel):
         if curvature:
             limit = context.window_manager.geometric_fairing.curvature_limit
             layout.label(text=f"Blue −{limit:.3g}  White 0  Red +{limit:.3g} (1/length)")
+
+
+def _handle_text(settings):
+    """Which vertices Live Fair Drag moves, in the panel's words."""
+    if settings.region_group:
+        return "Handle: Pin group and selection in Region"
+    if settings.pin_group:
+        return "Handle: Pin group inside the selection"
+    return "Handle: set a Pin group (no handle yet)"
 
 
 def _status_text(last):

@@ -1,0 +1,147 @@
+"""Check Live Fair Drag's modal drag in a real Blender window: the mouse moves the handle, Esc
+restores every byte, a click confirms with one undo step and leaves the offset for redo.
+
+Needs a display (Xvfb) and Blender's event simulation, as check_modal.py:
+
+    xvfb-run -a -s "-screen 0 1280x800x24" blender --factory-startup --enable-event-simulate \\
+        --python tests/blender/check_live_modal.py -- build/addon
+"""
+
+import os
+import sys
+import traceback
+
+import bpy
+
+# isort: split
+import numpy as np
+
+from geofair_dev.blender import edit_state, enable_addon, parse_args, positions, select_faces
+
+AXIS = np.array([1.0, 0.0, 0.0])
+
+
+def angle_to_axis(points):
+    unit = points / np.linalg.norm(points, axis=-1, keepdims=True)
+    return np.degrees(np.arccos(np.clip(unit @ AXIS, -1.0, 1.0)))
+
+
+def view3d():
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return window, area, region
+
+
+def finish(code):
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+class Steps:
+    """Generator steps driven by a timer (as check_modal.py's): ``yield seconds`` waits, an exception fails."""
+
+    def __init__(self, generator):
+        self.generator = generator
+
+    def __call__(self):
+        try:
+            return next(self.generator)
+        except StopIteration:
+            finish(0)
+        except Exception:
+            traceback.print_exc()
+            print("check_live_modal: FAILED")
+            finish(1)
+
+
+def invoke_live(sidebar=False):
+    """Invoke as the Mesh menu does (in the main region) or as the sidebar's button (its UI region)."""
+    window, area, region = view3d()
+    if sidebar:
+        region = next(r for r in area.regions if r.type == "UI")
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        return bpy.ops.mesh.geometric_fairing_live("INVOKE_DEFAULT", pin_group="Handle")
+
+
+def mouse(dx, dy, event_type="MOUSEMOVE", value="NOTHING"):
+    """Simulate an event at the 3D View's centre moved by (dx, dy) pixels."""
+    window, _, region = view3d()
+    x, y = region.x + region.width // 2 + dx, region.y + region.height // 2 + dy
+    window.event_simulate(type=event_type, value=value, x=x, y=y)
+
+
+def drag_a_little():
+    for step in range(1, 6):
+        mouse(0, 3 * step)
+        yield 0.2
+
+
+def checks(addon, obj):
+    yield 0.5
+    mouse(0, 0)
+    yield 0.2
+    before, handle = edit_state(obj), positions(obj)
+    assert invoke_live() == {"RUNNING_MODAL"}
+    yield from drag_a_little()
+    drag = addon.operators.last_drag()
+    assert drag.frames and np.any(positions(obj) != handle), "the drag moved nothing"
+    print(f"ok: dragging: {drag.summary()}; last frame: {drag.frames[-1].status()}")
+    mouse(0, 40, "ESC", "PRESS")
+    mouse(0, 40, "ESC", "RELEASE")
+    yield 0.3
+    assert edit_state(obj) == before, "Esc did not restore every byte"
+    print("ok: Esc restored the mesh byte for byte")
+
+    mouse(0, 0)
+    yield 0.2
+    assert invoke_live(sidebar=True) == {"RUNNING_MODAL"}
+    yield from drag_a_little()
+    mouse(0, 15, "Z", "PRESS")  # along global Z only (the sphere's object space is the world's)
+    mouse(0, 15, "Z", "RELEASE")
+    yield 0.3
+    along_z = addon.operators.last_drag().offset
+    assert along_z[0] == along_z[1] == 0.0 and along_z[2] > 0.0, along_z
+    print(f"ok: Z: the handle moves along Z only, offset {np.round(along_z, 4)}")
+    mouse(0, 40, "LEFTMOUSE", "PRESS")
+    mouse(0, 40, "LEFTMOUSE", "RELEASE")
+    yield 0.3
+    drag = addon.operators.last_drag()
+    moved = edit_state(obj)
+    assert moved["co"] != before["co"] and np.linalg.norm(drag.offset) > 0, "the click kept nothing"
+    assert all(moved[key] == before[key] for key in before if key != "co"), "a layer changed"
+    last = bpy.context.window_manager.operators[-1]
+    assert last.bl_idname == "MESH_OT_geometric_fairing_live", last.bl_idname
+    assert np.allclose(last.properties.offset, drag.offset), (last.properties.offset[:], drag.offset)
+    print(f"ok: from the sidebar, click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)} for redo")
+    window, area, region = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.ed.undo()
+    assert edit_state(obj) == before, "one undo did not restore every byte"
+    print("ok: one undo restored the mesh byte for byte")
+    print("check_live_modal: all checks passed")
+
+
+def main():
+    folder, _ = parse_args()
+    print(f"Blender {bpy.app.version_string}, Python {sys.version.split()[0]}, add-on from {folder}")
+    assert not bpy.app.background, "check_live_modal needs a window (run it under xvfb-run without --background)"
+    addon = enable_addon(folder)
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=1.0)
+    obj = bpy.context.active_object
+    handle = np.flatnonzero(angle_to_axis(positions(obj).astype(np.float64)) < 10.0)
+    obj.vertex_groups.new(name="Handle").add(handle.tolist(), 1.0, "REPLACE")
+    bpy.ops.object.mode_set(mode="EDIT")
+    select_faces(obj, lambda c: angle_to_axis(c) < 50.0)
+    bpy.ops.ed.undo_push(message="selected the region")
+    bpy.app.timers.register(Steps(checks(addon, obj)), first_interval=0.5)
+
+
+try:
+    main()
+except Exception:
+    traceback.print_exc()
+    finish(1)

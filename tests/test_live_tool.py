@@ -1,0 +1,122 @@
+"""The add-on's Live Fair Drag without bpy (addon/geometric_fairing/live.py): the region and handle
+as the Fair operator finds them (region.py, the handle its pinned vertices), the handle translated
+in frames; each shown frame is the cold geofair.fair of its input, an unconverged frame keeps the
+last good positions, and a region without a handle is refused. In Blender:
+tests/blender/check_live.py."""
+
+import importlib.util
+import pathlib
+
+import numpy as np
+import pytest
+
+import geofair
+from geofair_dev import scenes
+
+_ADDON = pathlib.Path(__file__).resolve().parents[1] / "addon" / "geometric_fairing"
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location(f"geofair_{name}", _ADDON / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+live = _load("live")
+region = _load("region")
+
+
+@pytest.fixture(scope="module")
+def sphere_region():
+    """An irregular unit sphere (3,000 vertices); the selected triangles those within 50° of +z, the
+    Pin group the vertices within 8° of it: (vertices, triangles, Region, boundary normals)."""
+    s = scenes.sphere(n_vertices=3000, irregular=True, seed=1)
+    polar = np.degrees(np.arccos(np.clip(s.vertices[:, 2], -1.0, 1.0)))
+    selected = (polar[s.faces] < 50.0).all(axis=1)
+    r = region.find_region(s.vertices, s.faces, selected, pinned=polar < 8.0)
+    normals = region.boundary_normals(r, s.vertices, s.faces, geofair.boundary_normals)
+    return s.vertices, s.faces, r, normals
+
+
+def make_drag(sphere_region, details=False, step=None, **options):
+    v, f, r, normals = sphere_region
+    return live.LiveDrag(geofair, v, f, r.free, r.pinned, normals, None, options, details, step)
+
+
+def region_diagonal(vertices, faces, free):
+    used = np.unique(faces[free[faces].any(axis=1)])
+    p = vertices[used]
+    return float(np.linalg.norm(p.max(axis=0) - p.min(axis=0)))
+
+
+def test_drag_is_the_cold_fair_of_its_input(sphere_region):
+    # The handle slid along the sphere's tangent (+y) by 0.15 in 5 frames: every frame warm, and
+    # the last the cold fair of the same input (the Fair operator's) within the tolerance.
+    v, f, r, normals = sphere_region
+    drag = make_drag(sphere_region)
+    assert drag.handle_count == np.count_nonzero(r.pinned) > 0 and drag.free_count == np.count_nonzero(r.free)
+    offset = np.array([0.0, 0.15, 0.0])
+    frame = drag.drag(offset, 5)
+    assert frame.converged and not frame.cold and frame.steps >= 1, frame.message
+    assert "Newton step" in frame.status() and "NOT" not in frame.status()
+    assert len(drag.frames) == 5 and np.array_equal(drag.offset, offset)
+    target = v.copy()
+    target[r.pinned] += offset
+    assert np.array_equal(drag.positions[~r.free], target[~r.free])  # fixed rows as given
+    cold = geofair.fair(target, f, r.free, boundary_normals=normals)
+    assert cold.converged
+    error = np.abs(drag.positions - cold.vertices).max() / region_diagonal(target, f, r.free)
+    assert error < 1e-4, error
+    # The region follows the handle and stays near the sphere: a translated handle keeps its tangent
+    # planes (they do not turn as along the sphere), so the region bulges a little (measured 0.031).
+    radial = np.abs(np.linalg.norm(drag.positions[r.free], axis=1) - 1.0).max()
+    assert radial < 0.05, radial
+    assert (drag.positions[r.free, 1] - v[r.free, 1]).max() > 0.1  # next to the handle, nearly its 0.15
+    assert "5 frames" in drag.summary()
+
+
+def test_unconverged_frame_keeps_the_last_good_positions(sphere_region):
+    drag = make_drag(sphere_region, step=10.0, time_limit=0.5)  # no sub-steps
+    good = drag.frame([0.0, 0.05, 0.0])
+    assert good.converged
+    kept = drag.positions.copy()
+    # Pulled out by three radii: no fair surface (a tube that pinches); the cold path fails too.
+    bad = drag.frame([0.0, 0.0, 3.0])
+    assert not bad.converged and bad.cold and "NOT converged" in bad.status() and "cold path" in bad.status()
+    assert np.array_equal(drag.positions, kept) and np.array_equal(drag.offset, [0.0, 0.05, 0.0])
+    assert np.isfinite(drag.positions).all()
+    assert "1 not converged" in drag.summary()
+
+
+def test_non_finite_offset_is_an_unconverged_frame(sphere_region):
+    drag = make_drag(sphere_region)
+    kept = drag.positions.copy()
+    frame = drag.frame([np.nan, 0.0, 0.0])
+    assert not frame.converged and "non-finite" in frame.message
+    assert np.array_equal(drag.positions, kept)
+
+
+def test_details_keep_the_input_at_rest(sphere_region):
+    v, f, r, _ = sphere_region
+    drag = make_drag(sphere_region, details=True)
+    assert np.array_equal(drag.positions, v)  # nothing moves before the handle does
+    frame = drag.frame([0.0, 0.05, 0.0])
+    assert frame.converged, frame.message
+
+
+def test_no_handle_is_refused(sphere_region):
+    v, f, r, normals = sphere_region
+    with pytest.raises(live.NoHandleError, match="No handle: put vertices inside the region into the Pin"):
+        live.LiveDrag(geofair, v, f, r.free, np.zeros(len(v), dtype=bool), normals, None, {}, False)
+
+
+def test_a_long_jump_is_split_into_warm_steps(sphere_region):
+    # A jump of the mouse by 0.3 (several edges) in one frame: split into sub-steps of at most the
+    # mean edge length at the handle, each warm, instead of one cold-path solve.
+    drag = make_drag(sphere_region)
+    assert 0.0 < drag.step < 0.2
+    frame = drag.frame([0.0, 0.3, 0.0])
+    assert frame.converged and not frame.cold, frame.message
+    assert frame.substeps == int(np.ceil(0.3 / drag.step)) > 1 and "sub-steps" in frame.status()
+    assert np.array_equal(drag.offset, [0.0, 0.3, 0.0])
