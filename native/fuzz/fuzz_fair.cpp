@@ -10,6 +10,7 @@
 // (1 bit per vertex), then per triangle 3 vertex indices, then per triangle a polygon id
 // (0..15: any grouping of triangles into polygons, bogus ones included; passed to fair only
 // where the first one is below 8).
+#include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "intrinsic_delaunay.h"
 #include "mean_curvature.h"

@@ -1,7 +1,6 @@
 // The steps of fill_holes (geofair/hole_filling.h), for the library and its unit tests.
 #pragma once
 
-#include "geofair/hole_filling.h"
 #include "geofair/types.h"
 
 #include <cstdint>

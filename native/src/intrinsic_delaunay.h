@@ -16,11 +16,13 @@
 #pragma once
 
 #include "laplace_beltrami.h"
-#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 namespace geofair {
 
+/// Exported by geofair/building_blocks.h, which documents them and gives the defaults.
+IntrinsicTriangulation intrinsic_delaunay(const Positions& V, const Triangles& F);
+SparseRowMatrix intrinsic_delaunay_laplacian(const Positions& V, const Triangles& F, int* flips);
 
 /// The cotangent Laplacian of an intrinsic triangulation, #V×#V, with the conventions of
 /// cotangent_laplacian: L_ij = Σ cot of the angles opposite the edges between i and j (one

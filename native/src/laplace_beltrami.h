@@ -5,7 +5,6 @@
 #pragma once
 
 #include "region.h"
-#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <Eigen/Sparse>
@@ -13,6 +12,9 @@
 #include <vector>
 
 namespace geofair {
+
+/// Exported by geofair/building_blocks.h, which documents it and gives the defaults.
+SparseRowMatrix cotangent_laplacian(const Positions& V, const Triangles& F);
 
 /// Cotangent weights w_ij = cot α_ij + cot β_ij of the ring slots of vertex i, written to
 /// w[0 .. valence). α, β are the angles opposite edge (q_i, q_j) in the (one or two)

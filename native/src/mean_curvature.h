@@ -7,7 +7,6 @@
 #pragma once
 
 #include "region.h"
-#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <Eigen/Core>
@@ -15,6 +14,10 @@
 #include <cmath>
 
 namespace geofair {
+
+/// Exported by geofair/building_blocks.h, which documents it and gives the defaults.
+Eigen::VectorXd mean_curvature(const Positions& V, const Triangles& F, const Positions* normals,
+                               NormalWeighting weighting);
 
 /// Unit normal of vertex i from the triangles of its one-ring, weighted as requested.
 /// Returns the zero vector if the triangles are degenerate (no defined normal).

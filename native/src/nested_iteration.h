@@ -3,7 +3,6 @@
 // prolongation of the coarser solution, by Newton's method or by the paper's iteration.
 #pragma once
 
-#include "geofair/fairing.h"
 #include "geofair/types.h"
 
 #include "inner_fairness.h"

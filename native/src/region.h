@@ -4,7 +4,6 @@
 // vertices next to them; N(q_i) is the one-ring, D(q_i) the one-disk.
 #pragma once
 
-#include "geofair/building_blocks.h"
 #include "geofair/types.h"
 
 #include <cstdint>
@@ -108,6 +107,11 @@ FairingRegion extract_region(const Positions& V, const Triangles& F, const std::
                              const Positions* boundary_normals, bool check_orientation = true,
                              const std::vector<int>* polygon_ids = nullptr,
                              BoundaryCondition boundary = BoundaryCondition::G1);
+
+/// Exported by geofair/building_blocks.h, which documents it and gives the defaults.
+Positions estimate_boundary_normals(const Positions& V, const Triangles& F,
+                                    const std::vector<bool>& free, BoundaryNormalEstimate method,
+                                    const char* caller);
 
 /// The boundary normals of `region` (extracted from V, F, free) for new positions V of its
 /// vertices (LiveFairing, same mesh): G1 normals as extract_region sets them (the given ones

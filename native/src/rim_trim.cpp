@@ -2,6 +2,8 @@
 // (hole_filling_internal.h, trim_rim).
 #include "hole_filling_internal.h"
 
+#include "geofair/hole_filling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>

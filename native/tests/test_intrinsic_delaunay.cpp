@@ -1,4 +1,5 @@
 // Intrinsic Delaunay triangulation and its cotangent Laplacian (Bobenko & Springborn 2007).
+#include "geofair/building_blocks.h"
 #include "intrinsic_delaunay.h"
 #include "meshes.h"
 

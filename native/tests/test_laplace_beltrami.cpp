@@ -1,4 +1,5 @@
 // Cotangent Laplace–Beltrami operator (Schneider & Kobbelt 2001, section 5, eqs. (5)-(7)).
+#include "geofair/building_blocks.h"
 #include "laplace_beltrami.h"
 #include "meshes.h"
 

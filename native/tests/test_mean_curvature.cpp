@@ -1,5 +1,6 @@
 // Moreton–Séquin mean curvature with the spiral samples (Schneider & Kobbelt 2001,
 // section 6, eqs. (8)-(11), section 6.2).
+#include "geofair/building_blocks.h"
 #include "mean_curvature.h"
 #include "meshes.h"
 

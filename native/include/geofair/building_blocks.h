@@ -14,8 +14,7 @@
 
 namespace geofair {
 
-/// A sparse matrix in compressed rows.
-using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+// SparseRowMatrix, IntrinsicTriangulation, RemeshOptions and RemeshedRegion: geofair/types.h.
 
 /// The cotangent Laplace–Beltrami matrix of a whole triangle mesh, #V×#V:
 /// L_ij = w_ij = cot α_ij + cot β_ij for every edge (one cotangent on a border edge),
@@ -24,18 +23,6 @@ using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 /// eqs. (6), (7) is −L restricted to the free rows and columns.
 /// \throw InvalidInputError for invalid topology or non-finite positions.
 SparseRowMatrix cotangent_laplacian(const Positions& V, const Triangles& F);
-
-/// An intrinsic triangulation on the vertices of a mesh.
-struct IntrinsicTriangulation {
-  /// #T×3 vertex indices, counter-clockwise as the input. An intrinsic triangle may repeat
-  /// a vertex and two triangles may share two vertices twice (not a simplicial complex).
-  Triangles triangles;
-  /// #T×3 edge lengths: lengths(t, k) is the length of the edge from corner k to corner
-  /// k+1 (mod 3) of triangle t, in mesh units, measured along the input surface.
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> lengths;
-  /// Number of edge flips performed (0: the input was intrinsically Delaunay).
-  int flips = 0;
-};
 
 /// Intrinsic Delaunay triangulation of (V, F) by the flip algorithm: every interior edge
 /// whose opposite angles α, β satisfy cot α + cot β < −1e-12 (i.e. α + β > π) is flipped
@@ -144,37 +131,6 @@ std::pair<Positions, double> relax_inner_fairness(const Positions& V, const Tria
 std::vector<Triangles> progressive_mesh_levels(const Positions& V, const Triangles& F,
                                                const std::vector<bool>& free, int levels,
                                                bool coarsen_boundary);
-
-/// Options of remesh_region.
-struct RemeshOptions {
-  /// Target edge length L in mesh units; <= 0: the mean length of the region's border edges
-  /// (the edges of the region's triangles that have one of them on one side only), or of all
-  /// its edges where it has no border.
-  double target_edge_length = 0.0;
-  int iterations = 5;  ///< rounds of split, collapse, flip, tangential relaxation; >= 0
-};
-
-/// The remeshed region (remesh_region) in the caller's rows.
-///
-/// Rows: the input's fixed vertices keep their index and position (bit-identical); an input
-/// free vertex that survives keeps its row, the other new free vertices take the input's
-/// remaining free rows in increasing order, then rows appended after #V, so `vertices` has
-/// max(#V, #fixed + #new free) rows. Input free rows left over are listed in `unreferenced`
-/// (in no face, not free, their input position kept).
-struct RemeshedRegion {
-  Positions vertices;      ///< #V'×3, mesh units
-  /// #F'×3: the input faces without a free vertex (unchanged, in input order), then the
-  /// region's new triangles, oriented like the input's; each has a free vertex.
-  Triangles faces;
-  std::vector<bool> free;  ///< #V': true exactly at the new region's free vertices
-  std::vector<int> unreferenced;
-  /// #V': for a free vertex, the input face (row of F) its position lies on; -1 elsewhere.
-  std::vector<int> origin_face;
-  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1, the position is
-  /// Σ_k b_k V[F(origin_face, k)] to round-off); zeros where origin_face is -1. Lets a caller
-  /// carry per-corner data (UVs) over from the input.
-  Positions origin_barycentric;
-};
 
 /// Replaces the triangles of a region (the faces with a free vertex) by an isotropic remesh
 /// at edge length L (Botsch & Kobbelt 2004, "A remeshing approach to multiresolution

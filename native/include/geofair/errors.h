@@ -1,4 +1,6 @@
-// The exceptions of the geofair library.
+// The exceptions of the geofair library. A bottom header: it includes no other geofair
+// header. Their destructors are defined in errors.cpp (the key function), so that their
+// vtables and type_info live in that one object file, not weakly in every one that throws.
 #pragma once
 
 #include <stdexcept>
@@ -10,6 +12,7 @@ namespace geofair {
 class InvalidInputError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+  ~InvalidInputError() override;
 };
 
 /// A numerical failure (a solver broke down, the iteration diverged).
@@ -17,6 +20,7 @@ class InvalidInputError : public std::invalid_argument {
 class SolverError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  ~SolverError() override;
 };
 
 }  // namespace geofair

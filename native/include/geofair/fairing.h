@@ -10,65 +10,7 @@
 
 namespace geofair {
 
-/// Why geofair::fair returned: the first clause of FairingResult::message as a value.
-enum class StopReason {
-  Converged,      ///< residual <= tolerance
-  MaxIterations,  ///< a level spent options.max_iterations (or Newton's method stalled)
-  TimeLimit,      ///< options.time_limit, or the automatic limit's hard cap, was spent
-  NoProgress,     ///< the automatic time limit: the residual did not halve for its span
-  Cancelled,      ///< options.progress returned false or options.stop_requested true
-  Diverged,       ///< Auto's last attempt failed (SolverError); the input is returned
-};
-
-/// Outcome of geofair::fair.
-struct FairingResult {
-  /// #V'×3; rows of fixed vertices are bit-identical to the input. #V' = #V unless remeshed
-  /// (then max(#V, #fixed + #new free), remesh_region's row layout).
-  Positions vertices;
-  Triangles faces;          ///< #F'×3: the result's triangles (the input's unless remeshed)
-  std::vector<bool> free;   ///< #V': the result's free vertices (the input's unless remeshed)
-  bool remeshed = false;    ///< the region's triangles were replaced (FairingOptions::remesh)
-  /// Rows of `vertices` in no face (input free rows the remesh did not reuse; their input
-  /// positions kept); empty unless remeshed.
-  std::vector<int> unreferenced;
-  /// #V': for each free vertex of a remeshed region the input face (row of F) it was
-  /// created on, on the input surface before fairing; -1 for the other rows and for every
-  /// row when not remeshed.
-  std::vector<int> origin_face;
-  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1); zero rows where
-  /// origin_face is -1. Lets a caller carry per-corner data (UVs) over from the input.
-  Positions origin_barycentric;
-  bool converged = false;  ///< residual <= tolerance was reached
-  int iterations = 0;      ///< iterations M_k -> M_{k+1} performed, all levels together
-  /// Iterations on each level, coarsest first, including those that the cycles of the finer
-  /// levels ran on it as their coarse grid.
-  std::vector<int> iterations_per_level;
-  std::vector<int> vertices_per_level;    ///< region vertices (free + G1 boundary) per level
-  double residual = 0.0;   ///< normalized residual of the returned mesh (see fair)
-  /// How the solve ended, one sentence for a user: "converged", or why not (the time
-  /// limit, max_iterations, cancelled, no progress) with the residual and tolerance.
-  std::string message;
-  StopReason stop_reason = StopReason::MaxIterations;  ///< message's first clause as a value
-  /// The iteration that produced the result: Newton or Paper (Auto falls back to Paper).
-  Iteration iteration = Iteration::Paper;
-  /// Newton steps performed, including those of an attempt that Auto abandoned.
-  int newton_iterations = 0;
-  /// Edges with a free vertex whose two triangles face apart in `vertices` (count_folds):
-  /// triangles the result flips over. A converged result can have them where the G1 data
-  /// turn faster than the mesh resolves, or keep them from a folded input; `message` then
-  /// says so.
-  int folds = 0;
-  int new_folds = 0;  ///< those of `folds` whose triangles did not face apart in the input
-  /// Wall-clock seconds of the solve's phases in the order they ran (for profiling; beyond
-  /// the paper): "hierarchy" (smoothed copy and progressive mesh), then per level ℓ
-  /// (0 = coarsest) "level ℓ initial mesh" (the linear Δ²f = 0 solve or the prolongation),
-  /// "level ℓ set-up" (the level's construction, or the wait for the one built on the second
-  /// thread), and for Newton's method "level ℓ inner fairness" (the tangential relaxations
-  /// before the steps), "level ℓ Newton steps" and "level ℓ polishes", for the paper's
-  /// iteration "level ℓ iterations". An attempt that was abandoned keeps its phases; the
-  /// phases do not overlap, so their sum stays below the call's wall time.
-  std::vector<std::pair<std::string, double>> phase_seconds;
-};
+// StopReason and FairingResult, the outcome of fair: geofair/types.h.
 
 /// Fairs the free vertices of a triangle mesh so that Δ_B H = 0 holds at each of them,
 /// with the G1 boundary condition of positions and unit normals at the fixed vertices that

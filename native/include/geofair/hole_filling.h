@@ -21,42 +21,7 @@ namespace geofair {
 ///        (two holes touch there; fill them one at a time).
 std::vector<std::vector<int>> boundary_loops(const Positions& V, const Triangles& F);
 
-/// A connected part's boundary loop of the largest spanned area is its outer border where
-/// it spans at least this fraction of the area of the part's triangles
-/// (HoleRule::keep_outer_borders).
-constexpr double kOuterBorderArea = 0.3;
-
-/// Which boundary loops are holes when fill_holes is given none (holes_to_fill).
-struct HoleRule {
-  /// Leave the outer borders of open surfaces open: in each connected part of the mesh, the
-  /// boundary loop of the largest spanned area |½ Σ_i (p_i − c) × (p_{i+1} − c)| (its
-  /// vertices p_i about their centroid c), where that area is at least kOuterBorderArea
-  /// times the area of the part's triangles. A sheet's border spans about the sheet's own
-  /// area (a height field's: its area projected on the plane), a hole in a closed surface a
-  /// small part of it: a sphere missing a cap of polar angle θ spans (1 − cos θ)/2 of the
-  /// rest, below 30 % up to θ = 66° (30 % of the sphere cut away). A part has at most one
-  /// outer border: a hole in a sheet is filled whatever its size, and of an open tube's
-  /// two ends the larger one stays open if it spans 30 % (a ring), else neither.
-  /// false: every boundary loop is a hole.
-  bool keep_outer_borders = true;
-  /// Leave loops of more edges than this open (Blender's Fill Holes' Sides, MeshLab's Close
-  /// Holes' maximum size); 0: no limit.
-  int max_hole_edges = 0;
-};
-
-/// A boundary loop that holes_to_fill leaves open, and why.
-struct OpenLoop {
-  std::vector<int> loop;  ///< as boundary_loops returns it
-  /// One clause for a user, e.g. "an outer border: it spans 95 % of the area of its part's
-  /// triangles (a hole less than 30 %)".
-  std::string reason;
-};
-
-/// The boundary loops of a mesh split by a HoleRule.
-struct HoleChoice {
-  std::vector<std::vector<int>> holes;  ///< the loops to fill, in boundary_loops' order
-  std::vector<OpenLoop> left_open;      ///< the others, in the same order
-};
+// kOuterBorderArea, HoleRule, OpenLoop and HoleChoice (holes_to_fill's): geofair/types.h.
 
 /// The holes that fill_holes fills when it is given no loops: the boundary loops of
 /// boundary_loops(V, F) that `rule` does not leave open (see HoleRule), and those it does

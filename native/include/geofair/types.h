@@ -1,4 +1,9 @@
-// Common types and options of the geofair library.
+// Common types and options of the geofair library: the bottom layer, with errors.h and
+// tuning.h, that the API headers (fairing.h, building_blocks.h, hole_filling.h, ...) and the
+// library's internal headers both include. Of geofair's headers it includes errors.h and
+// tuning.h alone, which include none. The types that the algorithms share with the API
+// (FairingResult, RemeshedRegion, HoleChoice, ...) live here, not in the API header that
+// exports their functions.
 //
 // Units: lengths are in mesh units; mean curvature H is in 1/length. Sign convention:
 // H > 0 on a sphere whose normals point outward (H = 1/r there).
@@ -9,8 +14,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/SparseCore>
 
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace geofair {
 
@@ -151,6 +160,155 @@ struct FairingOptions {
   std::function<void(bool paper)> attempt_started;
   /// The solvers' numerical choices beyond the paper's options (tuning.h).
   SolverTuning tuning;
+};
+
+// The building blocks' types (building_blocks.h).
+
+/// A sparse matrix in compressed rows.
+using SparseRowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// An intrinsic triangulation on the vertices of a mesh.
+struct IntrinsicTriangulation {
+  /// #T×3 vertex indices, counter-clockwise as the input. An intrinsic triangle may repeat
+  /// a vertex and two triangles may share two vertices twice (not a simplicial complex).
+  Triangles triangles;
+  /// #T×3 edge lengths: lengths(t, k) is the length of the edge from corner k to corner
+  /// k+1 (mod 3) of triangle t, in mesh units, measured along the input surface.
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> lengths;
+  /// Number of edge flips performed (0: the input was intrinsically Delaunay).
+  int flips = 0;
+};
+
+/// Options of remesh_region.
+struct RemeshOptions {
+  /// Target edge length L in mesh units; <= 0: the mean length of the region's border edges
+  /// (the edges of the region's triangles that have one of them on one side only), or of all
+  /// its edges where it has no border.
+  double target_edge_length = 0.0;
+  int iterations = 5;  ///< rounds of split, collapse, flip, tangential relaxation; >= 0
+};
+
+/// The remeshed region (remesh_region) in the caller's rows.
+///
+/// Rows: the input's fixed vertices keep their index and position (bit-identical); an input
+/// free vertex that survives keeps its row, the other new free vertices take the input's
+/// remaining free rows in increasing order, then rows appended after #V, so `vertices` has
+/// max(#V, #fixed + #new free) rows. Input free rows left over are listed in `unreferenced`
+/// (in no face, not free, their input position kept).
+struct RemeshedRegion {
+  Positions vertices;      ///< #V'×3, mesh units
+  /// #F'×3: the input faces without a free vertex (unchanged, in input order), then the
+  /// region's new triangles, oriented like the input's; each has a free vertex.
+  Triangles faces;
+  std::vector<bool> free;  ///< #V': true exactly at the new region's free vertices
+  std::vector<int> unreferenced;
+  /// #V': for a free vertex, the input face (row of F) its position lies on; -1 elsewhere.
+  std::vector<int> origin_face;
+  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1, the position is
+  /// Σ_k b_k V[F(origin_face, k)] to round-off); zeros where origin_face is -1. Lets a caller
+  /// carry per-corner data (UVs) over from the input.
+  Positions origin_barycentric;
+};
+
+// The outcome of fair (fairing.h).
+
+/// Why geofair::fair returned: the first clause of FairingResult::message as a value.
+enum class StopReason {
+  Converged,      ///< residual <= tolerance
+  MaxIterations,  ///< a level spent options.max_iterations (or Newton's method stalled)
+  TimeLimit,      ///< options.time_limit, or the automatic limit's hard cap, was spent
+  NoProgress,     ///< the automatic time limit: the residual did not halve for its span
+  Cancelled,      ///< options.progress returned false or options.stop_requested true
+  Diverged,       ///< Auto's last attempt failed (SolverError); the input is returned
+};
+
+/// Outcome of geofair::fair.
+struct FairingResult {
+  /// #V'×3; rows of fixed vertices are bit-identical to the input. #V' = #V unless remeshed
+  /// (then max(#V, #fixed + #new free), remesh_region's row layout).
+  Positions vertices;
+  Triangles faces;          ///< #F'×3: the result's triangles (the input's unless remeshed)
+  std::vector<bool> free;   ///< #V': the result's free vertices (the input's unless remeshed)
+  bool remeshed = false;    ///< the region's triangles were replaced (FairingOptions::remesh)
+  /// Rows of `vertices` in no face (input free rows the remesh did not reuse; their input
+  /// positions kept); empty unless remeshed.
+  std::vector<int> unreferenced;
+  /// #V': for each free vertex of a remeshed region the input face (row of F) it was
+  /// created on, on the input surface before fairing; -1 for the other rows and for every
+  /// row when not remeshed.
+  std::vector<int> origin_face;
+  /// #V'×3: barycentric coordinates in origin_face (rows sum to 1); zero rows where
+  /// origin_face is -1. Lets a caller carry per-corner data (UVs) over from the input.
+  Positions origin_barycentric;
+  bool converged = false;  ///< residual <= tolerance was reached
+  int iterations = 0;      ///< iterations M_k -> M_{k+1} performed, all levels together
+  /// Iterations on each level, coarsest first, including those that the cycles of the finer
+  /// levels ran on it as their coarse grid.
+  std::vector<int> iterations_per_level;
+  std::vector<int> vertices_per_level;    ///< region vertices (free + G1 boundary) per level
+  double residual = 0.0;   ///< normalized residual of the returned mesh (see fair)
+  /// How the solve ended, one sentence for a user: "converged", or why not (the time
+  /// limit, max_iterations, cancelled, no progress) with the residual and tolerance.
+  std::string message;
+  StopReason stop_reason = StopReason::MaxIterations;  ///< message's first clause as a value
+  /// The iteration that produced the result: Newton or Paper (Auto falls back to Paper).
+  Iteration iteration = Iteration::Paper;
+  /// Newton steps performed, including those of an attempt that Auto abandoned.
+  int newton_iterations = 0;
+  /// Edges with a free vertex whose two triangles face apart in `vertices` (count_folds):
+  /// triangles the result flips over. A converged result can have them where the G1 data
+  /// turn faster than the mesh resolves, or keep them from a folded input; `message` then
+  /// says so.
+  int folds = 0;
+  int new_folds = 0;  ///< those of `folds` whose triangles did not face apart in the input
+  /// Wall-clock seconds of the solve's phases in the order they ran (for profiling; beyond
+  /// the paper): "hierarchy" (smoothed copy and progressive mesh), then per level ℓ
+  /// (0 = coarsest) "level ℓ initial mesh" (the linear Δ²f = 0 solve or the prolongation),
+  /// "level ℓ set-up" (the level's construction, or the wait for the one built on the second
+  /// thread), and for Newton's method "level ℓ inner fairness" (the tangential relaxations
+  /// before the steps), "level ℓ Newton steps" and "level ℓ polishes", for the paper's
+  /// iteration "level ℓ iterations". An attempt that was abandoned keeps its phases; the
+  /// phases do not overlap, so their sum stays below the call's wall time.
+  std::vector<std::pair<std::string, double>> phase_seconds;
+};
+
+// The choice of the holes that fill_holes fills (hole_filling.h).
+
+/// A connected part's boundary loop of the largest spanned area is its outer border where
+/// it spans at least this fraction of the area of the part's triangles
+/// (HoleRule::keep_outer_borders).
+constexpr double kOuterBorderArea = 0.3;
+
+/// Which boundary loops are holes when fill_holes is given none (holes_to_fill).
+struct HoleRule {
+  /// Leave the outer borders of open surfaces open: in each connected part of the mesh, the
+  /// boundary loop of the largest spanned area |½ Σ_i (p_i − c) × (p_{i+1} − c)| (its
+  /// vertices p_i about their centroid c), where that area is at least kOuterBorderArea
+  /// times the area of the part's triangles. A sheet's border spans about the sheet's own
+  /// area (a height field's: its area projected on the plane), a hole in a closed surface a
+  /// small part of it: a sphere missing a cap of polar angle θ spans (1 − cos θ)/2 of the
+  /// rest, below 30 % up to θ = 66° (30 % of the sphere cut away). A part has at most one
+  /// outer border: a hole in a sheet is filled whatever its size, and of an open tube's
+  /// two ends the larger one stays open if it spans 30 % (a ring), else neither.
+  /// false: every boundary loop is a hole.
+  bool keep_outer_borders = true;
+  /// Leave loops of more edges than this open (Blender's Fill Holes' Sides, MeshLab's Close
+  /// Holes' maximum size); 0: no limit.
+  int max_hole_edges = 0;
+};
+
+/// A boundary loop that holes_to_fill leaves open, and why.
+struct OpenLoop {
+  std::vector<int> loop;  ///< as boundary_loops returns it
+  /// One clause for a user, e.g. "an outer border: it spans 95 % of the area of its part's
+  /// triangles (a hole less than 30 %)".
+  std::string reason;
+};
+
+/// The boundary loops of a mesh split by a HoleRule.
+struct HoleChoice {
+  std::vector<std::vector<int>> holes;  ///< the loops to fill, in boundary_loops' order
+  std::vector<OpenLoop> left_open;      ///< the others, in the same order
 };
 
 }  // namespace geofair
