@@ -13,6 +13,10 @@ export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
 # Style first (ruff.toml): a lint failure fails the run like a test would.
 python3 -m ruff check addon tests bench scripts examples dev native/python/cli
 python3 -m ruff format --check addon tests bench scripts examples dev native/python/cli
+# Shape: no function of the library or the add-on over 80 lines (lizard names it), and no
+# header of the library's internals includes an API header above types.h, errors.h, tuning.h.
+python3 -m lizard -l cpp -l python -L 80 -C 1000 -a 100 -w native/src addon
+python3 scripts/check_layers.py
 # The C++ unit tests (native/tests, GoogleTest).
 ctest --test-dir build --output-on-failure --no-tests=error
 # A short libFuzzer run of the C++ entry points (scripts/run_fuzz.sh SECONDS for a long one).
