@@ -2,6 +2,7 @@
 
 import sys
 
-from geofair_cli import main
+import geofair_cli
 
-sys.exit(main())
+if __name__ == "__main__":  # not on import (mypy's stubtest imports every submodule)
+    sys.exit(geofair_cli.main())
