@@ -224,11 +224,7 @@ void count_result_folds(FairingResult& result, const Positions& V, const Triangl
   const FoldCount folds = count_folds(V, result.vertices, F, free);
   result.folds = folds.folds;
   result.new_folds = folds.new_folds;
-  if (folds.folds > 0)
-    result.message += "; " + std::to_string(folds.folds) +
-                      (folds.folds == 1 ? " edge folds" : " edges fold") +
-                      " over (triangles flipped), " + std::to_string(folds.new_folds) +
-                      " of them not in the input";
+  result.message += fold_note(folds);
 }
 
 // The result's message: how the solve ended, then solve()'s note on the path taken.

@@ -226,11 +226,7 @@ FairingResult LiveFairing::State::warm_result(const Positions& V, const Position
   const FoldCount folds = count_folds(X0, Y, region.triangles, local_free);
   result.folds = folds.folds;
   result.new_folds = folds.new_folds;
-  if (folds.folds > 0)
-    result.message += "; " + std::to_string(folds.folds) +
-                      (folds.folds == 1 ? " edge folds" : " edges fold") +
-                      " over (triangles flipped), " + std::to_string(folds.new_folds) +
-                      " of them not in the input";
+  result.message += fold_note(folds);
   return result;
 }
 

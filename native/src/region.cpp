@@ -555,4 +555,11 @@ FoldCount count_folds(const Positions& before, const Positions& after, const Tri
   return count;
 }
 
+std::string fold_note(const FoldCount& folds) {
+  if (folds.folds == 0) return "";
+  return "; " + std::to_string(folds.folds) + (folds.folds == 1 ? " edge folds" : " edges fold") +
+         " over (triangles flipped), " + std::to_string(folds.new_folds) +
+         " of them not in the input";
+}
+
 }  // namespace geofair

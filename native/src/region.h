@@ -7,6 +7,7 @@
 #include "geofair/types.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace geofair {
@@ -140,5 +141,8 @@ struct FoldCount {
 ///      checked them); nothing is raised. Degenerate triangles (zero normal) never fold.
 FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
                       const std::vector<bool>& free);
+
+/// What a result's message says of its folds ("; 3 edges fold over ..."); empty where none.
+std::string fold_note(const FoldCount& folds);
 
 }  // namespace geofair
