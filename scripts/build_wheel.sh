@@ -81,16 +81,34 @@ esac
 rm -rf dist/raw
 mkdir -p dist/raw
 rm -f dist/geofair-*.whl
-for python in $PYTHONS; do
+build_one() {
+  local python="$1" tag ignore=()
   tag=$("$python" -c 'import sys; print(f"cp{sys.version_info[0]}{sys.version_info[1]}")')
   echo "== $KIND $tag: $python"
   rm -rf "build/wheel-$KIND-$tag"
   # cp310 only for the legacy add-on of Blender 3.x and 4.0 (Python 3.10;
   # scripts/build_extension.py): not a wheel of the package, which needs Python 3.11.
-  ignore=()
   if [ "$tag" = cp310 ]; then ignore=(--ignore-requires-python); fi
   "$python" -m pip wheel . --no-deps "${ignore[@]}" -w dist/raw --config-settings=build-dir="build/wheel-$KIND-$tag"
+}
+# The first wheel compiles the library (with zig, each object once: its cache); the others
+# then compile only their bindings, one translation unit each, so zig's run side by side.
+read -r -a pythons <<<"$PYTHONS"
+build_one "${pythons[0]}"
+pids=() logs=()
+for python in "${pythons[@]:1}"; do
+  if [ "$KIND" != manylinux_2_28 ]; then build_one "$python"; continue; fi
+  log=$(mktemp)
+  build_one "$python" >"$log" 2>&1 &
+  pids+=("$!") logs+=("$log")
 done
+failed=0
+for k in "${!pids[@]}"; do
+  wait "${pids[$k]}" || failed=1
+  cat "${logs[$k]}"
+  rm -f "${logs[$k]}"
+done
+if [ "$failed" -ne 0 ]; then echo "a wheel failed to build (its log above)" >&2; exit 1; fi
 # auditwheel and the licence step run in the default python3 for every wheel.
 rm -rf build/legacy-wheels
 for raw in dist/raw/geofair-*.whl; do

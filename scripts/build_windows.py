@@ -16,6 +16,7 @@ which the module loads at import. tests/test_windows.py runs them under wine64.
 """
 
 import argparse
+import concurrent.futures
 import os
 import pathlib
 import re
@@ -179,16 +180,27 @@ def main():
     _, zig_folder, toolchain = zig_tools()
     prefix, core = build_library(toolchain, args.jobs)
     args.out.mkdir(parents=True, exist_ok=True)
-    for version in args.pythons.split(","):
+    versions = args.pythons.split(",")
+    linux = {}
+    for version in versions:
         tag = "cp" + version.replace(".", "")
-        linux = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux*.whl"))
-        if len(linux) != 1:
-            raise SystemExit(f"expected one Linux {tag} wheel in dist/ (scripts/build_wheel.sh), found {linux}")
+        found = sorted((REPO / "dist").glob(f"geofair-{VERSION}-{tag}-{tag}-manylinux*.whl"))
+        if len(found) != 1:
+            raise SystemExit(f"expected one Linux {tag} wheel in dist/ (scripts/build_wheel.sh), found {found}")
+        linux[version] = found[0]
+
+    def build(version):
+        tag = "cp" + version.replace(".", "")
         python = windows_python(version)
         module = BUILD / "windows-modules" / tag / f"geofair.{tag}-win_amd64.pyd"
         module.parent.mkdir(parents=True, exist_ok=True)
         link_module(zig_folder, prefix, core, python, module)
-        print(f"wrote {wheel_from_linux(linux[0], module, tag, args.out.resolve())}")
+        return wheel_from_linux(linux[version], module, tag, args.out.resolve())
+
+    # Each module is one translation unit (the bindings) and a link: side by side, a core each.
+    with concurrent.futures.ThreadPoolExecutor(max(1, args.jobs)) as pool:
+        for wheel in pool.map(build, versions):
+            print(f"wrote {wheel}")
 
 
 if __name__ == "__main__":
