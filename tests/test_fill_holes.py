@@ -80,6 +80,7 @@ def curved_scan_fill():
     return hole, geofair.fill_holes(hole.vertices, hole.faces, [hole.loop]), (cut.cut_vertices, cut.cut_faces)
 
 
+@pytest.mark.slow
 def test_hole_in_a_curved_scan_is_filled_at_the_surroundings_resolution(curved_scan_fill):
     # The remeshed fill is regular, so the smoothed copy's hierarchy attempt goes first (and
     # fails); the membrane's attempt, decimated on the smoothed copy, converges. Decimated on
@@ -94,6 +95,7 @@ def test_hole_in_a_curved_scan_is_filled_at_the_surroundings_resolution(curved_s
     assert len(r.vertices) - len(hole.vertices) < 2 * 10000
 
 
+@pytest.mark.slow
 def test_curved_scan_fill_is_closer_to_the_cut_surface_than_cgals(curved_scan_fill, needs_cgal):
     # The reference: CGAL's triangulate_refine_and_fair_hole (linear) on the same hole; the
     # intrinsic fill lies closer to the surface that was cut away (mean distance of the new

@@ -119,7 +119,8 @@ def venv(request, tmp_path_factory):
 
 # The wheels of all Pythons compile the same library (once, scripts/build_wheel.sh); only the
 # bindings differ: these run against every wheel (conversions, errors, a solve of each kind),
-# and the solvers' own tests against the cp311 wheel (Blender 4.2 to 5.0's) as well.
+# and the solvers' own tests and the large solves (marked slow) against the cp311 wheel
+# (Blender 4.2 to 5.0's) as well.
 BINDINGS_TESTS = ("test_fairing.py", "test_bad_input.py", "test_defaults.py", "test_fill_holes.py", "test_remesh.py")
 SOLVER_TESTS = ("test_newton.py", "test_multigrid.py", "test_bilaplacian.py", "test_accuracy.py")
 
@@ -129,8 +130,11 @@ def test_module_tests_pass_against_the_wheel(venv):
     tests = sorted(p.name for p in (REPO / "tests").glob("test_*.py") if p.name not in NOT_MODULE_TESTS)
     assert "test_fairing.py" in tests and "test_multigrid.py" in tests
     assert set(BINDINGS_TESTS) | set(SOLVER_TESTS) <= set(tests)
-    tests = [*BINDINGS_TESTS, *(SOLVER_TESTS if "-cp311-" in wheel.name else ())]
+    full = "-cp311-" in wheel.name
+    tests = [*BINDINGS_TESTS, *(SOLVER_TESTS if full else ())]
     command = [python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-x", *(f"tests/{t}" for t in tests)]
+    if not full:
+        command += ["-m", "not slow"]
     # A conftest check that the tests really use the wheel: geofair is imported from the venv.
     probe = "import geofair, sys; assert 'build' not in geofair.__file__, geofair.__file__"
     completed = subprocess.run(
