@@ -18,3 +18,13 @@ paths.use_build_module()
 def needs_cgal():
     """Skips a test that needs bench/cgal_fill_hole where it is not built; fails it in CI."""
     require_built(cgal_fill_hole)
+
+
+# The files that take minutes go first: pytest-xdist gives each worker one file at a time
+# (scripts/run_tests.sh), and one of these started last would end the run on one core.
+LONG_FILES = ("test_wheel.py", "test_flattened_caps.py", "test_blender.py")
+
+
+def pytest_collection_modifyitems(config, items):
+    rank = {name: k for k, name in enumerate(LONG_FILES)}
+    items.sort(key=lambda item: rank.get(item.path.name, len(LONG_FILES)))
