@@ -28,10 +28,29 @@ namespace geofair {
 /// decimation, which may build fewer. (*) The finest weights symmetric
 /// (InnerFairnessWeights::row_sum given), which the membrane needs. "Irregular": at least
 /// ScheduleTuning::membrane_first_irregularity of the free vertices have a valence other
-/// than 6. "Decimated on": Attempt::decimate_on_membrane.
+/// than 6. "Decimated on": Attempt::decimate_on_membrane; where 2 is decimated on the
+/// smoothed copy, its base level is solved with the smoothed copy's weights first and then
+/// with its own from there (solve_base_level).
 /// Newton's attempts (1–6) run with intrinsic outer fairness and Iteration::Auto or Newton;
 /// Auto's last attempt is the paper's iteration (7) with Newton attempts from its iterate;
 /// Iteration::Paper and the linear bilaplacian outer fairness run 7 alone.
+///
+/// Every other retry the library makes, inside an attempt and around fair():
+///
+/// | where                                   | when                          | retry                          |
+/// |-----------------------------------------|-------------------------------|--------------------------------|
+/// | base level of 1–6 (NewtonLevels)        | Newton fails from the linear  | the paper's iteration, then    |
+/// |                                         | initial mesh                  | one Newton attempt from it     |
+/// | coarse level of 1–4, 6                  | stops with a merit above      | ends the attempt (the next     |
+/// |                                         | NewtonTuning::coarse_merit    | one runs)                      |
+/// | finest level of 7 (PaperLevels, Auto)   | after newton_attempt_first    | a Newton attempt from the      |
+/// |                                         | iterations, and each doubling | iterate                        |
+/// | fair_if_needed (Remesh::IfNeeded)       | no convergence, or new folds  | remesh the region, schedule    |
+/// |                                         |                               | again; the better result       |
+/// | fill_holes, per hole (hole_filling.cpp) | no fold-free convergence      | intrinsic, intrinsic_finer     |
+/// |                                         |                               | (half the edge length),        |
+/// |                                         |                               | intrinsic_trimmed, g0, linear  |
+/// | LiveFairing::update (live.cpp)          | the warm frame fails          | fair() from the frame's input  |
 std::vector<Attempt> plan_attempts(const Problem& problem);
 
 /// Walks `attempts` (plan_attempts) and returns the first run that converged or was

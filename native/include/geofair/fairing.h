@@ -55,31 +55,13 @@ namespace geofair {
 /// (docs/NEWTON.md). A coarse level that stops unconverged with a merit above
 /// NewtonTuning::coarse_merit ends that attempt.
 ///
-/// The schedule (src/schedule.h, plan_attempts): fair() makes these attempts in order and
-/// returns the first that converges (or is cancelled):
-///  1. Newton's method on the hierarchy of as many levels as keep
-///     ScheduleTuning::newton_min_base_free free vertices on the base level (or
-///     options.levels), coarse uniform weights from the smoothed copy of the input;
-///  2. with uniform inner fairness (and symmetric finest weights), the same with the coarse
-///     weights of the membrane of the finest uniform weights (membrane_positions: the
-///     distribution an irregular connectivity asks for); this attempt goes first where the
-///     connectivity is irregular (at least ScheduleTuning::membrane_first_irregularity of the
-///     free vertices of a valence other than 6), and there its hierarchy is decimated on the
-///     membrane itself; elsewhere on the smoothed copy, its base level first solved with the
-///     smoothed copy's weights;
-///  3. where 2 decimated on the smoothed copy, 2 again with the hierarchy decimated on the
-///     membrane;
-///  4. with uniform inner fairness, the same with each coarse level's own uniform weights;
-///  5. Newton's method on the finest level alone;
-///  6. where the region was one level by default and has at least
-///     ScheduleTuning::newton_retry_min_free free vertices, Newton's method on two levels;
-///  7. the paper's iteration on its hierarchy (default_levels or options.levels; one level
-///     with the linear bilaplacian outer fairness), with Newton's method tried
-///     from the finest level's iterate after ScheduleTuning::newton_attempt_first
-///     iterations and each doubling.
-/// Attempts 1–4 run where more than one level is asked for (the count before decimation). Iteration::Auto (the
-/// default) runs 1–7; Newton 1–6 and returns the last one's result whatever it is; Paper,
-/// and the linear bilaplacian outer fairness, 7 alone (without Newton attempts).
+/// The schedule: fair() makes its attempts in order and returns the first that converges
+/// (or is cancelled): Newton's method on hierarchies of up to four kinds of coarse weights,
+/// on the finest level alone and on two levels, then the paper's iteration with Newton's
+/// method tried from its iterate. Iteration::Auto (the default) runs them all; Newton the
+/// Newton attempts and returns the last one's result whatever it is; Paper, and the linear
+/// bilaplacian outer fairness, the paper's iteration alone. The table of every attempt and
+/// retry, with the rule for each, is plan_attempts' in src/schedule.h.
 ///
 /// Remeshing (options.remesh, beyond the paper): Always replaces the region's triangles by
 /// remesh_region's isotropic remesh at the mean length of the region's border edges
