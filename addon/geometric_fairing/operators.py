@@ -29,7 +29,7 @@ from bpy_extras import view3d_utils
 from mathutils import Vector
 
 from . import fairing, holes, live, mesh_io, native, overlays, properties
-from .properties import OPTION_NAMES, FairingProperties, option_values
+from .properties import OPTION_NAMES, FairingProperties, SolverProperties, option_values
 from .region import NothingSelectedError
 
 PROGRESS_STEPS = 1000
@@ -292,7 +292,7 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
         return fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT, options.remesh, fairing.REMESH_HINT)
 
 
-class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator):
+class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, bpy.types.Operator):
     """Fill the holes whose whole boundary loop is selected (nothing selected: every hole, not an open mesh's outer
     border) with a faired surface meeting the faces around with G1 continuity, or G0 (Boundary); every hole gets its
     best fill (Clean Rim: a ragged rim's faces may be removed first); UVs interpolated from around each hole"""
@@ -304,14 +304,6 @@ class MESH_OT_geometric_fairing_fill_holes(_SolvingOperator, bpy.types.Operator)
     label = "Fill Holes"
     not_done = "not filled"
 
-    inner_fairness: properties._inner_fairness(options={"SKIP_SAVE"})
-    outer_fairness: properties._outer_fairness(options={"SKIP_SAVE"})
-    boundary: properties._boundary(options={"SKIP_SAVE"})
-    tolerance: properties._tolerance(options={"SKIP_SAVE"})
-    max_iterations: properties._max_iterations(options={"SKIP_SAVE"})
-    levels: properties._levels(options={"SKIP_SAVE"})
-    iteration: properties._iteration(options={"SKIP_SAVE"})
-    time_limit: properties._time_limit(options={"SKIP_SAVE"})
     all_holes: BoolProperty(
         name="All Holes",
         description=(
@@ -447,7 +439,7 @@ def view_region(context):
     return next((region for region in area.regions if region.type == "WINDOW"), None)
 
 
-class MESH_OT_geometric_fairing_live(bpy.types.Operator):
+class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     """Drag a handle through the surface, the region refaired as the mouse moves (Schneider & Kobbelt 2001,
     section 8). The region is Fair's (the selected faces, or the Region vertex group); the handle is the Pin vertex
     group's vertices inside it (with a Region vertex group, the selected vertices inside it too)"""
@@ -458,14 +450,6 @@ class MESH_OT_geometric_fairing_live(bpy.types.Operator):
 
     label = "Live Fair Drag"
 
-    inner_fairness: properties._inner_fairness(options={"SKIP_SAVE"})
-    outer_fairness: properties._outer_fairness(options={"SKIP_SAVE"})
-    boundary: properties._boundary(options={"SKIP_SAVE"})
-    tolerance: properties._tolerance(options={"SKIP_SAVE"})
-    max_iterations: properties._max_iterations(options={"SKIP_SAVE"})
-    levels: properties._levels(options={"SKIP_SAVE"})
-    iteration: properties._iteration(options={"SKIP_SAVE"})
-    time_limit: properties._time_limit(options={"SKIP_SAVE"})
     region_group: properties._region_group(options={"SKIP_SAVE"})
     pin_group: properties._pin_group(options={"SKIP_SAVE"})
     use_hidden: properties._use_hidden(options={"SKIP_SAVE"})

@@ -376,13 +376,16 @@ class FairingPreferences(bpy.types.AddonPreferences):
             layout.prop(self, name)
 
 
-class FairingProperties:
-    """Mixin with the operator's options, shown in the redo panel.
+# The options that panels and redo panels keep in a closed Advanced sub-panel: the solver's
+# stopping rules and its method, which the defaults suit.
+ADVANCED_OPTION_NAMES = ("tolerance", "max_iterations", "levels", "iteration", "time_limit")
+
+
+class SolverProperties:
+    """Mixin with the library's options (LIBRARY_OPTION_NAMES) of the solving operators, and their redo panel.
 
     SKIP_SAVE: an option that is not given comes from the panel's settings
     (which follow the preferences), never from the previous call.
-    ``keep_unconverged`` is the operator's alone (off unless given or ticked in
-    the redo panel).
     """
 
     inner_fairness: _inner_fairness(options={"SKIP_SAVE"})
@@ -393,6 +396,35 @@ class FairingProperties:
     levels: _levels(options={"SKIP_SAVE"})
     iteration: _iteration(options={"SKIP_SAVE"})
     time_limit: _time_limit(options={"SKIP_SAVE"})
+
+    def draw(self, context):
+        """The redo panel: the operator's properties in order, ADVANCED_OPTION_NAMES in a closed Advanced
+        sub-panel (``UILayout.panel``, Blender 4.1+; before, under an Advanced heading)."""
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        props = self.properties
+        names = [p.identifier for p in props.bl_rna.properties if p.identifier != "rna_type" and not p.is_hidden]
+        for name in names:
+            if name not in ADVANCED_OPTION_NAMES:
+                layout.prop(props, name)
+        if hasattr(layout, "panel"):
+            header, body = layout.panel("geometric_fairing_advanced", default_closed=True)
+            header.label(text="Advanced")
+        else:
+            body = layout.column(heading="Advanced")
+        if body is not None:  # None: the sub-panel is closed
+            for name in names:
+                if name in ADVANCED_OPTION_NAMES:
+                    body.prop(props, name)
+
+
+class FairingProperties(SolverProperties):
+    """Mixin with the Fair operator's options, shown in the redo panel: the library's
+    (SolverProperties) and the region's. ``keep_unconverged`` is the operator's alone (off
+    unless given or ticked in the redo panel).
+    """
+
     remesh: _remesh(options={"SKIP_SAVE"})
     region_group: _region_group(options={"SKIP_SAVE"})
     pin_group: _pin_group(options={"SKIP_SAVE"})

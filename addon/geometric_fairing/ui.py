@@ -43,11 +43,6 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         column.prop(settings, "inner_fairness", text="Inner")
         column.prop(settings, "outer_fairness", text="Outer")
         column.prop(settings, "boundary")
-        column.prop(settings, "tolerance")
-        column.prop(settings, "max_iterations", text="Iterations")
-        column.prop(settings, "levels")
-        column.prop(settings, "iteration")
-        column.prop(settings, "time_limit")
         column.prop(settings, "remesh")
         column = layout.column()
         column.prop_search(settings, "region_group", obj, "vertex_groups", text="Region", icon="GROUP_VERTEX")
@@ -73,6 +68,30 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         row = layout.row()
         row.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname, text="Fill Holes", icon="MOD_TRIANGULATE")
         layout.label(text="Esc cancels: mesh unchanged")
+
+
+class VIEW3D_PT_geometric_fairing_advanced(FairingPanel, bpy.types.Panel):
+    """The solver's stopping rules and method (properties.ADVANCED_OPTION_NAMES), closed by default"""
+
+    bl_label = "Advanced"
+    bl_parent_id = "VIEW3D_PT_geometric_fairing"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.geometric_fairing
+        column = layout.column()
+        for name in properties.ADVANCED_OPTION_NAMES:
+            if name in SHORT_LABELS:
+                column.prop(settings, name, text=SHORT_LABELS[name])
+            else:
+                column.prop(settings, name)
+
+
+# Labels where the property's name is too long for the sidebar.
+SHORT_LABELS = {"max_iterations": "Iterations"}
 
 
 class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
@@ -192,7 +211,12 @@ def _wrap(text, width):
     return [*lines, line] if line else lines
 
 
-CLASSES = (VIEW3D_PT_geometric_fairing, VIEW3D_PT_geometric_fairing_last_run, VIEW3D_PT_geometric_fairing_inspect)
+CLASSES = (
+    VIEW3D_PT_geometric_fairing,
+    VIEW3D_PT_geometric_fairing_advanced,
+    VIEW3D_PT_geometric_fairing_last_run,
+    VIEW3D_PT_geometric_fairing_inspect,
+)
 
 
 def register():

@@ -137,6 +137,7 @@ class FakeLayout:
             if name in ("prop", "prop_search"):
                 data, prop = args[:2]
                 assert prop in data.bl_rna.properties, f"{name}: {data} has no property {prop!r}"
+                self.texts.append(f"prop:{prop}")
                 if name == "prop_search":
                     assert args[3] in args[2].bl_rna.properties, f"prop_search: no collection {args[3]!r}"
             elif name == "operator":
@@ -146,6 +147,9 @@ class FakeLayout:
                 return FakeOperatorProperties(rna)
             elif name == "label":
                 self.texts.append(kwargs.get("text", ""))
+            elif name == "panel":  # Blender 4.1+: (header, body) of a sub-panel, drawn open here
+                assert kwargs.get("default_closed") is True, f"panel {args}: expected closed by default"
+                return FakeLayout(self.texts), FakeLayout(self.texts)
             return FakeLayout(self.texts)
 
         return method
@@ -169,6 +173,33 @@ def draw_panels(addon):
             assert getattr(bpy.types, panel.__name__, None) is not None, f"{panel.__name__} not registered"
             panel.draw(type("Panel", (), {"layout": FakeLayout(texts)})(), bpy.context)
     return texts
+
+
+def check_advanced(addon):
+    """Tolerance, Iterations, Levels, Solver and Time Limit in a closed Advanced sub-panel: the sidebar's and
+    every solving operator's redo panel."""
+    advanced = [f"prop:{name}" for name in addon.properties.ADVANCED_OPTION_NAMES]
+    assert len(advanced) == 5
+    panel = addon.ui.VIEW3D_PT_geometric_fairing_advanced
+    assert panel.bl_parent_id == "VIEW3D_PT_geometric_fairing" and "DEFAULT_CLOSED" in panel.bl_options
+    texts = []
+    with in_view3d():
+        addon.ui.VIEW3D_PT_geometric_fairing.draw(type("Panel", (), {"layout": FakeLayout(texts)})(), bpy.context)
+        assert not set(advanced) & set(texts), texts
+        texts = []
+        panel.draw(type("Panel", (), {"layout": FakeLayout(texts)})(), bpy.context)
+        assert texts == advanced, texts
+    wm = bpy.context.window_manager
+    for op in (addon.operators.MESH_OT_geometric_fairing, addon.operators.MESH_OT_geometric_fairing_fill_holes,
+               addon.operators.MESH_OT_geometric_fairing_live):  # fmt: skip
+        texts = []
+        properties = wm.operator_properties_last(op.bl_idname)
+        op.draw(type("Operator", (), {"layout": FakeLayout(texts), "properties": properties})(), bpy.context)
+        shown = [p for p in properties.bl_rna.properties if p.identifier != "rna_type" and not p.is_hidden]
+        heading = texts.index("Advanced")
+        assert texts[heading + 1 :] == advanced, (op.bl_idname, texts)
+        assert sorted(texts[:heading] + advanced) == sorted(f"prop:{p.identifier}" for p in shown), texts
+    print("ok: the Advanced sub-panels (sidebar, redo panels) hold the solver's options")
 
 
 def check_last_run(status, **expected):
@@ -398,6 +429,7 @@ def main():
     assert bpy.ops.mesh.geometric_fairing.poll()
     texts = draw_panels(addon)
     assert "Fair" in texts and "No run yet" in texts and "Zebra Stripes" in texts, texts
+    check_advanced(addon)
 
     # The left brow, clear of the open borders around the eyes.
     centre = np.array([0.4, -0.7, 0.72])
