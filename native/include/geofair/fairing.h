@@ -35,25 +35,8 @@ namespace geofair {
 /// instead of 0.34–3.2 edge lengths off it, but the construction can stall on rough inputs
 /// (see inner_fairness.h). Either way only the finest level's weights decide the result.
 ///
-/// Steps (Fig. 6): a progressive mesh of the region (7.4, progressive_mesh.h); on the base
-/// mesh the linear Δ²f = 0 initial mesh (7.4), then the construction: per iteration,
-/// normals and Moreton–Séquin H at all region vertices (6), the cotangent Dirichlet matrix
-/// S (6), (7), target curvatures H~ from S H~ = b by one Gauss–Seidel sweep (even
-/// iterations) or n preconditioned CG iterations (odd iterations) (7.1), and the vertex
-/// update along the normal (7.2), (13) with inner fairness (7.3). Each finer level is
-/// prolongated (multigrid.h) and then solved by nonlinear multigrid cycles that use the
-/// coarser levels for coarse-grid corrections. With options.levels = 1 the whole region is
-/// solved as one level.
-///
-/// Newton's method (Construction::run_newton, newton_step.h; beyond the paper, globalized
-/// by pseudo-transient continuation) solves the same discrete equations (12) level by level
-/// on its own hierarchy, which coarsens the G1 boundary too (kNewtonDecimation): the base
-/// level from the linear initial mesh (where Newton's method fails there, the paper's
-/// iteration and one Newton attempt from its iterate), each finer level from the
-/// prolongation of the coarser solution, its tangential relaxation and one local step of the
-/// construction above; a few steps per level where the paper's iteration takes thousands
-/// (docs/NEWTON.md). A coarse level that stops unconverged with a merit above
-/// NewtonTuning::coarse_merit ends that attempt.
+/// The steps of the construction, Newton's method and what goes beyond the paper:
+/// docs/ARCHITECTURE.md, "What fair() does".
 ///
 /// The schedule: fair() makes its attempts in order and returns the first that converges
 /// (or is cancelled): Newton's method on hierarchies of up to four kinds of coarse weights,
@@ -75,18 +58,6 @@ namespace geofair {
 /// (new: not folded in the remesh before fairing). An explicit time limit covers the whole call; the automatic one
 /// applies to each solve. The result's faces, free, remeshed, unreferenced, origin_face and
 /// origin_barycentric describe the returned mesh either way.
-///
-/// Beyond the paper, each justified by measurement where it is implemented: the vertex
-/// update divides its step by a measured coupling factor (vertex_update.h); global
-/// iterations also move the vertices tangentially by a global inner-fairness step
-/// (inner_fairness.h); the hierarchy is measured on a smoothed copy of the input and keeps
-/// valences and the ratio of free to boundary vertices in bounds (progressive_mesh.h); the
-/// coarse levels take inner fairness weights of their own (coarse_level_weights: the
-/// smoothed copy's conformal weights for the paper's iteration; for Newton's method the
-/// original's conformal weights, or with uniform inner fairness the reference geometry's of
-/// the attempt above), because uniform weights pull free vertices against a boundary that
-/// is denser than the coarse interior (docs/DESIGN_NOTES.md); only the finest level's inner
-/// fairness decides the result. The coarse levels stop at a 10 times looser tolerance.
 ///
 /// Residual: L · max_i |H̄_i − H_i| over the free vertices, with H̄_i = Σ_j w_ij H_j /
 /// Σ_j w_ij the cotangent-weighted mean curvature of the neighbours (w_ij of eq. (6)), and L
