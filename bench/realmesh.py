@@ -18,7 +18,7 @@ included).
 
     PYTHONPATH=build/python python3 bench/realmesh.py [--quick] [--large] [--only SUBSTRING[,SUBSTRING...]]
         [--inner uniform,conformal] [--timeout SECONDS] [--cache DIR] [--json FILE]
-        [--remesh off|always|if_needed] [--compare-remesh]
+        [--remesh off|always|if_needed] [--compare-remesh] [--tuning JSON]
 
 --remesh MODE passes ``remesh`` to geofair.fair (off: False, the default and today's
 behaviour, the keyword not passed at all; always: True; if_needed: "if_needed"). With a mode
@@ -29,6 +29,10 @@ over its free vertices. The summary then says, per inner fairness, in how many c
 result was remeshed. --compare-remesh runs each case with remesh off and with MODE (after
 each other, the same input) and the summary also lists the cases that converge without new
 folds with the connectivity kept but not with MODE (lost), and the reverse (gained).
+
+--tuning JSON passes overrides of the solvers' tuning to every solve (``tuning=``, e.g.
+'{"schedule.newton_min_base_free": 800}'): a tuning is measured on this corpus before it is
+changed.
 
 The corpus: geofair_dev.corpus (dev/geofair_dev/corpus.py), which describes its cases:
 regions of CGAL's demo meshes (``cgal/...``), Blender's primitives (``blender/...``, made
@@ -70,6 +74,8 @@ def child(args):
     bn = bn if len(bn) else None
     polygons = polygons if len(polygons) else None
     remesh = {"off": {}, "always": {"remesh": True}, "if_needed": {"remesh": "if_needed"}}[args.remesh]
+    if args.tuning:
+        remesh["tuning"] = json.loads(args.tuning)
     out, r = child_process.solve(
         lambda: geofair.fair(v, f, free, boundary_normals=bn, polygon_ids=polygons, inner_fairness=args.inner, **remesh)
     )
@@ -111,6 +117,8 @@ def run_solve(path, inner, args, remesh="off"):
     cmd = [sys.executable, os.path.abspath(__file__), "--child", path, "--inner", inner, "--result", result]
     if remesh != "off":
         cmd += ["--remesh", remesh]
+    if args.tuning:
+        cmd += ["--tuning", args.tuning]
     out = child_process.run(cmd, args.timeout)
     after = np.load(result) if out["status"] in ("yes", "no") else None
     if after is not None:
@@ -267,6 +275,7 @@ def main():
                         help="geofair.fair's remesh: off (False, the default), always (True), if_needed")  # fmt: skip
     parser.add_argument("--compare-remesh", action="store_true",
                         help="run every case with remesh off and with --remesh's mode")  # fmt: skip
+    parser.add_argument("--tuning", default=None, help="overrides of geofair.fair's tuning (JSON)")
     parser.add_argument("--child", default=None, help=argparse.SUPPRESS)
     parser.add_argument("--result", default=None, help=argparse.SUPPRESS)
     args = parser.parse_args()
