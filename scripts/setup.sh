@@ -21,7 +21,7 @@ $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
   cmake g++ make libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev pybind11-dev \
   libcgal-dev libcgal-demo libgtest-dev \
-  blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 >/dev/null
+  blender python3-dev python3-numpy python3-venv xvfb clang-14 libclang-rt-14-dev wine64 ccache >/dev/null
 step "Python packages into .venv (pip)"
 # The project venv, kept across runs (made again where its Python has gone); it sees its
 # Python's own packages (Debian's python3-numpy, or what a Python with pip has installed), and
@@ -72,12 +72,15 @@ if [ -n "$PYTHON313" ] && ! "$BPY52_VENV/bin/python" -c \
 fi
 
 step "the development build (build/)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+# ccache: the portable build below differs from this one in sparse_lu.cpp and bilaplacian.cpp
+# alone (its -DGEOFAIR_PORTABLE changes no other preprocessed source), so it compiles those two
+# and takes the other objects from ccache.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build -j"$(nproc)"
 step "the portable build (build-portable/)"
 # The portable build (Eigen's sparse solvers, no SuiteSparse or BLAS: a source build where
 # no SuiteSparse is found), whose module the solver tests also run against (scripts/run_tests.sh).
-cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON
+cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build-portable -j"$(nproc)" --target geofair
 step "the manylinux_2_28 wheels (dist/)"
 wait "$ZIG_RUNTIMES" || { cat build/zig-runtimes.log; exit 1; }

@@ -2,14 +2,9 @@
 #pragma once
 
 #include <Eigen/Sparse>
-#ifdef GEOFAIR_PORTABLE
-#include <Eigen/SparseLU>
-#else
-#include <Eigen/UmfPackSupport>
-#endif
 
 #include <algorithm>
-#include <cstdint>
+#include <memory>
 
 namespace geofair {
 
@@ -70,91 +65,29 @@ int factorization_blas_threads(int n);
 /// (newton_step.h) and the direct tangential solve (inner_fairness.h).
 class PatternLU {
  public:
+  PatternLU();
+  ~PatternLU();
+  PatternLU(const PatternLU&) = delete;
+  PatternLU& operator=(const PatternLU&) = delete;
+
   /// The symbolic analysis (fill-reducing ordering) of A's pattern ahead of the first
   /// factorization, from the pattern alone: A's values are replaced by the identity's, so
   /// the pattern may be given before the matrix is known (fair() analyzes the finest
   /// level's Newton preconditioner on its second thread during the decimation). With
   /// `nested_dissection` the ordering is METIS's nested dissection instead of UMFPACK's
   /// default (AMD): slower to compute, but less fill (docs/DESIGN_NOTES.md).
-  void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
-    wide_ = pattern.rows() >= kWideIndexMin;
-    wide_ ? wide_factors_.analyze(pattern, nested_dissection)
-          : narrow_factors_.analyze(pattern, nested_dissection);
-  }
-
+  void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection);
   /// Factorizes A; false if it is singular (then factorized() is false).
-  bool factorize(const Eigen::SparseMatrix<double>& A) {
-    wide_ = A.rows() >= kWideIndexMin;
-    const BlasThreads threads(factorization_blas_threads(int(A.rows())));
-    return wide_ ? wide_factors_.factorize(A) : narrow_factors_.factorize(A);
-  }
-  bool factorized() const { return wide_ ? wide_factors_.factorized : narrow_factors_.factorized; }
+  bool factorize(const Eigen::SparseMatrix<double>& A);
+  bool factorized() const;
   /// x with A x = b for the last factorized A (requires factorized()).
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-    if (wide_) return wide_factors_.lu.solve(b);
-    return narrow_factors_.lu.solve(b);
-  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
  private:
-  // UMFPACK with Index as its index type: int (umfpack_di_*) or SuiteSparse_long
-  // (umfpack_dl_*); in a portable build (GEOFAIR_PORTABLE) Eigen's SparseLU with COLAMD.
-  template <class Index>
-  struct Factors {
-    using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, Index>;
-    Matrix matrix;
-#ifdef GEOFAIR_PORTABLE
-    Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<Index>> lu;
-#else
-    Eigen::UmfPackLU<Matrix> lu;
-#endif
-    bool analyzed = false, factorized = false;
-
-    void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
-      matrix = pattern;
-      for (int c = 0; c < matrix.outerSize(); ++c)
-        for (typename Matrix::InnerIterator it(matrix, c); it; ++it)
-          it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-#ifndef GEOFAIR_PORTABLE
-      if (nested_dissection) lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
-#else
-      (void)nested_dissection;  // no METIS: COLAMD's ordering
-#endif
-      analyze_matrix();
-    }
-    bool factorize(const Eigen::SparseMatrix<double>& A) {
-      factorized = false;
-      // A new pattern (or the first) is analyzed anew.
-      if (analyzed && !same_pattern(A)) analyzed = false;
-      matrix = A;
-      if (!analyzed) analyze_matrix();
-      lu.factorize(matrix);
-      factorized = lu.info() == Eigen::Success;
-      return factorized;
-    }
-    // The symbolic analysis of matrix's pattern; solves without iterative refinement.
-    void analyze_matrix() {
-#ifndef GEOFAIR_PORTABLE
-      lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
-#endif
-      lu.analyzePattern(matrix);
-      analyzed = true;
-    }
-    bool same_pattern(const Eigen::SparseMatrix<double>& A) const {
-      return A.rows() == matrix.rows() && A.cols() == matrix.cols() &&
-             A.nonZeros() == matrix.nonZeros() && A.isCompressed() &&
-             std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1,
-                        matrix.outerIndexPtr()) &&
-             std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(),
-                        matrix.innerIndexPtr());
-    }
-  };
-  Factors<int> narrow_factors_;
-#ifdef GEOFAIR_PORTABLE
-  Factors<std::int64_t> wide_factors_;
-#else
-  Factors<SuiteSparse_long> wide_factors_;
-#endif
-  bool wide_ = false;  // the factors in use: wide_factors_ (kWideIndexMin unknowns or more)
+  // The factorizations (sparse_lu.cpp, the one place that names the sparse solver, with
+  // bilaplacian.cpp): UMFPACK, or Eigen's SparseLU in a portable build (GEOFAIR_PORTABLE).
+  struct Factors;
+  std::unique_ptr<Factors> factors_;
 };
 
 /// An Eigen iterative solver's preconditioner (the interface of Eigen's preconditioners)
