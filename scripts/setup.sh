@@ -44,11 +44,14 @@ python3 -m pip install -q --disable-pip-version-check \
 # measures, the corpus, Blender helpers, paths), editable: for python3, and for Debian's Python,
 # which Blender 3.4 runs, the path file an editable install writes (dev/geofair_dev/paths.py).
 python3 -m pip install -q --disable-pip-version-check -e dev/
-# zig's runtimes for the packages' two targets compile on one core for minutes: in the
-# background, beside the builds below that use every core (scripts/zig_runtimes.sh).
+# zig's runtimes for the packages' two targets compile on one core each for minutes: in the
+# background, beside the builds below that use every core (scripts/zig_runtimes.sh); each
+# build waits for its own target's.
 mkdir -p build
-bash scripts/zig_runtimes.sh >build/zig-runtimes.log 2>&1 &
-ZIG_RUNTIMES=$!
+bash scripts/zig_runtimes.sh x86_64-linux-gnu.2.28 >build/zig-runtimes-linux.log 2>&1 &
+ZIG_LINUX=$!
+bash scripts/zig_runtimes.sh x86_64-windows-gnu >build/zig-runtimes-windows.log 2>&1 &
+ZIG_WINDOWS=$!
 DEBIAN_SITE=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
 $SUDO mkdir -p "$DEBIAN_SITE"
 echo "$PWD/dev" | $SUDO tee "$DEBIAN_SITE/geofair_dev.pth" >/dev/null
@@ -83,11 +86,13 @@ step "the portable build (build-portable/)"
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build-portable -j"$(nproc)" --target geofair
 step "the manylinux_2_28 wheels (dist/)"
-wait "$ZIG_RUNTIMES" || { cat build/zig-runtimes.log; exit 1; }
-cat build/zig-runtimes.log
+wait "$ZIG_LINUX" || { cat build/zig-runtimes-linux.log; exit 1; }
+cat build/zig-runtimes-linux.log
 bash scripts/build_wheel.sh
 step "the win_amd64 wheels (dist/)"
 # The win_amd64 wheels, cross-compiled by zig (tests/test_windows.py runs them under wine64).
+wait "$ZIG_WINDOWS" || { cat build/zig-runtimes-windows.log; exit 1; }
+cat build/zig-runtimes-windows.log
 python3 scripts/build_windows.py
 step "the extension and legacy zips (dist/)"
 python3 scripts/build_extension.py
