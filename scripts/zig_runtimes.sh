@@ -7,7 +7,7 @@
 #   bash scripts/zig_runtimes.sh [TARGET ...]     (default: both)
 #
 # zig compiles a runtime the first time it links for a target and caches it; that compile
-# runs on one core (about 3 and 6 minutes here), so scripts/setup.sh runs this, a target
+# runs on one core for minutes, so scripts/setup.sh runs this, a target
 # each, in the background beside the builds that use every core, and scripts/build_wheel.sh
 # and scripts/build_windows.py then find the runtimes cached. Needs the ziglang package.
 set -euo pipefail
