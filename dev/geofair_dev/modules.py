@@ -50,7 +50,9 @@ def _venv_for(wheel):
         site = subprocess.run([python, "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
                               capture_output=True, text=True, check=True).stdout.strip()  # fmt: skip
         parent = [p for p in _site_folders() if os.path.isdir(p)]
-        line = f"import site; [site.addsitedir(p) for p in {parent!r}]\n"
+        # map, not a comprehension: site runs the line with exec, whose names a comprehension's
+        # scope does not see.
+        line = f"import site; list(map(site.addsitedir, {parent!r}))\n"
         pathlib.Path(site, "geofair_bench_parent.pth").write_text(line)
         env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
         subprocess.run(
