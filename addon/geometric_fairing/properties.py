@@ -379,6 +379,18 @@ class FairingPreferences(bpy.types.AddonPreferences):
 # The options that panels and redo panels keep in a closed Advanced sub-panel: the solver's
 # stopping rules and its method, which the defaults suit.
 ADVANCED_OPTION_NAMES = ("tolerance", "max_iterations", "levels", "iteration", "time_limit")
+# Their labels where the property's name is too long for the sidebar (the redo panels use them too).
+ADVANCED_LABELS = {"max_iterations": "Iterations"}
+
+
+def draw_advanced_options(layout, data):
+    """One row per ADVANCED_OPTION_NAMES of ``data`` (the scene's settings or an operator's
+    properties), labelled by ADVANCED_LABELS where one is given."""
+    for name in ADVANCED_OPTION_NAMES:
+        if name in ADVANCED_LABELS:
+            layout.prop(data, name, text=ADVANCED_LABELS[name])
+        else:
+            layout.prop(data, name)
 
 
 class SolverProperties:
@@ -414,9 +426,7 @@ class SolverProperties:
         else:
             body = layout.column(heading="Advanced")
         if body is not None:  # None: the sub-panel is closed
-            for name in names:
-                if name in ADVANCED_OPTION_NAMES:
-                    body.prop(props, name)
+            draw_advanced_options(body, props)
 
 
 class FairingProperties(SolverProperties):

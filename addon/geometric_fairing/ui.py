@@ -81,17 +81,7 @@ class VIEW3D_PT_geometric_fairing_advanced(FairingPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        settings = context.scene.geometric_fairing
-        column = layout.column()
-        for name in properties.ADVANCED_OPTION_NAMES:
-            if name in SHORT_LABELS:
-                column.prop(settings, name, text=SHORT_LABELS[name])
-            else:
-                column.prop(settings, name)
-
-
-# Labels where the property's name is too long for the sidebar.
-SHORT_LABELS = {"max_iterations": "Iterations"}
+        properties.draw_advanced_options(layout.column(), context.scene.geometric_fairing)
 
 
 class VIEW3D_PT_geometric_fairing_last_run(FairingPanel, bpy.types.Panel):
