@@ -6,4 +6,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -Wno-dev >/dev/null
 cmake --build build -j2 >/dev/null
-PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}" exec python3 scripts/results.py "$@"
+# This checkout's dev/ first: an editable geofair_dev of another clone would write its docs.
+PYTHONPATH="$PWD/build/python:$PWD/dev${PYTHONPATH:+:$PYTHONPATH}" exec python3 scripts/results.py "$@"
