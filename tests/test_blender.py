@@ -225,10 +225,13 @@ def test_fair_object_example(variant, tmp_path):
     assert "vertex group 'Brow'" in output and "cancelled" in output, output
 
 
-def test_modal_operator_under_xvfb():
+@pytest.mark.parametrize("check", ["check_modal", "check_live_modal"])
+def test_modal_operator_under_xvfb(check):
+    """The modal operators (Fair's progress and cancel; the live drag) by simulated events
+    in Blender with a window (xvfb)."""
     blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
     if blender is None or xvfb is None:
-        unavailable("the modal check needs blender and xvfb-run")
+        unavailable("the modal checks need blender and xvfb-run")
     command = [
         xvfb,
         "-a",
@@ -238,30 +241,9 @@ def test_modal_operator_under_xvfb():
         "--factory-startup",
         "--enable-event-simulate",
         "--python",
-        str(CHECKS / "check_modal.py"),
+        str(CHECKS / f"{check}.py"),
         "--",
         str(_built_addon()),
     ]
     output = _run(command, timeout=180)
-    assert "check_modal: all checks passed" in output, output
-
-
-def test_live_drag_under_xvfb():
-    blender, xvfb = shutil.which("blender"), shutil.which("xvfb-run")
-    if blender is None or xvfb is None:
-        unavailable("the modal check needs blender and xvfb-run")
-    command = [
-        xvfb,
-        "-a",
-        "-s",
-        "-screen 0 1280x800x24",
-        blender,
-        "--factory-startup",
-        "--enable-event-simulate",
-        "--python",
-        str(CHECKS / "check_live_modal.py"),
-        "--",
-        str(_built_addon()),
-    ]
-    output = _run(command, timeout=180)
-    assert "check_live_modal: all checks passed" in output, output
+    assert f"{check}: all checks passed" in output, output

@@ -12,8 +12,11 @@ passes ``PYTHONPATH``: geofair_dev.paths).
 """
 
 import importlib
+import os
 import pathlib
 import sys
+import time
+import traceback
 
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
@@ -113,6 +116,53 @@ def in_view3d():
     area, space = view3d_space()
     region = next(r for r in area.regions if r.type == "WINDOW")
     return bpy.context.temp_override(area=area, region=region, space_data=space)
+
+
+# Checks in a Blender window (xvfb-run, --enable-event-simulate): steps run from a timer while
+# Blender's event loop runs, so they end Blender themselves.
+
+
+def window_view3d():
+    """(window, area, region): the first window's 3D View and its main region."""
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return window, area, region
+
+
+def finish(code):
+    """Ends Blender at once with exit status ``code`` (a timer cannot use --python-exit-code)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+class TimerSteps:
+    """A generator's steps driven by ``bpy.app.timers``: ``yield seconds`` waits; its end exits
+    Blender with status 0; an exception prints the traceback and "``name``: FAILED" and exits with 1."""
+
+    def __init__(self, generator, name):
+        self.generator, self.name = generator, name
+
+    def __call__(self):
+        try:
+            return next(self.generator)
+        except StopIteration:
+            finish(0)
+        except Exception:
+            traceback.print_exc()
+            print(f"{self.name}: FAILED")
+            finish(1)
+
+
+def wait_until(condition, what, timeout=60.0):
+    """Timer steps (``yield from``) until ``condition()`` holds; AssertionError naming ``what``
+    after ``timeout`` seconds."""
+    start = time.perf_counter()
+    while not condition():
+        if time.perf_counter() - start > timeout:
+            raise AssertionError(f"timed out waiting for {what}")
+        yield 0.05
 
 
 def run_fairing(**properties):

@@ -7,7 +7,6 @@ Needs a display (Xvfb) and Blender's event simulation, as check_modal.py:
         --python tests/blender/check_live_modal.py -- build/addon
 """
 
-import os
 import sys
 import traceback
 
@@ -16,7 +15,16 @@ import bpy
 # isort: split
 import numpy as np
 
-from geofair_dev.blender import edit_state, enable_addon, parse_args, positions, select_faces
+from geofair_dev.blender import (
+    TimerSteps,
+    edit_state,
+    enable_addon,
+    finish,
+    parse_args,
+    positions,
+    select_faces,
+    window_view3d,
+)
 
 AXIS = np.array([1.0, 0.0, 0.0])
 
@@ -26,39 +34,9 @@ def angle_to_axis(points):
     return np.degrees(np.arccos(np.clip(unit @ AXIS, -1.0, 1.0)))
 
 
-def view3d():
-    window = bpy.context.window_manager.windows[0]
-    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
-    region = next(r for r in area.regions if r.type == "WINDOW")
-    return window, area, region
-
-
-def finish(code):
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
-
-
-class Steps:
-    """Generator steps driven by a timer (as check_modal.py's): ``yield seconds`` waits, an exception fails."""
-
-    def __init__(self, generator):
-        self.generator = generator
-
-    def __call__(self):
-        try:
-            return next(self.generator)
-        except StopIteration:
-            finish(0)
-        except Exception:
-            traceback.print_exc()
-            print("check_live_modal: FAILED")
-            finish(1)
-
-
 def invoke_live(sidebar=False):
     """Invoke as the Mesh menu does (in the main region) or as the sidebar's button (its UI region)."""
-    window, area, region = view3d()
+    window, area, region = window_view3d()
     if sidebar:
         region = next(r for r in area.regions if r.type == "UI")
     with bpy.context.temp_override(window=window, area=area, region=region):
@@ -67,7 +45,7 @@ def invoke_live(sidebar=False):
 
 def mouse(dx, dy, event_type="MOUSEMOVE", value="NOTHING"):
     """Simulate an event at the 3D View's centre moved by (dx, dy) pixels."""
-    window, _, region = view3d()
+    window, _, region = window_view3d()
     x, y = region.x + region.width // 2 + dx, region.y + region.height // 2 + dy
     window.event_simulate(type=event_type, value=value, x=x, y=y)
 
@@ -115,7 +93,7 @@ def checks(addon, obj):
     assert last.bl_idname == "MESH_OT_geometric_fairing_live", last.bl_idname
     assert np.allclose(last.properties.offset, drag.offset), (last.properties.offset[:], drag.offset)
     print(f"ok: from the sidebar, click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)} for redo")
-    window, area, region = view3d()
+    window, area, region = window_view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.ed.undo()
     assert edit_state(obj) == before, "one undo did not restore every byte"
@@ -137,7 +115,7 @@ def main():
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: angle_to_axis(c) < 50.0)
     bpy.ops.ed.undo_push(message="selected the region")
-    bpy.app.timers.register(Steps(checks(addon, obj)), first_interval=0.5)
+    bpy.app.timers.register(TimerSteps(checks(addon, obj), "check_live_modal"), first_interval=0.5)
 
 
 try:

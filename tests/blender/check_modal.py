@@ -11,9 +11,7 @@ exit status 0 when every check passed and 1 otherwise (a timer cannot use
 --python-exit-code).
 """
 
-import os
 import sys
-import time
 import traceback
 
 import bpy
@@ -21,63 +19,35 @@ import bpy
 # isort: split
 import numpy as np
 
-from geofair_dev.blender import FailingModule, add_subdivided_suzanne, enable_addon, parse_args, positions, select_faces
+from geofair_dev.blender import (
+    FailingModule,
+    TimerSteps,
+    add_subdivided_suzanne,
+    enable_addon,
+    finish,
+    parse_args,
+    positions,
+    select_faces,
+    wait_until,
+    window_view3d,
+)
 
 BROW = np.array([0.4, -0.7, 0.72])
-TIMEOUT = 60.0
-
-
-def view3d():
-    window = bpy.context.window_manager.windows[0]
-    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
-    region = next(r for r in area.regions if r.type == "WINDOW")
-    return window, area, region
 
 
 def invoke_fairing(**properties):
     """Invoke the operator as the Fair button does (INVOKE_DEFAULT in the 3D View)."""
-    window, area, region = view3d()
+    window, area, region = window_view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         return bpy.ops.mesh.geometric_fairing("INVOKE_DEFAULT", **properties)
 
 
 def press(event_type):
     """Simulate a key press and release over the 3D View."""
-    window, area, region = view3d()
+    window, area, region = window_view3d()
     x, y = region.x + region.width // 2, region.y + region.height // 2
     window.event_simulate(type=event_type, value="PRESS", x=x, y=y)
     window.event_simulate(type=event_type, value="RELEASE", x=x, y=y)
-
-
-def finish(code):
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
-
-
-class Steps:
-    """A sequence of generator steps driven by a timer: ``yield seconds`` waits, an exception fails."""
-
-    def __init__(self, generator):
-        self.generator = generator
-
-    def __call__(self):
-        try:
-            return next(self.generator)
-        except StopIteration:
-            finish(0)
-        except Exception:
-            traceback.print_exc()
-            print("check_modal: FAILED")
-            finish(1)
-
-
-def wait_until(condition, what):
-    start = time.perf_counter()
-    while not condition():
-        if time.perf_counter() - start > TIMEOUT:
-            raise AssertionError(f"timed out waiting for {what}")
-        yield 0.05
 
 
 def checks(addon, obj):
@@ -118,7 +88,7 @@ def checks(addon, obj):
     after = positions(obj)
     assert np.any(after != before), "a finished run did not change the mesh"
     print(f"ok: modal run finished: {last.message}")
-    window, area, region = view3d()
+    window, area, region = window_view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.ed.undo()
     assert np.array_equal(positions(obj), before), "undo did not restore the mesh"
@@ -190,7 +160,7 @@ def main():
     bpy.ops.object.mode_set(mode="EDIT")
     select_faces(obj, lambda c: np.linalg.norm(c - BROW) < 0.25)
     bpy.ops.ed.undo_push(message="selected the brow")
-    bpy.app.timers.register(Steps(checks(addon, obj)), first_interval=0.5)
+    bpy.app.timers.register(TimerSteps(checks(addon, obj), "check_modal"), first_interval=0.5)
 
 
 try:
