@@ -43,6 +43,15 @@ case "$KIND" in
     # folder (below),
     # so no object outlives a change of a header, and the library's sources compile once for
     # all three wheels; only the bindings compile per Python.
+    # Debian's own Pythons keep pyconfig.h in /usr/include/x86_64-linux-gnu/python3.X and
+    # include it by that relative path; zig reads no include folder of the machine, so those
+    # folders alone are linked into one that the wrappers search last.
+    multiarch="$zig_dir/multiarch"
+    rm -rf "$multiarch"
+    mkdir -p "$multiarch/x86_64-linux-gnu"
+    for dir in /usr/include/x86_64-linux-gnu/python3*; do
+      if [ -d "$dir" ]; then ln -s "$dir" "$multiarch/x86_64-linux-gnu/"; fi
+    done
     for tool in cc c++; do
       cat > "$zig_dir/$tool" <<WRAPPER
 #!/usr/bin/env bash
@@ -56,7 +65,7 @@ while [ \$# -gt 0 ]; do
   esac
   shift
 done
-"$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" || exit
+"$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" -idirafter "$multiarch" || exit
 if [ -n "\$depfile" ]; then echo "\$target:" > "\$depfile"; fi
 WRAPPER
       chmod +x "$zig_dir/$tool"
@@ -118,6 +127,7 @@ for raw in dist/raw/geofair-*.whl; do
 done
 rm -rf dist/raw
 for wheel in dist/geofair-*.whl build/legacy-wheels/geofair-*.whl; do
+  [ -e "$wheel" ] || continue  # no cp310 wheel where PYTHONS has no 3.10
   compiled_in=()
   if [ "$KIND" = manylinux_2_28 ]; then
     tag=$(basename "$wheel" | cut -d- -f3)
