@@ -37,12 +37,6 @@ case "$KIND" in
     zig=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "zig"))')
     zig_dir="$PWD/build/zig"
     mkdir -p "$zig_dir"
-    # zig caches a compilation (keyed on its arguments, the source and every header it reads)
-    # only when no depfile is asked for: the wrappers drop CMake's -MD -MT -MF and write an
-    # empty depfile (the object's source is in the build rule). Each wheel is built in a fresh
-    # folder (below),
-    # so no object outlives a change of a header, and the library's sources compile once for
-    # all three wheels; only the bindings compile per Python.
     # Debian's own Pythons keep pyconfig.h in /usr/include/x86_64-linux-gnu/python3.X and
     # include it by that relative path; zig reads no include folder of the machine, so those
     # folders alone are linked into one that the wrappers search last.
@@ -52,6 +46,11 @@ case "$KIND" in
     for dir in /usr/include/x86_64-linux-gnu/python3*; do
       if [ -d "$dir" ]; then ln -s "$dir" "$multiarch/x86_64-linux-gnu/"; fi
     done
+    # zig caches a compilation (keyed on its arguments, the source and every header it reads)
+    # only when no depfile is asked for: the wrappers drop CMake's -MD -MT -MF and write an
+    # empty depfile (the object's source is in the build rule). Each wheel is built in a fresh
+    # folder (below), so no object outlives a change of a header, and the library's sources
+    # compile once for all wheels; only the bindings compile per Python.
     for tool in cc c++; do
       cat > "$zig_dir/$tool" <<WRAPPER
 #!/usr/bin/env bash

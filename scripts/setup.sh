@@ -52,6 +52,14 @@ bash scripts/zig_runtimes.sh x86_64-linux-gnu.2.28 >build/zig-runtimes-linux.log
 ZIG_LINUX=$!
 bash scripts/zig_runtimes.sh x86_64-windows-gnu >build/zig-runtimes-windows.log 2>&1 &
 ZIG_WINDOWS=$!
+# Waits for one of them (its pid; linux or windows, as in its log's name), prints its log, and
+# fails where it failed (set -e then ends the setup).
+wait_for_runtimes() {
+  local status=0
+  wait "$1" || status=$?
+  cat "build/zig-runtimes-$2.log"
+  return "$status"
+}
 DEBIAN_SITE=$(/usr/bin/python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
 $SUDO mkdir -p "$DEBIAN_SITE"
 echo "$PWD/dev" | $SUDO tee "$DEBIAN_SITE/geofair_dev.pth" >/dev/null
@@ -86,13 +94,11 @@ step "the portable build (build-portable/)"
 cmake -S . -B build-portable -DCMAKE_BUILD_TYPE=Release -DGEOFAIR_PORTABLE=ON -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build-portable -j"$(nproc)" --target geofair
 step "the manylinux_2_28 wheels (dist/)"
-wait "$ZIG_LINUX" || { cat build/zig-runtimes-linux.log; exit 1; }
-cat build/zig-runtimes-linux.log
+wait_for_runtimes "$ZIG_LINUX" linux
 bash scripts/build_wheel.sh
 step "the win_amd64 wheels (dist/)"
 # The win_amd64 wheels, cross-compiled by zig (tests/test_windows.py runs them under wine64).
-wait "$ZIG_WINDOWS" || { cat build/zig-runtimes-windows.log; exit 1; }
-cat build/zig-runtimes-windows.log
+wait_for_runtimes "$ZIG_WINDOWS" windows
 python3 scripts/build_windows.py
 step "the extension and legacy zips (dist/)"
 python3 scripts/build_extension.py

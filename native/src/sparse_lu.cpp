@@ -7,6 +7,7 @@
 #include <Eigen/UmfPackSupport>
 #endif
 
+#include <algorithm>
 #include <cstdint>
 
 #include "geofair/blas.h"
