@@ -2,6 +2,9 @@
 spheres, cylinders and minimal surfaces (Schneider & Kobbelt 2001, section 3), on regular
 and irregular meshes, unlike the linear Δ²f = 0 solution."""
 
+import os
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -256,3 +259,35 @@ def test_bad_input():
     bad[k] = bad[k, ::-1]
     with pytest.raises(ValueError, match=f"triangle {k}|oriented"):
         geofair.fair(v, bad, free, boundary_normals=n)
+
+
+THREADS_SCRIPT = """
+import hashlib, sys
+import numpy as np
+import geofair
+from geofair_dev import scenes
+
+digest = hashlib.sha1()
+s = scenes.sphere_cap(n_free=2000, irregular=True, seed=3)
+v = s.disturbed(seed=7, amplitude=0.1)
+for options in ({}, {"inner_fairness": "conformal"}, {"iteration": "paper"}):
+    r = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, **options)
+    digest.update(np.ascontiguousarray(r.vertices).tobytes())
+    digest.update(np.float64(r.residual).tobytes())
+print(digest.hexdigest())
+"""
+
+
+def test_results_do_not_depend_on_the_thread_count():
+    # GEOFAIR_NUM_THREADS is an exact request (even above the machine's cores), so 1, 2 and 3
+    # threads cut every parallel loop of the solve into different chunks: the bytes must agree.
+    digests = {}
+    for threads in ("1", "2", "3"):
+        env = {k: v for k, v in os.environ.items() if k not in ("GEOFAIR_NUM_THREADS", "OMP_NUM_THREADS")}
+        env["GEOFAIR_NUM_THREADS"] = threads
+        done = subprocess.run(
+            [sys.executable, "-c", THREADS_SCRIPT], capture_output=True, text=True, env=env, timeout=600
+        )
+        assert done.returncode == 0, done.stderr
+        digests[threads] = done.stdout.strip()
+    assert len(set(digests.values())) == 1, digests

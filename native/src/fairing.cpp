@@ -37,12 +37,13 @@ void check_fairing_options(const FairingOptions& o) {
   validate_tuning(o.tuning);
 }
 
-// The threads of one solve: max_threads() less the cores that other processes keep busy
-// now (the runnable tasks of /proc/loadavg, not counting this process's own; none known
-// where there is no /proc). On a busy machine the threads of a parallel loop wait for each
-// other at every barrier, so a core taken by another process is left to it
-// (docs/DESIGN_NOTES.md, "Threads"). Declared in parallel.h.
+// The threads of one solve: GEOFAIR_NUM_THREADS where set, else max_threads() less the
+// cores that other processes keep busy now (the runnable tasks of /proc/loadavg, not counting
+// this process's own; none known where there is no /proc). On a busy machine the threads of
+// a parallel loop wait for each other at every barrier, so a core taken by another process
+// is left to it (docs/DESIGN_NOTES.md, "Threads"). Declared in parallel.h.
 int solve_threads() {
+  if (const int n = requested_threads_from_environment(); n > 0) return n;
   int runnable = 0, own = 0;
 #ifdef __linux__
   if (FILE* f = std::fopen("/proc/loadavg", "r")) {

@@ -397,6 +397,10 @@ bool TangentialSolver::solve_two_grid(const Eigen::VectorXd& rhs, bool lagged,
 
 namespace {
 
+// Gauss–Seidel sweeps of systems of more rows than this run in two_grid_blocks blocks (a
+// numerical choice, kept apart from the threads' kParallelMin: the blocks change the result).
+constexpr int kBlockedSweepMin = 2500;
+
 // x ≈ A⁻¹ b by two_grid_sweeps Gauss–Seidel sweeps on A, forward, then the correction
 // P coarse⁻¹ Pᵀ of the residual, then as many sweeps backward.
 template <class CoarseSolve>
@@ -404,7 +408,7 @@ Eigen::VectorXd two_grid_cycle(const Eigen::SparseMatrix<double, Eigen::RowMajor
                                const Eigen::SparseMatrix<double>& P, const Eigen::VectorXd& b,
                                const TangentialTuning& tuning, const CoarseSolve& coarse_solve) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());
-  const int blocks = A.rows() > kParallelMin ? tuning.two_grid_blocks : 1;
+  const int blocks = A.rows() > kBlockedSweepMin ? tuning.two_grid_blocks : 1;
   for (int s = 0; s < tuning.two_grid_sweeps; ++s) gauss_seidel_sweep(A, b, x, true, blocks);
   const Eigen::VectorXd residual = b - A * x;
   x += P * coarse_solve(Eigen::VectorXd(P.transpose() * residual));

@@ -121,11 +121,22 @@ int machine_cores() {
   return cores;
 }
 
+namespace {
+int environment_threads(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? std::max(0, std::atoi(value)) : 0;
+}
+}  // namespace
+
+int requested_threads_from_environment() {
+  static const int threads = environment_threads("GEOFAIR_NUM_THREADS");
+  return threads;
+}
+
 int max_threads() {
   static const int threads = [] {
-    for (const char* name : {"GEOFAIR_NUM_THREADS", "OMP_NUM_THREADS"})
-      if (const char* value = std::getenv(name))
-        if (const int n = std::atoi(value); n > 0) return n;
+    if (const int n = requested_threads_from_environment(); n > 0) return n;
+    if (const int n = environment_threads("OMP_NUM_THREADS"); n > 0) return n;
     return machine_cores();
   }();
   return threads;

@@ -9,18 +9,22 @@
 
 namespace geofair {
 
-/// Loops over fewer vertices than this run on one thread: below it the threads' start-up
+/// Loops over fewer vertices than this run on one thread: below it waking the pool's threads
 /// costs more than they save (docs/DESIGN_NOTES.md).
-constexpr int kParallelMin = 2500;
+constexpr int kParallelMin = 150;
 
 /// The threads parallel loops started on this thread may use (at least 1; by default the
 /// cores of the machine). fair() sets it for its solve (fairing.cpp, solve_threads).
 int loop_threads();
 void set_loop_threads(int threads);
 
-/// The threads of one solve (fair, a LiveFairing frame): max_threads() less the cores that
-/// other processes keep busy now (fairing.cpp).
+/// The threads of one solve (fair, a LiveFairing frame): GEOFAIR_NUM_THREADS where it is
+/// set (an exact request), else max_threads() less the cores that other processes keep
+/// busy now (fairing.cpp).
 int solve_threads();
+
+/// The environment's GEOFAIR_NUM_THREADS as a positive count, else 0.
+int requested_threads_from_environment();
 
 /// The cores of the machine (at least 1).
 int machine_cores();
