@@ -3,19 +3,20 @@
 The region is the Fair operator's (selected faces or a Region vertex group); the
 handle is the region's pinned vertices: the Pin vertex group's inside the region,
 and, when a Region vertex group gives the region, the selected vertices inside it
-too (``fairing.FairingRun``'s ``pin_selected``). The handle is translated rigidly
-(its tangent planes do not turn); each frame is ``geofair.LiveFairing.update`` from
-the last converged frame (docs/LIVE.md), in sub-steps of at most the mean edge
-length at the handle: the warm start holds for about an edge a step, a longer jump
-of the mouse would fall back to the slow cold path. A frame that does not
-converge, or gives a non-finite position, leaves the last good positions shown.
+too (``fairing.FairingRun``'s ``pin_selected``). The handle moves as a whole: translated,
+rotated and uniformly scaled about its centre (:class:`HandleMove`; its G1 tangent planes turn
+with the rotation); each frame is ``geofair.LiveFairing.update`` from the last converged
+frame (docs/LIVE.md), in sub-steps that move no handle vertex by more than the mean edge
+length at the handle: the warm start holds for about an edge a step, a longer jump of the
+mouse would fall back to the slow cold path. A frame that does not converge, or gives a
+non-finite position, leaves the last good positions shown.
 
 Conventions: ``V  #V×3 float64`` positions in object space, ``T  #T×3 int`` triangles.
 """
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -33,12 +34,74 @@ class NoHandleError(ValueError):
     """The region holds no handle (no pinned vertex inside it)."""
 
 
+def rotation_matrix(axis, angle):
+    """``(3, 3)`` rotation by ``angle`` radians about ``axis`` (right-handed; a zero axis: the identity)."""
+    axis = np.asarray(axis, dtype=np.float64).reshape(3)
+    length = float(np.linalg.norm(axis))
+    if not length > 0.0:
+        return np.eye(3)
+    x, y, z = axis / length
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+
+
+def axis_angle(rotation):
+    """``(axis (3,), angle)`` of a rotation matrix, the angle in [0, π] radians."""
+    r = np.asarray(rotation, dtype=np.float64)
+    angle = math.acos(min(1.0, max(-1.0, (float(np.trace(r)) - 1.0) / 2.0)))
+    w = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    if np.linalg.norm(w) > 1e-9:
+        return w / np.linalg.norm(w), angle
+    if angle < 1.0:
+        return np.array([1.0, 0.0, 0.0]), 0.0
+    half = (r + np.eye(3)) / 2.0  # a half turn: its axis is a column of (R + I)/2
+    column = half[:, int(np.argmax(np.linalg.norm(half, axis=0)))]
+    return column / np.linalg.norm(column), math.pi
+
+
+@dataclass(frozen=True)
+class HandleMove:
+    """The handle's move about its centre c (object space): p ↦ c + scale · rotation (p − c) + offset.
+
+    Attributes:
+        offset: ``(3,)`` translation (mesh units).
+        rotation: ``(3, 3)`` rotation matrix; the handle's G1 normals turn with it.
+        scale: uniform scale factor (> 0), which keeps the normals.
+    """
+
+    offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
+    scale: float = 1.0
+
+    def points(self, points, centre):
+        """``(k, 3)`` points moved."""
+        return centre + self.scale * (points - centre) @ self.rotation.T + self.offset
+
+    def then(self, other):
+        """This move followed by ``other`` (both about the same centre)."""
+        return HandleMove(
+            other.scale * (other.rotation @ self.offset) + other.offset,
+            other.rotation @ self.rotation,
+            other.scale * self.scale,
+        )
+
+    def toward(self, other, fraction):
+        """The move a ``fraction`` of the way from this one to ``other``: the offset and the log of
+        the scale linear, the rotation about the axis of the rotation between them."""
+        axis, angle = axis_angle(other.rotation @ self.rotation.T)
+        return HandleMove(
+            self.offset + fraction * (other.offset - self.offset),
+            rotation_matrix(axis, fraction * angle) @ self.rotation,
+            self.scale * (other.scale / self.scale) ** fraction,
+        )
+
+
 @dataclass(frozen=True)
 class Frame:
     """One frame of the drag.
 
     Attributes:
-        offset: ``(3,)`` the handle's translation asked for (object space).
+        move: the handle's :class:`HandleMove` asked for (object space).
         converged: the frame converged with finite positions and is shown.
         cold: it ran the cold path (geofair.fair's whole schedule).
         steps: Newton steps of a warm frame (0 on the cold path).
@@ -48,7 +111,7 @@ class Frame:
         folds: edges of the region whose triangles flipped over in the last sub-step.
     """
 
-    offset: np.ndarray
+    move: HandleMove
     converged: bool
     cold: bool
     steps: int
@@ -70,8 +133,87 @@ class Frame:
         return text
 
 
+MODES = ("TRANSLATE", "ROTATE", "SCALE")  # Blender's G, R and S
+
+
+def mode_move(mode, committed, to_object, translation, angle, view_axis, factor, axis=None, typed=None):
+    """The handle's move: ``committed`` followed by one transform mode, as Blender's G, R and S take
+    the mouse (or a typed value) in world space.
+
+    Args:
+        mode: one of :data:`MODES`.
+        committed: the :class:`HandleMove` of the modes before (object space); rotations and
+            scalings are about the handle's centre where ``committed`` put it.
+        to_object: ``(3, 3)`` world-to-object linear map (the object's inverted matrix).
+        translation: ``(3,)`` the mouse's move in the view plane through the handle (world units).
+        angle: the mouse's turn about the handle's centre on screen (radians, counter-clockwise).
+        view_axis: ``(3,)`` unit world direction towards the viewer; the rotation's axis.
+        factor: the mouse's distance from the handle's centre on screen over that at the mode's
+            start (the scale).
+        axis: 0, 1 or 2: along (G) or about (R) that global axis; None: the view's. Scaling is
+            uniform.
+        typed: a typed value that replaces the mouse's: the distance along ``axis`` (X without
+            one; mesh units), the angle (degrees) or the scale factor; None: the mouse's.
+    """
+    unit = np.eye(3)
+    to_object = np.asarray(to_object, dtype=np.float64)
+    centre_offset = committed.offset  # the handle's centre has moved by it
+    if mode == "TRANSLATE":
+        world = np.asarray(translation, dtype=np.float64)
+        if typed is not None:
+            world = typed * unit[0 if axis is None else axis]
+        elif axis is not None:
+            world = world[axis] * unit[axis]
+        step = HandleMove(offset=to_object @ world)
+    elif mode == "ROTATE":
+        view = np.asarray(view_axis, dtype=np.float64)
+        world_axis = view if axis is None else unit[axis] * (1.0 if unit[axis] @ view >= 0.0 else -1.0)
+        rotation = rotation_matrix(to_object @ world_axis, math.radians(typed) if typed is not None else angle)
+        step = HandleMove(offset=centre_offset - rotation @ centre_offset, rotation=rotation)
+    elif mode == "SCALE":
+        scale = typed if typed is not None else factor
+        scale = max(abs(float(scale)), 1e-3) if math.isfinite(scale) else 1.0  # no mirror, no collapse
+        step = HandleMove(offset=centre_offset - scale * centre_offset, scale=scale)
+    else:
+        raise ValueError(f"unknown transform mode {mode!r}: expected one of {MODES}")
+    return committed.then(step)
+
+
+# Keys of a typed value (Blender's event types) and the characters they add.
+TYPED_KEYS = {
+    **{
+        name: str(i)
+        for i, name in enumerate(("ZERO", "ONE", "TWO", "THREE", "FOUR", "FIVE", "SIX", "SEVEN", "EIGHT", "NINE"))
+    },
+    **{f"NUMPAD_{i}": str(i) for i in range(10)},
+    "PERIOD": ".",
+    "NUMPAD_PERIOD": ".",
+    "MINUS": "-",
+    "NUMPAD_MINUS": "-",
+}
+
+
+def typed_text(text, key):
+    """``text`` after the key ``key`` (a :data:`TYPED_KEYS` key or ``BACK_SPACE``): minus toggles the sign."""
+    if key == "BACK_SPACE":
+        return text[:-1]
+    char = TYPED_KEYS[key]
+    if char == "-":
+        return text[1:] if text.startswith("-") else "-" + text
+    return text + char
+
+
+def typed_value(text):
+    """The typed text's number, or None while it is not one (empty, ``-``, ``.``)."""
+    try:
+        value = float(text)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
+
+
 class LiveDrag:
-    """A handle of a region translated rigidly, the region refaired per frame (``geofair.LiveFairing``).
+    """A handle of a region moved as a whole, the region refaired per frame (``geofair.LiveFairing``).
 
     Args:
         library: the ``geofair`` module.
@@ -79,13 +221,13 @@ class LiveDrag:
         triangles: ``(T, 3)`` int triangles that take part.
         free: ``(n,)`` bool free vertices of the region.
         handle: ``(n,)`` bool fixed vertices inside the region that move with the drag.
-        boundary_normals: ``(n, 3)`` G1 normals (those of a translated handle do not turn),
-            or None (G0).
+        boundary_normals: ``(n, 3)`` G1 normals (the handle's turn with its rotation), or None
+            (G0).
         polygon_ids: ``(T,)`` polygon of each triangle, or None.
         options: keyword options of ``geofair.fair`` (remesh off).
         details: keep the region's details over its faired base (``LiveFairing(details=True)``).
-        step: the longest move of the handle per update (mesh units); None: the mean length
-            of the edges at the handle.
+        step: the longest move of a handle vertex per update (mesh units); None: the mean
+            length of the edges at the handle.
 
     Raises:
         NoHandleError: ``handle`` is empty.
@@ -119,8 +261,14 @@ class LiveDrag:
         if not start.converged:
             raise RuntimeError(f"the region's fairing at the start did not converge: {start.message}")
         self.positions = np.array(start.vertices, dtype=np.float64)  # the last good frame
-        self.offset = np.zeros(3)
+        self.centre = self.base[self.handle].mean(axis=0)  # the handle's rotations and scalings are about it
+        self.move = HandleMove()  # the last good frame's
         self.frames = []
+
+    @property
+    def offset(self):
+        """``(3,)`` the last good frame's translation of the handle."""
+        return self.move.offset
 
     @property
     def handle_count(self):
@@ -130,35 +278,43 @@ class LiveDrag:
     def free_count(self):
         return int(np.count_nonzero(self.free))
 
-    def frame(self, offset):
-        """Translate the handle by ``offset`` (object space) and refair, from the last good offset in
-        sub-steps of at most :attr:`step`; return the :class:`Frame`.
+    def frame(self, move):
+        """Move the handle by ``move`` (a :class:`HandleMove`, or a ``(3,)`` translation; object space) and
+        refair, from the last good move in sub-steps that move no handle vertex by more than :attr:`step`;
+        return the :class:`Frame`.
 
         An unconverged sub-step (or one raising, or with a non-finite position) ends the frame
-        and leaves :attr:`positions` and :attr:`offset` at the last good one.
+        and leaves :attr:`positions` and :attr:`move` at the last good one.
         """
-        offset = np.asarray(offset, dtype=np.float64).reshape(3)
-        start, clock = self.offset, time.perf_counter()
-        distance = float(np.linalg.norm(offset - start))
+        if not isinstance(move, HandleMove):
+            move = HandleMove(offset=np.asarray(move, dtype=np.float64).reshape(3))
+        start, clock = self.move, time.perf_counter()
+        handle = self.base[self.handle]
+        moved = move.points(handle, self.centre) - start.points(handle, self.centre)
+        distance = float(np.linalg.norm(moved, axis=1).max())
         count = max(1, math.ceil(distance / self.step)) if np.isfinite(distance) and self.step > 0 else 1
         steps = 0
         for k in range(1, count + 1):
-            sub = self._update(offset if k == count else start + (offset - start) * (k / count))
+            sub = self._update(move if k == count else start.toward(move, k / count))
             steps += sub.steps
             if not sub.converged:
                 break
         seconds = time.perf_counter() - clock
-        frame = Frame(offset, sub.converged, sub.cold, steps, seconds, sub.message, k, sub.folds)
+        frame = Frame(move, sub.converged, sub.cold, steps, seconds, sub.message, k, sub.folds)
         self.frames.append(frame)
         return frame
 
-    def _update(self, offset):
-        """One LiveFairing update with the handle at ``offset``; the last good frame kept where it fails."""
+    def _update(self, move):
+        """One LiveFairing update with the handle moved by ``move``; the last good frame kept where it fails."""
         target = self.base.copy()
-        target[self.handle] += offset
+        target[self.handle] = move.points(self.base[self.handle], self.centre)
+        normals = self.normals
+        if normals is not None and not np.array_equal(move.rotation, np.eye(3)):
+            normals = np.array(normals, dtype=np.float64)
+            normals[self.handle] = normals[self.handle] @ move.rotation.T
         clock = time.perf_counter()
         try:
-            result = self.live.update(target, boundary_normals=self.normals)
+            result = self.live.update(target, boundary_normals=normals)
             message, converged, steps = str(result.message), bool(result.converged), int(result.iterations)
             folds = int(getattr(result, "folds", 0))
             positions = np.asarray(result.vertices, dtype=np.float64)
@@ -169,16 +325,18 @@ class LiveDrag:
         cold = "cold path" in message
         steps = 0 if cold else steps
         if converged:
-            self.positions, self.offset = positions, offset
-        return Frame(offset, converged, cold, steps, seconds, message, 1, folds)
+            self.positions, self.move = positions, move
+        return Frame(move, converged, cold, steps, seconds, message, 1, folds)
 
-    def drag(self, offset, frames):
-        """Reach ``offset`` in ``frames`` equal steps (a script's drag); return the last :class:`Frame`."""
+    def drag(self, move, frames):
+        """Reach ``move`` (a :class:`HandleMove` or a ``(3,)`` translation) in ``frames`` equal steps from
+        the rest (a script's drag); return the last :class:`Frame`."""
+        if not isinstance(move, HandleMove):
+            move = HandleMove(offset=np.asarray(move, dtype=np.float64).reshape(3))
         frames = max(int(frames), 1)
-        offset = np.asarray(offset, dtype=np.float64)
         last = None
         for k in range(1, frames + 1):
-            last = self.frame(offset * (k / frames))
+            last = self.frame(move if k == frames else HandleMove().toward(move, k / frames))
         return last
 
     def summary(self):

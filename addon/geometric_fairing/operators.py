@@ -26,7 +26,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty
 from bpy_extras import view3d_utils
-from mathutils import Vector
+from mathutils import Euler, Matrix, Vector
 
 from . import fairing, holes, live, mesh_io, native, overlays, properties
 from .properties import OPTION_NAMES, FairingProperties, SolverProperties, option_values
@@ -418,8 +418,9 @@ class MESH_OT_geometric_fairing_curvature(bpy.types.Operator):
 # Keys of the live drag: confirm, cancel (as G's).
 CONFIRM_EVENTS = {"LEFTMOUSE", "RET", "NUMPAD_ENTER", "SPACE"}
 CANCEL_EVENTS = {"RIGHTMOUSE", "ESC"}
-LIVE_HINT = "LMB/Enter confirm, RMB/Esc cancel, X/Y/Z along a global axis"
+LIVE_HINT = "G/R/S move, rotate, scale; X/Y/Z global axis; type a value; LMB/Enter confirm, RMB/Esc cancel"
 AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
+MODE_EVENTS = {"G": "TRANSLATE", "R": "ROTATE", "S": "SCALE"}
 
 _last_drag = None  # the live.LiveDrag of the last Live Fair Drag
 
@@ -440,7 +441,7 @@ def view_region(context):
 
 
 class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
-    """Drag a handle through the surface, the region refaired as the mouse moves (Schneider & Kobbelt 2001,
+    """Move, rotate or scale a handle (G, R, S), the region refaired as the mouse moves (Schneider & Kobbelt 2001,
     section 8). The region is Fair's (the selected faces, or the Region vertex group); the handle is the Pin vertex
     group's vertices inside it (with a Region vertex group, the selected vertices inside it too)"""
 
@@ -461,9 +462,24 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         size=3,
         options={"SKIP_SAVE"},
     )
+    rotation: FloatVectorProperty(
+        name="Rotation",
+        description="Rotation of the handle about its centre, object space; its tangent planes turn with it",
+        subtype="EULER",
+        size=3,
+        options={"SKIP_SAVE"},
+    )
+    scale: FloatProperty(
+        name="Scale",
+        description="Uniform scale of the handle about its centre",
+        default=1.0,
+        min=1e-3,
+        soft_max=10.0,
+        options={"SKIP_SAVE"},
+    )
     frames: IntProperty(
         name="Frames",
-        description="Frames in which Offset is reached without the mouse (scripts, redo): each refairs from the last",
+        description="Frames in which the move is reached without the mouse (scripts, redo): each refairs from the last",
         default=4,
         min=1,
         soft_max=50,
@@ -473,10 +489,16 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     _drag = None  # live.LiveDrag while the mouse drags
     _obj = None
     _region = None  # the 3D View's main region: the mouse moves in its view
-    _centre = None  # the handle's centre (world): the view plane of the drag goes through it
-    _start = None  # the mouse's point in that plane at invoke (world)
-    _to_object = None  # world to object space, for the offset
-    _axis = None  # X/Y/Z: the drag along that global axis (0, 1, 2), or None
+    _mode = "TRANSLATE"  # live.MODES: G, R or S
+    _committed = None  # live.HandleMove of the modes before this one
+    _centre = None  # the handle's centre (world) as the mode started: the view plane of G goes through it
+    _start = None  # the mouse's point in that plane as the mode started (world)
+    _start_2d = None  # the mouse on screen as the mode started, relative to the centre (pixels)
+    _last_2d = None  # the last mouse move on screen, relative to the centre, and the turn so far (R)
+    _angle = 0.0
+    _to_object = None  # world to object space, for the moves
+    _axis = None  # X/Y/Z: along or about that global axis (0, 1, 2), or None
+    _typed = ""  # a value typed during the mode
     _mouse = None  # the last mouse move's world point
 
     @classmethod
@@ -528,7 +550,8 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         drag = self.prepare(context)
         if drag is None:
             return {"CANCELLED"}
-        frame = drag.drag(np.array(self.offset), self.frames)
+        rotation = np.array(Euler(self.rotation).to_matrix(), dtype=np.float64)
+        frame = drag.drag(live.HandleMove(np.array(self.offset, dtype=np.float64), rotation, self.scale), self.frames)
         if not frame.converged:
             self.report({"ERROR"}, f"{self.label}: did not converge at the offset ({frame.message}); mesh unchanged")
             return {"CANCELLED"}
@@ -545,29 +568,53 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
             return {"CANCELLED"}
         obj = self._obj
         mesh_io.write_positions(obj, drag.positions, drag.moving)  # the region faired at rest
-        self._centre = obj.matrix_world @ Vector(drag.base[drag.handle].mean(axis=0).tolist())
-        self._start = self._mouse = self.mouse_point(context, event)
-        self._axis = None
         self._to_object = obj.matrix_world.inverted().to_3x3()
+        self.start_mode("TRANSLATE", live.HandleMove(), event)
         self.report({"INFO"}, f"{self.label}: prepared in {drag.prepare_seconds:.2f} s; {live.HANDLE_RULE}")
         self.show(context, f"prepared in {drag.prepare_seconds * 1e3:.0f} ms")
         context.window_manager.modal_handler_add(self)
         return {"RUNNING_MODAL"}
 
-    def mouse_point(self, context, event):
+    def start_mode(self, mode, committed, event):
+        """G, R or S from the handle as ``committed`` left it, the mouse where it is now."""
+        self._mode, self._committed, self._axis, self._typed = mode, committed, None, ""
+        centre = self._drag.centre + committed.offset
+        self._centre = self._obj.matrix_world @ Vector(centre.tolist())
+        self._start = self._mouse = self.mouse_point(event)
+        self._start_2d = self._last_2d = self.mouse_2d(event)
+        self._angle = 0.0
+
+    def mouse_point(self, event):
         """The mouse's point in the view plane through the handle's centre (world), also when the
         operator was started from the sidebar (window coordinates into the 3D View's main region)."""
         region = self._region
         mouse = (event.mouse_x - region.x, event.mouse_y - region.y)
         return view3d_utils.region_2d_to_location_3d(region, region.data, mouse, self._centre)
 
+    def mouse_2d(self, event):
+        """The mouse on screen relative to the handle's centre (pixels; (0, 0) if the centre is behind the view)."""
+        region = self._region
+        centre = view3d_utils.location_3d_to_region_2d(region, region.data, self._centre)
+        mouse = Vector((event.mouse_x - region.x, event.mouse_y - region.y))
+        return mouse - centre if centre is not None else Vector((0.0, 0.0))
+
     def modal(self, context, event):
         if event.type == "MOUSEMOVE":
-            self._mouse = self.mouse_point(context, event)
+            self._mouse = self.mouse_point(event)
+            now = self.mouse_2d(event)
+            if self._last_2d.length > 0.0 and now.length > 0.0:
+                self._angle += self._last_2d.angle_signed(now, 0.0) * -1.0  # counter-clockwise positive
+            self._last_2d = now
+            self.drag_to(context)
+        elif event.type in MODE_EVENTS and event.value == "PRESS":
+            self.start_mode(MODE_EVENTS[event.type], self._drag.move, event)
             self.drag_to(context)
         elif event.type in AXIS_EVENTS and event.value == "PRESS":
             axis = AXIS_EVENTS[event.type]
             self._axis = None if self._axis == axis else axis
+            self.drag_to(context)
+        elif (event.type in live.TYPED_KEYS or event.type == "BACK_SPACE") and event.value == "PRESS":
+            self._typed = live.typed_text(self._typed, event.type)
             self.drag_to(context)
         elif event.type in CONFIRM_EVENTS and event.value == "PRESS":
             return self.confirm(context)
@@ -579,24 +626,50 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def drag_to(self, context):
-        """One frame with the handle at the mouse (along the chosen axis); written if it converged."""
-        world = self._mouse - self._start
-        if self._axis is not None:  # the mouse's move along that global axis only
-            world = Vector([world[i] if i == self._axis else 0.0 for i in range(3)])
-        frame = self._drag.frame(np.array(self._to_object @ world))
+        """One frame with the handle where the mouse (or the typed value) puts it; written if it converged."""
+        if self._typed and live.typed_value(self._typed) is None:  # "-" or "." so far
+            self.show(context, "type a number")
+            return
+        start = self._start_2d
+        factor = self._last_2d.length / start.length if start.length >= 1.0 else 1.0
+        rv3d = self._region.data
+        move = live.mode_move(
+            self._mode,
+            self._committed,
+            np.array(self._to_object),
+            np.array(self._mouse - self._start),
+            self._angle,
+            np.array(rv3d.view_rotation @ Vector((0.0, 0.0, 1.0))),
+            factor,
+            self._axis,
+            live.typed_value(self._typed) if self._typed else None,
+        )
+        frame = self._drag.frame(move)
         if frame.converged:
             mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
         self.show(context, frame.status())
 
     def show(self, context, text):
-        offset = live.distance_text(self._drag.offset)
-        along = f" along {'XYZ'[self._axis]}" if self._axis is not None else ""
-        context.area.header_text_set(f"{self.label}: offset {offset}{along}, {text} — {LIVE_HINT}")
+        move = self._drag.move
+        what = f"offset {live.distance_text(move.offset)}"
+        _, angle = live.axis_angle(move.rotation)
+        if angle > 0.0:
+            what += f", turned {np.degrees(angle):.1f}°"
+        if move.scale != 1.0:
+            what += f", scaled {move.scale:.3g}"
+        mode = {"TRANSLATE": "Move", "ROTATE": "Rotate", "SCALE": "Scale"}[self._mode]
+        if self._axis is not None and self._mode != "SCALE":  # scaling is uniform
+            mode += f" {'along' if self._mode == 'TRANSLATE' else 'about'} {'XYZ'[self._axis]}"
+        if self._typed:
+            mode += f" [{self._typed}]"
+        context.area.header_text_set(f"{self.label} ({mode}): {what}, {text} — {LIVE_HINT}")
 
     def confirm(self, context):
         """Keep the last good frame (one undo step); the offset it reached is the redo panel's."""
         drag = self._drag
-        self.offset = drag.offset.tolist()
+        self.offset = drag.move.offset.tolist()
+        self.rotation = Matrix(drag.move.rotation.tolist()).to_euler()
+        self.scale = drag.move.scale
         self.end(context)
         try:
             overlays.refresh_curvature(self._obj, context)

@@ -21,6 +21,7 @@ import bpy  # first: the bpy module from PyPI makes bmesh importable
 # isort: split
 import bmesh
 import numpy as np
+from mathutils import Euler
 
 from geofair_dev.blender import disable_addon, edit_state, enable_addon, parse_args, positions, select_faces
 
@@ -143,6 +144,35 @@ def check_drag(addon, obj, handle):
     bpy.ops.ed.undo()
 
 
+def check_turn_and_scale(addon, obj, handle):
+    """Rotation and Scale (the redo panel's): the handle turned and scaled about its centre, its G1
+    normals turned with it; the result is the cold geofair.fair of that input."""
+    before = edit_state(obj)
+    start = positions(obj).astype(np.float64)
+    euler = (0.0, 0.0, np.radians(12.0))
+    result, error = live(pin_group="Handle", rotation=euler, scale=1.15)
+    assert result == {"FINISHED"}, (result, error)
+    drag = addon.operators.last_drag()
+    rotation = np.array(Euler(euler).to_matrix())
+    target = start.copy()
+    target[handle] = drag.centre + 1.15 * (start[handle] - drag.centre) @ rotation.T
+    after = positions(obj).astype(np.float64)
+    assert np.allclose(after[handle], target[handle], atol=1e-6), "the handle is not turned and scaled"
+    normals = np.array(drag.normals, dtype=np.float64)
+    normals[handle] = normals[handle] @ rotation.T
+    run = addon.fairing.FairingRun(obj, addon.fairing.default_options(bpy.context, pin_group="Handle"))
+    options = run.options.library_options()
+    cold = addon.native.geofair.fair(
+        target, run.mesh.triangles, drag.free, boundary_normals=normals, polygon_ids=run.polygon_ids, **options
+    )
+    assert cold.converged, cold.message
+    distance = np.abs(cold.vertices - after).max() / region_diagonal(target[drag.free])
+    print(f"ok: turned by 12° and scaled by 1.15: {drag.summary()}; vs a cold fair max |Δ| / L = {distance:.1e}")
+    assert distance < 1e-4, distance
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before, "one undo did not restore every byte"
+
+
 def check_refusals(obj, region_deg):
     expect_refused(obj, "No handle: put vertices inside the region into the Pin vertex group", pin_group="")
     expect_refused(obj, "has no vertex group 'Nothing'", pin_group="Nothing")
@@ -194,6 +224,7 @@ def main():
     obj, handle = add_sphere(64, 32, 50.0, 10.0)
     check_refusals(obj, 50.0)
     check_drag(addon, obj, handle)
+    check_turn_and_scale(addon, obj, handle)
     check_region_group(addon, obj, handle)
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)

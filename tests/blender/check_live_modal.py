@@ -56,6 +56,45 @@ def drag_a_little():
         yield 0.2
 
 
+def key(event_type, times=1):
+    for _ in range(times):
+        mouse(0, 15, event_type, "PRESS")
+        mouse(0, 15, event_type, "RELEASE")
+
+
+def rotate_and_scale(addon):
+    """R turns the handle with the mouse about its centre, then 1 0 typed makes it 10° about the view's
+    axis; S and 1 . 2 typed scale it by 1.2 about its centre, the rotation and the move kept."""
+    live = addon.live
+    moved = addon.operators.last_drag().move
+    key("R")
+    yield 0.3
+    for step in range(1, 4):  # a quarter circle around the view's centre
+        angle = np.radians(15.0 * step)
+        mouse(int(-40 * np.sin(angle)), int(40 * np.cos(angle)))
+        yield 0.2
+    _, turned = live.axis_angle(addon.operators.last_drag().move.rotation)
+    assert turned > 0.0, "R did not turn the handle"
+    key("ONE"), key("ZERO")
+    yield 0.3
+    move = addon.operators.last_drag().move
+    _, turned = live.axis_angle(move.rotation @ moved.rotation.T)
+    assert np.isclose(np.degrees(turned), 10.0), np.degrees(turned)
+    print(f"ok: R turns the handle with the mouse, 10 typed: {np.degrees(turned):.3f}°")
+    key("S")
+    key("ONE"), key("PERIOD"), key("TWO")
+    yield 0.3
+    scaled = addon.operators.last_drag().move
+    assert np.isclose(scaled.scale, 1.2) and np.allclose(scaled.rotation, move.rotation), scaled
+    drag = addon.operators.last_drag()
+    handle = drag.base[drag.handle]
+    centre = drag.centre + move.offset  # the scaling is about the centre where R left it
+    spread = np.linalg.norm(scaled.points(handle, drag.centre) - centre, axis=1)
+    before = np.linalg.norm(move.points(handle, drag.centre) - centre, axis=1)
+    assert np.allclose(spread, 1.2 * before), "S did not scale about the handle's centre"
+    print(f"ok: S with 1.2 typed scales the handle about its centre; {drag.frames[-1].status()}")
+
+
 def checks(addon, obj):
     yield 0.5
     mouse(0, 0)
@@ -82,6 +121,7 @@ def checks(addon, obj):
     along_z = addon.operators.last_drag().offset
     assert along_z[0] == along_z[1] == 0.0 and along_z[2] > 0.0, along_z
     print(f"ok: Z: the handle moves along Z only, offset {np.round(along_z, 4)}")
+    yield from rotate_and_scale(addon)
     mouse(0, 40, "LEFTMOUSE", "PRESS")
     mouse(0, 40, "LEFTMOUSE", "RELEASE")
     yield 0.3
@@ -91,8 +131,12 @@ def checks(addon, obj):
     assert all(moved[key] == before[key] for key in before if key != "co"), "a layer changed"
     last = bpy.context.window_manager.operators[-1]
     assert last.bl_idname == "MESH_OT_geometric_fairing_live", last.bl_idname
-    assert np.allclose(last.properties.offset, drag.offset), (last.properties.offset[:], drag.offset)
-    print(f"ok: from the sidebar, click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)} for redo")
+    props = last.properties
+    assert np.allclose(props.offset, drag.offset), (props.offset[:], drag.offset)
+    assert np.allclose(np.array(props.rotation.to_matrix()), drag.move.rotation, atol=1e-6)
+    assert np.isclose(props.scale, drag.move.scale), (props.scale, drag.move.scale)
+    print(f"ok: from the sidebar, click confirmed: {drag.summary()}; offset {np.round(drag.offset, 4)}, "
+          f"rotation {np.round(np.degrees(props.rotation[:]), 2)}°, scale {props.scale:.3f} for redo")  # fmt: skip
     window, area, region = window_view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.ed.undo()
