@@ -12,8 +12,9 @@ but fails when the environment variable CI is set.
 - check_mesh_data.py: only positions change (shape keys, modifiers, custom normals, UV maps, colour
   attributes byte-identical); Edit and Object Mode store the same shape keys; hidden faces.
 - check_multi_object.py: several objects in Edit Mode; the ones that cannot be faired are named.
-- check_live.py: Live Fair Drag run as a script (its offset, rotation and scale in frames) on a UV sphere: the cold fair of
-  the same input, only positions change, one undo; no handle or region refused; frame times.
+- check_live.py: Live Fair Drag run as a script (its offset, rotation and scale in frames) on a UV
+  sphere: the cold fair of the same input, only positions change, one undo; the radius region; no
+  handle or region refused; frame times.
 - check_scripting.py: fair_object, cancelling (progress callback, worker thread), UV distortion,
   Blender's UV sphere with its cap flattened (quads split at random) faired back onto the sphere.
 - check_remesh.py: Remesh Always / If Needed on Suzanne's ear (no UV flip, the rest byte-identical),

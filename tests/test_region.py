@@ -464,3 +464,27 @@ def test_fill_report_names_each_holes_method_and_the_removed_faces():
         len(lines) == 5
         and lines[2] == "hole at vertex 7: after cleaning its rim, converged, 0 folded edges, faces removed: 2, 4"
     )
+
+
+def test_surface_distances_follow_the_edges_up_to_the_limit():
+    # A unit-spaced grid of right triangles (diagonals from (i, j) to (i+1, j+1)): from the corner
+    # (0, 0) the shortest edge path to (i, j) takes min(i, j) diagonals and |i - j| unit edges.
+    n = 8
+    x, y = np.meshgrid(np.arange(n, dtype=float), np.arange(n, dtype=float), indexing="ij")
+    vertices = np.column_stack([x.ravel(), y.ravel(), np.zeros(n * n)])
+    index = np.arange(n * n).reshape(n, n)
+    a, b, c, d = index[:-1, :-1].ravel(), index[1:, :-1].ravel(), index[1:, 1:].ravel(), index[:-1, 1:].ravel()
+    triangles = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    sources = np.zeros(n * n, dtype=bool)
+    sources[index[0, 0]] = True
+    i, j = x.ravel(), y.ravel()
+    exact = np.minimum(i, j) * np.sqrt(2.0) + np.abs(i - j)
+    distance = region.surface_distances(vertices, triangles, sources, limit=5.0)
+    inside = exact <= 5.0
+    assert np.allclose(distance[inside], exact[inside])
+    assert np.isinf(distance[~inside]).all() and (~inside).any()
+    # Two sources: each vertex is as far as the nearer one.
+    sources[index[-1, -1]] = True
+    both = region.surface_distances(vertices, triangles, sources, limit=100.0)
+    far = np.minimum(n - 1 - i, n - 1 - j) * np.sqrt(2.0) + np.abs(i - j)
+    assert np.allclose(both, np.minimum(exact, far))

@@ -353,7 +353,10 @@ class FairingRun(_WorkerThread):
             of the tessellation is a polygon (its diagonals count as edges). Default: each
             face is a polygon.
         pin_selected: the selected vertices are pinned too (Live Fair Drag's handle when a
-            Region vertex group gives the region).
+            Region vertex group or a radius gives the region).
+        handle_radius: the region is the faces within this distance (mesh units, along the
+            edges) of the selected vertices (Live Fair Drag's radius), which are pinned; None:
+            ``faces``.
 
     Raises:
         ValueError: no usable region (:class:`region.RegionError`), a missing
@@ -364,7 +367,15 @@ class FairingRun(_WorkerThread):
     remesh_hint = REMESH_SCRIPT_HINT  # added to a solver failure with Remesh off (the operator's: REMESH_HINT)
 
     def __init__(
-        self, obj, options, faces=None, progress=None, boundary_normals=None, polygon_ids=_FACES, pin_selected=False
+        self,
+        obj,
+        options,
+        faces=None,
+        progress=None,
+        boundary_normals=None,
+        polygon_ids=_FACES,
+        pin_selected=False,
+        handle_radius=None,
     ):
         if native.geofair is None:
             raise RuntimeError(native.IMPORT_ERROR)
@@ -381,7 +392,16 @@ class FairingRun(_WorkerThread):
         self.timings["read"] = time.perf_counter() - clock
         clock = time.perf_counter()
         present = np.ones(len(mesh.loop_start), dtype=bool) if options.use_hidden else ~mesh.face_hidden
-        if faces is None and options.region_group:
+        if handle_radius is not None:
+            if not mesh.vertex_selected.any():
+                raise region.NothingSelectedError("No vertex is selected: select the handle's vertices")
+            near = region.surface_distances(mesh.vertices, mesh.triangles, mesh.vertex_selected, handle_radius)
+            faces = region.polygons_inside(near <= handle_radius, mesh.loop_start, mesh.loop_total, mesh.corner_verts)
+            faces &= present
+            pin_selected = True
+            if not faces.any():
+                raise region.NothingSelectedError(f"No face lies within the radius {handle_radius:.4g} of the handle")
+        elif faces is None and options.region_group:
             if obj.vertex_groups.get(options.region_group) is None:
                 raise region.NothingSelectedError(f"'{obj.name}' has no vertex group '{options.region_group}'")
             inside = mesh_io.vertex_group_weights(obj, options.region_group) > 0.0

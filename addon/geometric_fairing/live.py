@@ -24,6 +24,7 @@ HANDLE_RULE = (
     "the handle is the Pin vertex group's vertices inside the region (with a Region vertex group, the selected "
     "vertices inside it too)"
 )
+RADIUS_RULE = "the handle is the selected vertices, the region the faces within the radius of it along the surface"
 NO_HANDLE = (
     "No handle: put vertices inside the region into the Pin vertex group (or give the region by a Region vertex "
     "group and select the handle's vertices inside it)"

@@ -418,9 +418,13 @@ class MESH_OT_geometric_fairing_curvature(bpy.types.Operator):
 # Keys of the live drag: confirm, cancel (as G's).
 CONFIRM_EVENTS = {"LEFTMOUSE", "RET", "NUMPAD_ENTER", "SPACE"}
 CANCEL_EVENTS = {"RIGHTMOUSE", "ESC"}
-LIVE_HINT = "G/R/S move, rotate, scale; X/Y/Z global axis; type a value; LMB/Enter confirm, RMB/Esc cancel"
+LIVE_HINT = (
+    "G/R/S move, rotate, scale; X/Y/Z global axis; type a value; wheel: radius; LMB/Enter confirm, RMB/Esc cancel"
+)
 AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
 MODE_EVENTS = {"G": "TRANSLATE", "R": "ROTATE", "S": "SCALE"}
+# The radius's factor per wheel step or key, as Proportional Editing's size.
+RADIUS_EVENTS = {"WHEELUPMOUSE": 1 / 1.1, "PAGE_UP": 1.1, "WHEELDOWNMOUSE": 1.1, "PAGE_DOWN": 1 / 1.1}
 
 _last_drag = None  # the live.LiveDrag of the last Live Fair Drag
 
@@ -455,6 +459,7 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     pin_group: properties._pin_group(options={"SKIP_SAVE"})
     use_hidden: properties._use_hidden(options={"SKIP_SAVE"})
     details: properties._live_details(options={"SKIP_SAVE"})
+    radius: properties._live_radius(options={"SKIP_SAVE"})
     offset: FloatVectorProperty(
         name="Offset",
         description="Translation of the handle, object space",
@@ -500,6 +505,7 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     _axis = None  # X/Y/Z: along or about that global axis (0, 1, 2), or None
     _typed = ""  # a value typed during the mode
     _mouse = None  # the last mouse move's world point
+    _circle = None  # the draw handler of the radius's circle
 
     @classmethod
     def poll(cls, context):
@@ -517,6 +523,8 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
                 setattr(self, name, getattr(settings, name))
         if not self.properties.is_property_set("details"):
             self.details = settings.live_details
+        if not self.properties.is_property_set("radius"):
+            self.radius = settings.live_radius
         values = {name: getattr(self, name) for name in properties.LIVE_OPTION_NAMES}
         values["time_limit"] = values["time_limit"] or None
         return fairing.FairingOptions(**values)
@@ -527,7 +535,9 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         options = self.resolve_options(context)
         obj = context.active_object
         try:
-            run = fairing.FairingRun(obj, options, pin_selected=bool(options.region_group))
+            run = fairing.FairingRun(
+                obj, options, pin_selected=bool(options.region_group), handle_radius=self.radius or None
+            )
             drag = live.LiveDrag(
                 native.geofair,
                 run.mesh.vertices,
@@ -570,10 +580,48 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         mesh_io.write_positions(obj, drag.positions, drag.moving)  # the region faired at rest
         self._to_object = obj.matrix_world.inverted().to_3x3()
         self.start_mode("TRANSLATE", live.HandleMove(), event)
-        self.report({"INFO"}, f"{self.label}: prepared in {drag.prepare_seconds:.2f} s; {live.HANDLE_RULE}")
+        rule = live.RADIUS_RULE if self.radius > 0.0 else live.HANDLE_RULE
+        self.report({"INFO"}, f"{self.label}: prepared in {drag.prepare_seconds:.2f} s; {rule}")
         self.show(context, f"prepared in {drag.prepare_seconds * 1e3:.0f} ms")
+        if self.radius > 0.0:
+            self._circle = bpy.types.SpaceView3D.draw_handler_add(self.draw_circle, (), "WINDOW", "POST_PIXEL")
         context.window_manager.modal_handler_add(self)
         return {"RUNNING_MODAL"}
+
+    def resize(self, context, factor):
+        """The radius times ``factor``: the region prepared anew around the handle, the move so far applied
+        to it; where the new region cannot be prepared the old one stays."""
+        old, radius = self._drag, self.radius
+        mesh_io.write_positions(self._obj, old.base, old.moving)  # the mesh as read, for the new region
+        self.radius = radius * factor
+        drag = self.prepare(context)
+        if drag is None:
+            global _last_drag
+            self._drag, _last_drag, self.radius = old, old, radius
+            mesh_io.write_positions(self._obj, old.positions, old.moving)
+            self.show(context, f"radius {radius * factor:.4g} cannot be prepared, kept {radius:.4g}")
+            return
+        self._drag = drag
+        frame = drag.frame(old.move)
+        mesh_io.write_positions(self._obj, drag.positions, drag.moving)
+        self.show(
+            context, f"radius {self.radius:.4g}: prepared in {drag.prepare_seconds * 1e3:.0f} ms, {frame.status()}"
+        )
+
+    def draw_circle(self):
+        """The radius as a circle around the handle's centre in the view (POST_PIXEL), as Proportional Editing's."""
+        region, drag = self._region, self._drag
+        if drag is None or bpy.context.region != region:
+            return
+        world = self._obj.matrix_world
+        centre = world @ Vector((drag.centre + drag.move.offset).tolist())
+        right = region.data.view_rotation @ Vector((1.0, 0.0, 0.0))
+        extent = (world.to_3x3() @ Vector((self.radius, 0.0, 0.0))).length
+        middle = view3d_utils.location_3d_to_region_2d(region, region.data, centre)
+        edge = view3d_utils.location_3d_to_region_2d(region, region.data, centre + extent * right)
+        if middle is None or edge is None:
+            return
+        overlays.draw_circle_2d(middle, (edge - middle).length)
 
     def start_mode(self, mode, committed, event):
         """G, R or S from the handle as ``committed`` left it, the mouse where it is now."""
@@ -599,7 +647,9 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         return mouse - centre if centre is not None else Vector((0.0, 0.0))
 
     def modal(self, context, event):
-        if event.type == "MOUSEMOVE":
+        if self.radius > 0.0 and event.type in RADIUS_EVENTS and event.value in {"PRESS", "NOTHING"}:
+            self.resize(context, RADIUS_EVENTS[event.type])
+        elif event.type == "MOUSEMOVE":
             self._mouse = self.mouse_point(event)
             now = self.mouse_2d(event)
             if self._last_2d.length > 0.0 and now.length > 0.0:
@@ -687,6 +737,9 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
 
     def end(self, context):
         self._drag = None
+        if self._circle is not None:
+            bpy.types.SpaceView3D.draw_handler_remove(self._circle, "WINDOW")
+            self._circle = None
         if context.area is not None:
             context.area.header_text_set(None)
 

@@ -5,6 +5,8 @@
   temporary PNG. It shows on every object in that 3D View. No material, node
   group or image is made; the studio light and its file are removed when the
   last view turns zebra off.
+- Live Fair Drag's radius: a circle drawn in the view while the drag runs
+  (:func:`draw_circle_2d`, from the operator's draw handler).
 - Mean curvature: H from ``geofair.mean_curvature`` as a float colour attribute
   (point domain) of the active mesh, blue–white–red symmetric around 0, shown
   with Solid shading coloured by attribute. Removed on toggling off. On at most
@@ -18,12 +20,15 @@ and render colour attributes. A file is never saved with either on: they are
 taken off before saving and put back after.
 """
 
+import math
 import os
 import shutil
 import tempfile
 
 import bmesh
 import bpy
+import gpu
+from gpu_extras.batch import batch_for_shader
 
 from . import display, mesh_io, native
 
@@ -39,6 +44,25 @@ _zebra = {}
 # global undo reallocates meshes.
 _curvature = {}
 _zebra_file = None  # the matcap PNG while the studio light is loaded
+
+
+def draw_circle_2d(centre, radius, colour=(1.0, 1.0, 1.0, 0.7), segments=64):
+    """A circle of ``radius`` pixels around ``centre`` (region pixels), in a POST_PIXEL draw handler."""
+    try:
+        shader = gpu.shader.from_builtin("UNIFORM_COLOR")
+    except ValueError:  # Blender before 4.0 names it by dimension
+        shader = gpu.shader.from_builtin("2D_UNIFORM_COLOR")
+    points = [
+        (
+            centre[0] + radius * math.cos(2 * math.pi * k / segments),
+            centre[1] + radius * math.sin(2 * math.pi * k / segments),
+        )
+        for k in range(segments + 1)
+    ]
+    batch = batch_for_shader(shader, "LINE_STRIP", {"pos": points})
+    shader.bind()
+    shader.uniform_float("color", colour)
+    batch.draw(shader)
 
 
 # -- finding views and meshes by pointer (never keep Blender structs across calls) -------------------------------

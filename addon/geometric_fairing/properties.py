@@ -331,6 +331,20 @@ def _live_details(**options):
     )
 
 
+def _live_radius(**options):
+    return FloatProperty(
+        name="Radius",
+        description="Live Fair Drag's region: the faces within this distance of the handle along the surface, the "
+        "handle being the selected vertices (Proportional Editing's way; the mouse wheel or Page Up/Down changes it "
+        "during the drag). 0: Fair's region (the selected faces or the Region vertex group) and the Pin group's handle",
+        default=0.0,
+        min=0.0,
+        soft_max=10.0,
+        subtype="DISTANCE",
+        **options,
+    )
+
+
 def addon_preferences(context=None):
     """The add-on's :class:`FairingPreferences`, or None when it was not enabled through the preferences."""
     context = context or bpy.context
@@ -458,6 +472,7 @@ class FairingSettings(bpy.types.PropertyGroup):
     pin_group: _pin_group()
     use_hidden: _use_hidden()
     live_details: _live_details()
+    live_radius: _live_radius()
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ twice the triangle area.
 """
 
 import functools
+import heapq
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -313,6 +314,46 @@ def polygons_inside(vertex_mask, loop_start, loop_total, corner_verts):
     outside = ~vertex_mask[corner_verts[loop_start[polygon] + offset]]
     missing = np.bincount(polygon, weights=outside, minlength=len(loop_start))
     return missing == 0
+
+
+def surface_distances(vertices, triangles, sources, limit):
+    """Distances along the mesh's edges from the ``sources`` vertices (Dijkstra), up to ``limit``.
+
+    The radius region of Live Fair Drag: the vertices within ``limit`` of the handle along the
+    surface (the triangles' edges; a quad's diagonal counts as a path too).
+
+    Args:
+        vertices: ``(n, 3)`` float positions.
+        triangles: ``(T, 3)`` int triangles.
+        sources: ``(n,)`` bool, the vertices at distance 0.
+        limit: the largest distance looked for (mesh units).
+
+    Returns:
+        ``(n,)`` float distances, ``inf`` beyond ``limit`` or where no edge path leads.
+    """
+    vertices = np.asarray(vertices, dtype=np.float64)
+    triangles = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    n = len(vertices)
+    edges = np.unique(np.sort(triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0)
+    edges = np.concatenate([edges, edges[:, ::-1]])
+    edges = edges[np.argsort(edges[:, 0], kind="stable")]
+    start = np.searchsorted(edges[:, 0], np.arange(n + 1))
+    neighbour = edges[:, 1].tolist()
+    length = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).tolist()
+    start = start.tolist()
+    distance = np.full(n, np.inf)
+    queue = [(0.0, int(v)) for v in np.flatnonzero(np.asarray(sources, dtype=bool))]
+    heapq.heapify(queue)
+    while queue:
+        d, v = heapq.heappop(queue)
+        if d >= distance[v]:
+            continue
+        distance[v] = d
+        for k in range(start[v], start[v + 1]):
+            e = d + length[k]
+            if e <= limit and e < distance[neighbour[k]]:
+                heapq.heappush(queue, (e, neighbour[k]))
+    return distance
 
 
 def boundary_loops(triangles, free):

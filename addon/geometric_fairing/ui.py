@@ -64,6 +64,7 @@ class VIEW3D_PT_geometric_fairing(FairingPanel, bpy.types.Panel):
         row = column.row(align=True)
         row.operator(MESH_OT_geometric_fairing_live.bl_idname, text="Live Fair Drag", icon="VIEW_PAN")
         row.prop(settings, "live_details", text="", icon="MOD_DISPLACE")
+        column.prop(settings, "live_radius")
         column.label(text=_handle_text(settings), icon="PINNED")
         row = layout.row()
         row.operator(MESH_OT_geometric_fairing_fill_holes.bl_idname, text="Fill Holes", icon="MOD_TRIANGULATE")
@@ -168,6 +169,8 @@ class VIEW3D_PT_geometric_fairing_inspect(FairingPanel, bpy.types.Panel):
 
 def _handle_text(settings):
     """Which vertices Live Fair Drag moves, in the panel's words."""
+    if settings.live_radius > 0.0:
+        return "Handle: the selection, region within Radius"
     if settings.region_group:
         return "Handle: Pin group and selection in Region"
     if settings.pin_group:

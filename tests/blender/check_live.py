@@ -182,24 +182,62 @@ def check_refusals(obj, region_deg):
     bpy.ops.ed.undo_push(message="selected the region again")
 
 
+def select_vertices(obj, vertices):
+    """Vertex select mode with exactly ``vertices`` selected (Edit Mode)."""
+    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
+    bm = bmesh.from_edit_mesh(obj.data)
+    chosen = set(np.asarray(vertices).tolist())
+    for vertex in bm.verts:
+        vertex.select_set(vertex.index in chosen)
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+
+
 def check_region_group(addon, obj, handle):
     """With a Region vertex group, the selected vertices inside it are the handle."""
     bpy.ops.object.mode_set(mode="OBJECT")
     inside = np.flatnonzero(angle_to_axis(positions(obj).astype(np.float64)) < 50.0)
     obj.vertex_groups.new(name="Region").add(inside.tolist(), 1.0, "REPLACE")
     bpy.ops.object.mode_set(mode="EDIT")
-    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
-    bm = bmesh.from_edit_mesh(obj.data)
-    bm.verts.ensure_lookup_table()
-    for vertex in bm.verts:
-        vertex.select_set(vertex.index in set(handle.tolist()))
-    bm.select_flush_mode()
-    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    select_vertices(obj, handle)
     result, error = live(region_group="Region", pin_group="", offset=OFFSET)
     assert result == {"FINISHED"}, (result, error)
     drag = addon.operators.last_drag()
     assert np.array_equal(np.flatnonzero(drag.handle), handle), "not the selection in Region"
     print(f"ok: Region vertex group, the selected vertices the handle: {drag.summary()}")
+    bpy.ops.ed.undo()
+
+
+def check_radius(addon, obj, handle):
+    """Radius: the selected vertices are the handle, the region the faces within the radius along the
+    surface; nothing beyond it moves; one undo restores. Nothing selected: refused."""
+    select_vertices(obj, handle)
+    bpy.ops.ed.undo_push(message="selected the handle")
+    before = edit_state(obj)
+    start = positions(obj).astype(np.float64)
+    result, error = live(pin_group="", radius=0.6, offset=OFFSET)
+    assert result == {"FINISHED"}, (result, error)
+    drag = addon.operators.last_drag()
+    assert np.array_equal(np.flatnonzero(drag.handle), handle), "the handle is not the selection"
+    angle = np.radians(angle_to_axis(start))
+    # The handle's angular radius and the radius along the unit sphere; edge paths are longer than the
+    # great circles, and a free vertex lies a ring of faces inside (rings 5.6° apart): measured 33.7°.
+    reach = np.radians(10.0) + 0.6
+    assert reach - np.radians(3 * 5.625) < angle[drag.free].max() <= reach, angle[drag.free].max()
+    after = positions(obj).astype(np.float64)
+    moved = np.any(after != start, axis=1)
+    assert moved[drag.free].any() and not moved[~(drag.free | drag.handle)].any(), "a vertex beyond the radius moved"
+    print(f"ok: Radius 0.6: {drag.summary()}; free vertices up to {np.degrees(angle[drag.free].max()):.1f}° from +x")
+    bpy.ops.ed.undo()
+    assert edit_state(obj) == before, "one undo did not restore every byte"
+    result, error = live(pin_group="", radius=0.9, offset=OFFSET)
+    assert result == {"FINISHED"}, (result, error)
+    wider = addon.operators.last_drag()
+    assert wider.free_count > drag.free_count and not wider.free[drag.free].sum() < drag.free_count
+    print(f"ok: Radius 0.9: {wider.summary()}")
+    bpy.ops.ed.undo()
+    bpy.ops.mesh.select_all(action="DESELECT")
+    expect_refused(obj, "No vertex is selected: select the handle's vertices", pin_group="", radius=0.6)
     bpy.ops.ed.undo()
 
 
@@ -226,6 +264,7 @@ def main():
     check_drag(addon, obj, handle)
     check_turn_and_scale(addon, obj, handle)
     check_region_group(addon, obj, handle)
+    check_radius(addon, obj, handle)
     bpy.ops.object.mode_set(mode="OBJECT")
     bpy.data.objects.remove(obj)
     frame_times(addon)

@@ -10,6 +10,7 @@ Needs a display (Xvfb) and Blender's event simulation, as check_modal.py:
 import sys
 import traceback
 
+import bmesh
 import bpy
 
 # isort: split
@@ -142,7 +143,42 @@ def checks(addon, obj):
         bpy.ops.ed.undo()
     assert edit_state(obj) == before, "one undo did not restore every byte"
     print("ok: one undo restored the mesh byte for byte")
+    yield from radius_by_wheel(addon, obj)
     print("check_live_modal: all checks passed")
+
+
+def radius_by_wheel(addon, obj):
+    """With a radius the selected vertices are the handle; the wheel (down: larger, as Proportional
+    Editing's) prepares a larger region and keeps the move; Esc restores every byte."""
+    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
+    handle = np.flatnonzero(angle_to_axis(positions(obj).astype(np.float64)) < 10.0)
+    bm = bmesh.from_edit_mesh(obj.data)
+    for vertex in bm.verts:
+        vertex.select_set(vertex.index in set(handle.tolist()))
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    bpy.ops.ed.undo_push(message="selected the handle")
+    before = edit_state(obj)
+    mouse(0, 0)
+    yield 0.2
+    window, area, region = window_view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        started = bpy.ops.mesh.geometric_fairing_live("INVOKE_DEFAULT", pin_group="", radius=0.6)
+    assert started == {"RUNNING_MODAL"}, started
+    yield from drag_a_little()
+    small = addon.operators.last_drag()
+    assert np.array_equal(np.flatnonzero(small.handle), handle), "the handle is not the selection"
+    mouse(0, 15, "WHEELDOWNMOUSE", "PRESS")
+    yield 0.5
+    large = addon.operators.last_drag()
+    assert large is not small and large.free_count > small.free_count, (small.summary(), large.summary())
+    assert np.allclose(large.offset, small.offset), "the move was not kept"
+    print(f"ok: the wheel grows the radius: {small.free_count} -> {large.free_count} free vertices, move kept")
+    mouse(0, 40, "ESC", "PRESS")
+    mouse(0, 40, "ESC", "RELEASE")
+    yield 0.3
+    assert edit_state(obj) == before, "Esc did not restore every byte"
+    print("ok: Esc after resizing restored the mesh byte for byte")
 
 
 def main():
