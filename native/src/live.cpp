@@ -38,6 +38,9 @@ double diagonal(const Positions& X) {
   return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
 }
 
+// The secant predictor's largest multiple of the last frame's response (warm_frame).
+constexpr double kSecantLimit = 2.0;
+
 // The warm start's predictor: the harmonic extension (uniform weights, Δu = 0 at the free
 // vertices) of the fixed vertices' moves since the last frame into the free ones, so that the
 // vertices next to a moving handle move with it instead of being squashed against it (a
@@ -160,6 +163,8 @@ struct LiveFairing::State {
   Positions X;              // the last converged frame's region positions (local ids, / scale);
                             // with details its base
   bool warm = false;        // X is a converged solution to start from
+  Positions last_step;      // the last warm frame's change of X (#region×3), the secant predictor's
+  bool has_step = false;
   FairingResult last;
   int frames = 0, cold_frames = 0;
   mutable std::mutex mutex;  // update() and result() take turns
@@ -185,6 +190,7 @@ struct LiveFairing::State {
   void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
     warm = true;
+    has_step = false;
     if (details) result.vertices = caller_positions(result.vertices, X);
     last = result;
   }
@@ -245,8 +251,26 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   const double L = diagonal(X0);
   if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
   const int nb = region.n - region.n_free;
-  Positions Y = X;
+  Positions Y;
   IterationReport report;
+  bool retried = false;  // from the harmonic start after the secant one failed
+  // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
+  // With `secant`, the part α·m of the fixed vertices' moves along the last warm frame's moves
+  // m brings α times that frame's free response (a steady drag repeats its response), the rest
+  // its harmonic extension; else the harmonic extension of all of it.
+  auto start = [&](bool secant) {
+    Y = X;
+    Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
+    const double last = secant ? last_step.bottomRows(nb).squaredNorm() : 0.0;
+    if (last > 0.0) {
+      const double alpha = std::clamp(moves.cwiseProduct(last_step.bottomRows(nb)).sum() / last,
+                                      -kSecantLimit, kSecantLimit);
+      moves -= alpha * last_step.bottomRows(nb);
+      Y.topRows(region.n_free) += alpha * last_step.topRows(region.n_free);
+    }
+    predictor->predict(moves, Y);
+    Y.bottomRows(nb) = X0.bottomRows(nb);
+  };
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
   try {
@@ -256,31 +280,40 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
         construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
     }
     construction->set_boundary(finest.g1_normals, L);
-    // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
-    predictor->predict(X0.bottomRows(nb) - X.bottomRows(nb), Y);
-    Y.bottomRows(nb) = X0.bottomRows(nb);
-    phases.emplace_back("boundary data and predictor", laps.lap());
     NewtonRun run;
     run.max_iterations = live.max_warm_steps;
     run.tolerance = options.tolerance;
     run.patience = options.tuning.newton.patience;
     run.polish_at_convergence = true;
     run.warm = true;
-    report = construction->run_newton(Y, run);
+    // The secant start first; where Newton does not converge from it (a drag whose response
+    // changes, as triangles squeeze), the harmonic one.
+    for (const bool secant : {true, false}) {
+      if (secant && !has_step) continue;
+      retried = has_step && !secant;
+      start(secant);
+      phases.emplace_back("boundary data and predictor", laps.lap());
+      report = construction->run_newton(Y, run);
+      laps.lap();  // run_newton's own seconds, below
+      phases.emplace_back("warm inner fairness", report.relax_seconds);
+      phases.emplace_back("warm Newton steps", report.step_seconds);
+      phases.emplace_back("warm polishes", report.polish_seconds);
+      if (report.converged && Y.topRows(region.n_free).allFinite()) break;
+    }
   } catch (const SolverError& error) {
     why = error.what();
     return std::nullopt;
   }
-  laps.lap();  // run_newton's own seconds, below
-  phases.emplace_back("warm inner fairness", report.relax_seconds);
-  phases.emplace_back("warm Newton steps", report.step_seconds);
-  phases.emplace_back("warm polishes", report.polish_seconds);
   if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
     why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
     return std::nullopt;
   }
+  last_step = Y - X;
+  has_step = true;
   X = Y;
   FairingResult result = warm_result(V, X0, Y, report);
+  if (retried)
+    result.message += "; from the harmonic predictor (Newton did not converge from the secant one)";
   phases.emplace_back("result", laps.lap());
   return result;
 }
