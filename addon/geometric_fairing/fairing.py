@@ -335,6 +335,31 @@ def _pinned(obj, options, mesh, pin_selected):
     return pinned
 
 
+def _region_faces(obj, options, mesh, faces, present, pin_selected, handle_radius):
+    """``(faces, pin_selected)``: the faces to fair (FairingRun's ``faces``, ``handle_radius`` and
+    ``options.region_group`` rules) and whether the selected vertices are pinned."""
+    if handle_radius is not None:
+        if not mesh.vertex_selected.any():
+            raise region.NothingSelectedError("No vertex is selected: select the handle's vertices")
+        near = region.surface_distances(mesh.vertices, mesh.triangles, mesh.vertex_selected, handle_radius)
+        faces = region.polygons_inside(near <= handle_radius, mesh.loop_start, mesh.loop_total, mesh.corner_verts)
+        faces &= present
+        if not faces.any():
+            raise region.NothingSelectedError(f"No face lies within the radius {handle_radius:.4g} of the handle")
+        return faces, True
+    if faces is None and options.region_group:
+        if obj.vertex_groups.get(options.region_group) is None:
+            raise region.NothingSelectedError(f"'{obj.name}' has no vertex group '{options.region_group}'")
+        inside = mesh_io.vertex_group_weights(obj, options.region_group) > 0.0
+        faces = region.polygons_inside(inside, mesh.loop_start, mesh.loop_total, mesh.corner_verts) & present
+        if not faces.any():
+            raise region.NothingSelectedError(f"Vertex group '{options.region_group}' encloses no face")
+    elif faces is None:
+        faces = mesh.face_selected & present
+        region.require_selected_faces(faces, mesh.vertex_selected)
+    return faces, pin_selected
+
+
 class FairingRun(_WorkerThread):
     """A fairing run on the mesh of ``obj`` (Edit Mode or Object Mode).
 
@@ -392,25 +417,7 @@ class FairingRun(_WorkerThread):
         self.timings["read"] = time.perf_counter() - clock
         clock = time.perf_counter()
         present = np.ones(len(mesh.loop_start), dtype=bool) if options.use_hidden else ~mesh.face_hidden
-        if handle_radius is not None:
-            if not mesh.vertex_selected.any():
-                raise region.NothingSelectedError("No vertex is selected: select the handle's vertices")
-            near = region.surface_distances(mesh.vertices, mesh.triangles, mesh.vertex_selected, handle_radius)
-            faces = region.polygons_inside(near <= handle_radius, mesh.loop_start, mesh.loop_total, mesh.corner_verts)
-            faces &= present
-            pin_selected = True
-            if not faces.any():
-                raise region.NothingSelectedError(f"No face lies within the radius {handle_radius:.4g} of the handle")
-        elif faces is None and options.region_group:
-            if obj.vertex_groups.get(options.region_group) is None:
-                raise region.NothingSelectedError(f"'{obj.name}' has no vertex group '{options.region_group}'")
-            inside = mesh_io.vertex_group_weights(obj, options.region_group) > 0.0
-            faces = region.polygons_inside(inside, mesh.loop_start, mesh.loop_total, mesh.corner_verts) & present
-            if not faces.any():
-                raise region.NothingSelectedError(f"Vertex group '{options.region_group}' encloses no face")
-        elif faces is None:
-            faces = mesh.face_selected & present
-            region.require_selected_faces(faces, mesh.vertex_selected)
+        faces, pin_selected = _region_faces(obj, options, mesh, faces, present, pin_selected, handle_radius)
         faces = np.asarray(faces, dtype=bool)
         if faces.shape != (len(mesh.loop_start),):
             raise ValueError(f"the face mask must have one entry per face ({len(mesh.loop_start)}), not {faces.shape}")

@@ -199,6 +199,13 @@ struct LiveFairing::State {
   FairingResult warm_result(const Positions& V, const Positions& X0, const Positions& Y,
                             const IterationReport& report) const;
 
+  // The start of a warm frame for the region positions X0 (its fixed rows the frame's): the
+  // last frame, its free vertices moved with the fixed ones (the predictor). With `secant`, the
+  // part α·m of the fixed vertices' moves along the last warm frame's moves m brings α times
+  // that frame's free response (a steady drag repeats its response), the rest its harmonic
+  // extension; else the harmonic extension of all of it.
+  Positions warm_start(const Positions& X0, bool secant) const;
+
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).
   std::optional<FairingResult> warm_frame(const Positions& V, const Positions& W,
@@ -236,6 +243,22 @@ FairingResult LiveFairing::State::warm_result(const Positions& V, const Position
   return result;
 }
 
+Positions LiveFairing::State::warm_start(const Positions& X0, bool secant) const {
+  const int nb = region.n - region.n_free;
+  Positions Y = X;
+  Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
+  const double last = secant && has_step ? last_step.bottomRows(nb).squaredNorm() : 0.0;
+  if (last > 0.0) {
+    const double alpha = std::clamp(moves.cwiseProduct(last_step.bottomRows(nb)).sum() / last,
+                                    -kSecantLimit, kSecantLimit);
+    moves -= alpha * last_step.bottomRows(nb);
+    Y.topRows(region.n_free) += alpha * last_step.topRows(region.n_free);
+  }
+  predictor->predict(moves, Y);
+  Y.bottomRows(nb) = X0.bottomRows(nb);
+  return Y;
+}
+
 std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
                                                             const Positions& W,
                                                             const Positions* boundary_normals,
@@ -250,27 +273,9 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   const Positions X0 = gather(W, region.global);
   const double L = diagonal(X0);
   if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
-  const int nb = region.n - region.n_free;
   Positions Y;
   IterationReport report;
   bool retried = false;  // from the harmonic start after the secant one failed
-  // The start: the last frame, its free vertices moved with the fixed ones (the predictor).
-  // With `secant`, the part α·m of the fixed vertices' moves along the last warm frame's moves
-  // m brings α times that frame's free response (a steady drag repeats its response), the rest
-  // its harmonic extension; else the harmonic extension of all of it.
-  auto start = [&](bool secant) {
-    Y = X;
-    Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
-    const double last = secant ? last_step.bottomRows(nb).squaredNorm() : 0.0;
-    if (last > 0.0) {
-      const double alpha = std::clamp(moves.cwiseProduct(last_step.bottomRows(nb)).sum() / last,
-                                      -kSecantLimit, kSecantLimit);
-      moves -= alpha * last_step.bottomRows(nb);
-      Y.topRows(region.n_free) += alpha * last_step.topRows(region.n_free);
-    }
-    predictor->predict(moves, Y);
-    Y.bottomRows(nb) = X0.bottomRows(nb);
-  };
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
   try {
@@ -291,7 +296,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     for (const bool secant : {true, false}) {
       if (secant && !has_step) continue;
       retried = has_step && !secant;
-      start(secant);
+      Y = warm_start(X0, secant);
       phases.emplace_back("boundary data and predictor", laps.lap());
       report = construction->run_newton(Y, run);
       laps.lap();  // run_newton's own seconds, below
