@@ -274,13 +274,19 @@ for options in ({}, {"inner_fairness": "conformal"}, {"iteration": "paper"}):
     r = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals, **options)
     digest.update(np.ascontiguousarray(r.vertices).tobytes())
     digest.update(np.float64(r.residual).tobytes())
+live = geofair.LiveFairing(v, s.faces, s.free, boundary_normals=s.normals)
+for k in range(1, 4):  # warm frames: the boundary lifted along the normals
+    moved = v + (0.01 * k) * s.normals * (~s.free)[:, None]
+    r = live.update(moved, boundary_normals=s.normals)
+    digest.update(np.ascontiguousarray(r.vertices).tobytes())
 print(digest.hexdigest())
 """
 
 
 def test_results_do_not_depend_on_the_thread_count():
     # GEOFAIR_NUM_THREADS is an exact request (even above the machine's cores), so 1, 2 and 3
-    # threads cut every parallel loop of the solve into different chunks: the bytes must agree.
+    # threads cut every parallel loop of the solves and of LiveFairing's warm frames into
+    # different chunks: the bytes must agree.
     digests = {}
     for threads in ("1", "2", "3"):
         env = {k: v for k, v in os.environ.items() if k not in ("GEOFAIR_NUM_THREADS", "OMP_NUM_THREADS")}

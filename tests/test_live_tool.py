@@ -155,17 +155,18 @@ def test_a_scaled_handle_is_the_cold_fair_of_its_input(sphere_region):
     cold = geofair.fair(target, f, r.free, boundary_normals=normals)  # a scaling keeps the normals
     assert cold.converged
     error = np.abs(drag.positions - cold.vertices).max() / region_diagonal(target, f, r.free)
-    assert error < 1e-4, error
+    assert error < 1e-6, error  # measured 2.5e-8
 
 
 def test_handle_moves_compose_and_interpolate():
     rng = np.random.default_rng(5)
-    for angle in (0.0, 1e-7, 0.4, 2.0, np.pi):
+    for angle in (0.0, 1e-7, 0.4, 2.0, np.pi - 1e-4, np.pi - 5e-10, np.pi):
         axis = rng.normal(size=3)
         rotation = live.rotation_matrix(axis, angle)
         assert np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-14) and np.isclose(np.linalg.det(rotation), 1.0)
         back_axis, back_angle = live.axis_angle(rotation)
-        assert np.allclose(live.rotation_matrix(back_axis, back_angle), rotation, atol=1e-7)
+        assert abs(back_angle - angle) <= 1e-12 * max(angle, 1e-3), (angle, back_angle)
+        assert np.allclose(live.rotation_matrix(back_axis, back_angle), rotation, rtol=0.0, atol=1e-12), angle
     a = live.HandleMove(rng.normal(size=3), live.rotation_matrix(rng.normal(size=3), 1.1), 0.7)
     b = live.HandleMove(rng.normal(size=3), live.rotation_matrix(rng.normal(size=3), 2.5), 1.9)
     points, centre = rng.normal(size=(6, 3)), rng.normal(size=3)
@@ -177,3 +178,49 @@ def test_handle_moves_compose_and_interpolate():
     _, turn = live.axis_angle(b.rotation @ a.rotation.T)
     _, half_turn = live.axis_angle(half.rotation @ a.rotation.T)
     assert np.isclose(half_turn, turn / 2)
+
+
+def test_typed_and_mouse_turns_follow_blenders_conventions():
+    # Seen from below (the view's axis towards the viewer is -Z): the mouse turning counter-clockwise
+    # turns the handle counter-clockwise as seen, about -Z; a typed angle about the axis into the
+    # screen (+Z here), or about the global axis as it is.
+    still, view, to_object = live.HandleMove(), np.array([0.0, 0.0, -1.0]), np.eye(3)
+    cases = [
+        (dict(angle=0.3, axis=None, typed=None), [0.0, 0.0, -1.0], 0.3),
+        (dict(angle=0.3, axis=2, typed=None), [0.0, 0.0, -1.0], 0.3),
+        (dict(angle=0.0, axis=None, typed=10.0), [0.0, 0.0, 1.0], np.radians(10.0)),
+        (dict(angle=0.0, axis=2, typed=10.0), [0.0, 0.0, 1.0], np.radians(10.0)),
+        (dict(angle=0.0, axis=0, typed=-30.0), [-1.0, 0.0, 0.0], np.radians(30.0)),
+    ]
+    for options, axis, angle in cases:
+        move = live.mode_move("ROTATE", still, to_object, np.zeros(3), view_axis=view, factor=1.0, **options)
+        assert np.allclose(move.rotation, live.rotation_matrix(axis, angle), atol=1e-15), options
+        assert np.allclose(move.offset, 0.0) and move.scale == 1.0
+    # About the centre where an earlier move left it: that centre stays put.
+    moved = live.HandleMove(offset=np.array([0.3, -0.2, 0.5]))
+    turned = live.mode_move("ROTATE", moved, to_object, np.zeros(3), 0.7, view, 1.0)
+    scaled = live.mode_move("SCALE", moved, to_object, np.zeros(3), 0.0, view, 1.7)
+    centre = np.array([1.0, 2.0, 3.0])
+    for move in (turned, scaled):
+        assert np.allclose(move.points(centre[None], centre), centre + moved.offset)
+    assert live.mode_move("SCALE", still, to_object, np.zeros(3), 0.0, view, factor=-2.0).scale == 2.0
+    shifted = live.mode_move("TRANSLATE", still, 2.0 * np.eye(3), np.array([1.0, 2.0, 3.0]), 0.0, view, 1.0, axis=1)
+    assert np.array_equal(shifted.offset, [0.0, 4.0, 0.0])  # along global Y only, in object units
+    assert live.typed_value(live.typed_text(live.typed_text("1", "PERIOD"), "FIVE")) == 1.5
+    assert live.typed_text("2", "MINUS") == "-2" and live.typed_value("-") is None
+
+
+def test_a_long_move_goes_on_over_several_frames_and_turns_in_small_steps(sphere_region):
+    # Cut short after 2 updates a frame, a jump of 0.3 takes several frames and ends exactly there;
+    # a turn of 20° of the handle in place takes at least 20/5 updates (live.MAX_TURN).
+    drag = make_drag(sphere_region)
+    target = live.HandleMove(offset=np.array([0.0, 0.3, 0.0]))
+    frames = [drag.frame(target, max_substeps=2)]
+    while not frames[-1].reached:
+        assert frames[-1].converged and frames[-1].substeps == 2 and "on the way" in frames[-1].status()
+        frames.append(drag.frame(target, max_substeps=2))
+    assert len(frames) >= 2 and frames[-1].converged
+    assert np.array_equal(drag.offset, [0.0, 0.3, 0.0])
+    spin = make_drag(sphere_region)
+    frame = spin.frame(live.HandleMove(rotation=live.rotation_matrix([0.0, 0.0, 1.0], np.radians(20.0))))
+    assert frame.converged and frame.reached and frame.substeps >= 4, frame

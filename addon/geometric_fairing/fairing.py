@@ -324,11 +324,11 @@ class _WorkerThread:
         return self.done
 
 
-def _pinned(obj, options, mesh, pin_selected):
-    """``(n,)`` bool vertices of the Pin group (non-zero weight), and the selected ones with ``pin_selected``;
-    None when neither applies."""
+def _pinned(obj, options, mesh, pin_selected, pin_group=True):
+    """``(n,)`` bool vertices of the Pin group (non-zero weight; not with ``pin_group`` False), and the
+    selected ones with ``pin_selected``; None when neither applies."""
     pinned = None
-    if options.pin_group:
+    if options.pin_group and pin_group:
         pinned = mesh_io.vertex_group_weights(obj, options.pin_group) > 0.0
     if pin_selected:
         pinned = mesh.vertex_selected if pinned is None else pinned | mesh.vertex_selected
@@ -380,8 +380,8 @@ class FairingRun(_WorkerThread):
         pin_selected: the selected vertices are pinned too (Live Fair Drag's handle when a
             Region vertex group or a radius gives the region).
         handle_radius: the region is the faces within this distance (mesh units, along the
-            edges) of the selected vertices (Live Fair Drag's radius), which are pinned; None:
-            ``faces``.
+            edges) of the selected vertices (Live Fair Drag's radius), which are pinned (the
+            Pin group is not used); None: ``faces``.
 
     Raises:
         ValueError: no usable region (:class:`region.RegionError`), a missing
@@ -421,7 +421,7 @@ class FairingRun(_WorkerThread):
         faces = np.asarray(faces, dtype=bool)
         if faces.shape != (len(mesh.loop_start),):
             raise ValueError(f"the face mask must have one entry per face ({len(mesh.loop_start)}), not {faces.shape}")
-        pinned = _pinned(obj, options, mesh, pin_selected)
+        pinned = _pinned(obj, options, mesh, pin_selected, pin_group=handle_radius is None)
         self.present_triangles = present[mesh.triangle_face]
         self.region = region.find_region(
             mesh.vertices, mesh.triangles, faces[mesh.triangle_face], pinned, present=self.present_triangles

@@ -49,18 +49,22 @@ def rotation_matrix(axis, angle):
 def axis_angle(rotation):
     """``(axis (3,), angle)`` of a rotation matrix, the angle in [0, π] radians."""
     r = np.asarray(rotation, dtype=np.float64)
-    angle = math.acos(min(1.0, max(-1.0, (float(np.trace(r)) - 1.0) / 2.0)))
-    w = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
-    if np.linalg.norm(w) > 1e-9:
-        return w / np.linalg.norm(w), angle
-    if angle < 1.0:
+    w = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])  # 2 sin(angle) axis
+    angle = math.atan2(float(np.linalg.norm(w)) / 2.0, (float(np.trace(r)) - 1.0) / 2.0)
+    if angle == 0.0:
         return np.array([1.0, 0.0, 0.0]), 0.0
-    half = (r + np.eye(3)) / 2.0  # a half turn: its axis is a column of (R + I)/2
-    column = half[:, int(np.argmax(np.linalg.norm(half, axis=0)))]
-    return column / np.linalg.norm(column), math.pi
+    if angle < math.pi - 1e-3:
+        return w / np.linalg.norm(w), angle
+    # Near a half turn w is tiny: the axis from the symmetric part (R + Rᵀ)/2 = cos·I + (1 - cos) a aᵀ,
+    # the largest column of a aᵀ, signed along w.
+    cos = (float(np.trace(r)) - 1.0) / 2.0
+    outer = ((r + r.T) / 2.0 - cos * np.eye(3)) / (1.0 - cos)
+    axis = outer[:, int(np.argmax(np.linalg.norm(outer, axis=0)))]
+    axis = axis / np.linalg.norm(axis)
+    return (-axis if axis @ w < 0.0 else axis), angle
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class HandleMove:
     """The handle's move about its centre c (object space): p ↦ c + scale · rotation (p − c) + offset.
 
@@ -110,6 +114,7 @@ class Frame:
         message: the library's account of the last sub-step (or the error's text).
         substeps: updates the frame took (a jump longer than the step length is split).
         folds: edges of the region whose triangles flipped over in the last sub-step.
+        reached: the frame got to ``move`` (not cut short by ``max_substeps``).
     """
 
     move: HandleMove
@@ -120,6 +125,7 @@ class Frame:
     message: str
     substeps: int = 1
     folds: int = 0
+    reached: bool = True
 
     def status(self):
         """The header's text of the frame."""
@@ -131,10 +137,13 @@ class Frame:
             text += f", {self.folds} edge{'s' if self.folds != 1 else ''} folded over"
         if not self.converged:
             text += ", NOT converged: last good positions kept"
+        elif not self.reached:
+            text += ", on the way"
         return text
 
 
 MODES = ("TRANSLATE", "ROTATE", "SCALE")  # Blender's G, R and S
+MAX_TURN = math.radians(5.0)  # the largest turn of the handle's tangent planes in one update
 
 
 def mode_move(mode, committed, to_object, translation, angle, view_axis, factor, axis=None, typed=None):
@@ -148,7 +157,10 @@ def mode_move(mode, committed, to_object, translation, angle, view_axis, factor,
         to_object: ``(3, 3)`` world-to-object linear map (the object's inverted matrix).
         translation: ``(3,)`` the mouse's move in the view plane through the handle (world units).
         angle: the mouse's turn about the handle's centre on screen (radians, counter-clockwise).
-        view_axis: ``(3,)`` unit world direction towards the viewer; the rotation's axis.
+        view_axis: ``(3,)`` unit world direction towards the viewer: the mouse turns the handle
+            about it (as seen, with a global axis flipped to face the viewer); a typed angle turns
+            it about the opposite direction, into the screen, or about the global axis as it is
+            (Blender's convention).
         factor: the mouse's distance from the handle's centre on screen over that at the mode's
             start (the scale).
         axis: 0, 1 or 2: along (G) or about (R) that global axis; None: the view's. Scaling is
@@ -167,9 +179,16 @@ def mode_move(mode, committed, to_object, translation, angle, view_axis, factor,
             world = world[axis] * unit[axis]
         step = HandleMove(offset=to_object @ world)
     elif mode == "ROTATE":
+        # The mouse's turn about the axis towards the viewer (the handle follows the mouse); a typed
+        # angle as Blender's: about the axis into the screen, or about the global axis unflipped.
         view = np.asarray(view_axis, dtype=np.float64)
-        world_axis = view if axis is None else unit[axis] * (1.0 if unit[axis] @ view >= 0.0 else -1.0)
-        rotation = rotation_matrix(to_object @ world_axis, math.radians(typed) if typed is not None else angle)
+        if typed is not None:
+            world_axis, turn = (-view if axis is None else unit[axis]), math.radians(typed)
+        elif axis is None:
+            world_axis, turn = view, angle
+        else:
+            world_axis, turn = unit[axis] * (1.0 if unit[axis] @ view >= 0.0 else -1.0), angle
+        rotation = rotation_matrix(to_object @ world_axis, turn)
         step = HandleMove(offset=centre_offset - rotation @ centre_offset, rotation=rotation)
     elif mode == "SCALE":
         scale = typed if typed is not None else factor
@@ -279,13 +298,14 @@ class LiveDrag:
     def free_count(self):
         return int(np.count_nonzero(self.free))
 
-    def frame(self, move):
+    def frame(self, move, max_substeps=math.inf):
         """Move the handle by ``move`` (a :class:`HandleMove`, or a ``(3,)`` translation; object space) and
-        refair, from the last good move in sub-steps that move no handle vertex by more than :attr:`step`;
-        return the :class:`Frame`.
+        refair, from the last good move in sub-steps that move no handle vertex by more than :attr:`step`
+        and turn it by at most :data:`MAX_TURN`; return the :class:`Frame`.
 
         An unconverged sub-step (or one raising, or with a non-finite position) ends the frame
-        and leaves :attr:`positions` and :attr:`move` at the last good one.
+        and leaves :attr:`positions` and :attr:`move` at the last good one. After ``max_substeps``
+        sub-steps the frame ends on the way (``Frame.reached`` False; the next frame goes on from there).
         """
         if not isinstance(move, HandleMove):
             move = HandleMove(offset=np.asarray(move, dtype=np.float64).reshape(3))
@@ -293,15 +313,18 @@ class LiveDrag:
         handle = self.base[self.handle]
         moved = move.points(handle, self.centre) - start.points(handle, self.centre)
         distance = float(np.linalg.norm(moved, axis=1).max())
-        count = max(1, math.ceil(distance / self.step)) if np.isfinite(distance) and self.step > 0 else 1
+        _, turn = axis_angle(move.rotation @ start.rotation.T)
+        count = 1
+        if np.isfinite(distance) and self.step > 0:
+            count = max(1, math.ceil(distance / self.step), math.ceil(turn / MAX_TURN))
         steps = 0
-        for k in range(1, count + 1):
+        for k in range(1, min(count, max_substeps) + 1):
             sub = self._update(move if k == count else start.toward(move, k / count))
             steps += sub.steps
             if not sub.converged:
                 break
         seconds = time.perf_counter() - clock
-        frame = Frame(move, sub.converged, sub.cold, steps, seconds, sub.message, k, sub.folds)
+        frame = Frame(move, sub.converged, sub.cold, steps, seconds, sub.message, k, sub.folds, k == count)
         self.frames.append(frame)
         return frame
 

@@ -424,6 +424,7 @@ LIVE_HINT = (
 AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
 MODE_EVENTS = {"G": "TRANSLATE", "R": "ROTATE", "S": "SCALE"}
 # The radius's factor per wheel step or key, as Proportional Editing's size.
+MAX_SUBSTEPS = 12  # updates a frame makes before it yields to the next event
 RADIUS_EVENTS = {"WHEELUPMOUSE": 1 / 1.1, "PAGE_UP": 1.1, "WHEELDOWNMOUSE": 1.1, "PAGE_DOWN": 1 / 1.1}
 
 _last_drag = None  # the live.LiveDrag of the last Live Fair Drag
@@ -506,6 +507,8 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     _typed = ""  # a value typed during the mode
     _mouse = None  # the last mouse move's world point
     _circle = None  # the draw handler of the radius's circle
+    _timer = None  # while a frame cut short at MAX_SUBSTEPS goes on
+    _view_axis = None  # towards the viewer as the mode started (world)
 
     @classmethod
     def poll(cls, context):
@@ -610,8 +613,11 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
 
     def draw_circle(self):
         """The radius as a circle around the handle's centre in the view (POST_PIXEL), as Proportional Editing's."""
-        region, drag = self._region, self._drag
-        if drag is None or bpy.context.region != region:
+        try:
+            region, drag = self._region, self._drag
+            if drag is None or bpy.context.region != region:
+                return
+        except ReferenceError:  # the operator ended without end(): nothing to draw
             return
         world = self._obj.matrix_world
         centre = world @ Vector((drag.centre + drag.move.offset).tolist())
@@ -631,6 +637,7 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         self._start = self._mouse = self.mouse_point(event)
         self._start_2d = self._last_2d = self.mouse_2d(event)
         self._angle = 0.0
+        self._view_axis = np.array(self._region.data.view_rotation @ Vector((0.0, 0.0, 1.0)))
 
     def mouse_point(self, event):
         """The mouse's point in the view plane through the handle's centre (world), also when the
@@ -647,7 +654,17 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
         return mouse - centre if centre is not None else Vector((0.0, 0.0))
 
     def modal(self, context, event):
-        if self.radius > 0.0 and event.type in RADIUS_EVENTS and event.value in {"PRESS", "NOTHING"}:
+        try:
+            return self.handle_event(context, event)
+        except Exception as error:  # noqa: BLE001 (every position back; reported, never a half-dragged mesh)
+            self.cancel(context)
+            self.report({"ERROR"}, f"{self.label}: {fairing.error_text(error)}; mesh restored")
+            return {"CANCELLED"}
+
+    def handle_event(self, context, event):
+        if event.type == "TIMER" and self._timer is not None and event.timer == self._timer:
+            self.drag_to(context)  # a frame cut short goes on
+        elif self.radius > 0.0 and event.type in RADIUS_EVENTS and event.value in {"PRESS", "NOTHING"}:
             self.resize(context, RADIUS_EVENTS[event.type])
         elif event.type == "MOUSEMOVE":
             self._mouse = self.mouse_point(event)
@@ -682,22 +699,28 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
             return
         start = self._start_2d
         factor = self._last_2d.length / start.length if start.length >= 1.0 else 1.0
-        rv3d = self._region.data
         move = live.mode_move(
             self._mode,
             self._committed,
             np.array(self._to_object),
             np.array(self._mouse - self._start),
             self._angle,
-            np.array(rv3d.view_rotation @ Vector((0.0, 0.0, 1.0))),
+            self._view_axis,
             factor,
             self._axis,
             live.typed_value(self._typed) if self._typed else None,
         )
-        frame = self._drag.frame(move)
+        frame = self._drag.frame(move, max_substeps=MAX_SUBSTEPS)
         if frame.converged:
             mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
         self.show(context, frame.status())
+        # A frame cut short (a long typed move) goes on at the next timer event: the UI stays live.
+        wm = context.window_manager
+        if frame.converged and not frame.reached and self._timer is None:
+            self._timer = wm.event_timer_add(0.01, window=context.window)
+        elif (frame.reached or not frame.converged) and self._timer is not None:
+            wm.event_timer_remove(self._timer)
+            self._timer = None
 
     def show(self, context, text):
         move = self._drag.move
@@ -731,12 +754,17 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     def cancel(self, context):
         """Esc, RMB, or Blender ending the operator: every position back as it was, byte for byte."""
         drag = self._drag
-        if drag is not None:
-            mesh_io.write_positions(self._obj, drag.base, drag.moving)
-        self.end(context)
+        try:
+            if drag is not None:
+                mesh_io.write_positions(self._obj, drag.base, drag.moving)
+        finally:
+            self.end(context)
 
     def end(self, context):
         self._drag = None
+        if self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
+            self._timer = None
         if self._circle is not None:
             bpy.types.SpaceView3D.draw_handler_remove(self._circle, "WINDOW")
             self._circle = None

@@ -60,9 +60,11 @@ def draw_circle_2d(centre, radius, colour=(1.0, 1.0, 1.0, 0.7), segments=64):
         for k in range(segments + 1)
     ]
     batch = batch_for_shader(shader, "LINE_STRIP", {"pos": points})
+    gpu.state.blend_set("ALPHA")
     shader.bind()
     shader.uniform_float("color", colour)
     batch.draw(shader)
+    gpu.state.blend_set("NONE")
 
 
 # -- finding views and meshes by pointer (never keep Blender structs across calls) -------------------------------

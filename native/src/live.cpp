@@ -291,14 +291,21 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     run.patience = options.tuning.newton.patience;
     run.polish_at_convergence = true;
     run.warm = true;
-    // The secant start first; where Newton does not converge from it (a drag whose response
-    // changes, as triangles squeeze), the harmonic one.
+    // The secant start first; where Newton does not converge from it or fails (a drag whose
+    // response changes, as triangles squeeze), the harmonic one.
+    const bool secant_first = has_step && last_step.bottomRows(region.n - region.n_free).any();
     for (const bool secant : {true, false}) {
-      if (secant && !has_step) continue;
-      retried = has_step && !secant;
+      if (secant && !secant_first) continue;
+      retried = secant_first && !secant;
       Y = warm_start(X0, secant);
       phases.emplace_back("boundary data and predictor", laps.lap());
-      report = construction->run_newton(Y, run);
+      try {
+        report = construction->run_newton(Y, run);
+      } catch (const SolverError&) {
+        if (!secant) throw;
+        report = IterationReport();
+        continue;
+      }
       laps.lap();  // run_newton's own seconds, below
       phases.emplace_back("warm inner fairness", report.relax_seconds);
       phases.emplace_back("warm Newton steps", report.step_seconds);

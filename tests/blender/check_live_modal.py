@@ -12,6 +12,7 @@ import traceback
 
 import bmesh
 import bpy
+from mathutils import Vector
 
 # isort: split
 import numpy as np
@@ -79,9 +80,12 @@ def rotate_and_scale(addon):
     key("ONE"), key("ZERO")
     yield 0.3
     move = addon.operators.last_drag().move
-    _, turned = live.axis_angle(move.rotation @ moved.rotation.T)
+    axis, turned = live.axis_angle(move.rotation @ moved.rotation.T)
     assert np.isclose(np.degrees(turned), 10.0), np.degrees(turned)
-    print(f"ok: R turns the handle with the mouse, 10 typed: {np.degrees(turned):.3f}°")
+    _, _, region = window_view3d()
+    into_screen = -np.array(region.data.view_rotation @ Vector((0.0, 0.0, 1.0)))
+    assert np.allclose(axis, into_screen, atol=1e-5), (axis, into_screen)  # Blender's typed R (object = world)
+    print(f"ok: R turns the handle with the mouse, 10 typed: {np.degrees(turned):.3f}° about the axis into the screen")
     key("S")
     key("ONE"), key("PERIOD"), key("TWO")
     yield 0.3
