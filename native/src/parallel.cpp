@@ -129,7 +129,8 @@ int environment_threads(const char* name) {
 }  // namespace
 
 int requested_threads_from_environment() {
-  static const int threads = environment_threads("GEOFAIR_NUM_THREADS");
+  // Read once per process; at most 4 threads a core (a typo of 1000 would start a thousand).
+  static const int threads = std::min(environment_threads("GEOFAIR_NUM_THREADS"), 4 * machine_cores());
   return threads;
 }
 

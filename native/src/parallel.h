@@ -23,7 +23,8 @@ void set_loop_threads(int threads);
 /// busy now (fairing.cpp).
 int solve_threads();
 
-/// The environment's GEOFAIR_NUM_THREADS as a positive count, else 0.
+/// The environment's GEOFAIR_NUM_THREADS as a positive count (read once, at most 4 threads a
+/// core), else 0.
 int requested_threads_from_environment();
 
 /// The cores of the machine (at least 1).
