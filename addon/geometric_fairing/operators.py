@@ -22,6 +22,8 @@ tolerance) unless *Keep Unconverged Result* is ticked: then it is written with
 a warning.
 """
 
+import time
+
 import bpy
 import numpy as np
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty
@@ -425,6 +427,7 @@ AXIS_EVENTS = {"X": 0, "Y": 1, "Z": 2}
 MODE_EVENTS = {"G": "TRANSLATE", "R": "ROTATE", "S": "SCALE"}
 # The radius's factor per wheel step or key, as Proportional Editing's size.
 MAX_SUBSTEPS = 12  # updates a frame makes before it yields to the next event
+RESIZE_DELAY = 0.15  # seconds the radius's wheel steps gather before the new region is prepared
 RADIUS_EVENTS = {"WHEELUPMOUSE": 1 / 1.1, "PAGE_UP": 1.1, "WHEELDOWNMOUSE": 1.1, "PAGE_DOWN": 1 / 1.1}
 
 _last_drag = None  # the live.LiveDrag of the last Live Fair Drag
@@ -507,7 +510,10 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     _typed = ""  # a value typed during the mode
     _mouse = None  # the last mouse move's world point
     _circle = None  # the draw handler of the radius's circle
-    _timer = None  # while a frame cut short at MAX_SUBSTEPS goes on
+    _timer = None  # while a frame cut short at MAX_SUBSTEPS goes on or wheel steps gather
+    _continuing = False  # the last frame was cut short
+    _resize_factor = 1.0  # the radius's factor of the wheel steps gathered
+    _resize_at = 0.0  # the last wheel step's time (time.perf_counter)
     _view_axis = None  # towards the viewer as the mode started (world)
 
     @classmethod
@@ -662,10 +668,20 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
             return {"CANCELLED"}
 
     def handle_event(self, context, event):
-        if event.type == "TIMER" and self._timer is not None and event.timer == self._timer:
-            self.drag_to(context)  # a frame cut short goes on
-        elif self.radius > 0.0 and event.type in RADIUS_EVENTS and event.value in {"PRESS", "NOTHING"}:
-            self.resize(context, RADIUS_EVENTS[event.type])
+        if event.type == "TIMER":  # the timer of sync_timer (or another's: then nothing is due)
+            if self._resize_factor != 1.0 and time.perf_counter() - self._resize_at >= RESIZE_DELAY:
+                factor, self._resize_factor = self._resize_factor, 1.0
+                self.resize(context, factor)
+            elif self._continuing:
+                self.drag_to(context)  # a frame cut short goes on
+            self.sync_timer(context)
+            return {"PASS_THROUGH"}
+        if self.radius > 0.0 and event.type in RADIUS_EVENTS and event.value in {"PRESS", "NOTHING"}:
+            # Wheel steps in quick succession make one new region (each is a cold fair).
+            self._resize_factor *= RADIUS_EVENTS[event.type]
+            self._resize_at = time.perf_counter()
+            self.sync_timer(context)
+            self.show(context, f"radius {self.radius * self._resize_factor:.4g}: preparing")
         elif event.type == "MOUSEMOVE":
             self._mouse = self.mouse_point(event)
             now = self.mouse_2d(event)
@@ -715,11 +731,16 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
             mesh_io.write_positions(self._obj, self._drag.positions, self._drag.moving)
         self.show(context, frame.status())
         # A frame cut short (a long typed move) goes on at the next timer event: the UI stays live.
-        wm = context.window_manager
-        if frame.converged and not frame.reached and self._timer is None:
-            self._timer = wm.event_timer_add(0.01, window=context.window)
-        elif (frame.reached or not frame.converged) and self._timer is not None:
-            wm.event_timer_remove(self._timer)
+        self._continuing = frame.converged and not frame.reached
+        self.sync_timer(context)
+
+    def sync_timer(self, context):
+        """A timer while a frame cut short goes on or wheel steps gather, none otherwise."""
+        due = self._continuing or self._resize_factor != 1.0
+        if due and self._timer is None:
+            self._timer = context.window_manager.event_timer_add(0.02, window=context.window)
+        elif not due and self._timer is not None:
+            context.window_manager.event_timer_remove(self._timer)
             self._timer = None
 
     def show(self, context, text):

@@ -172,12 +172,14 @@ def radius_by_wheel(addon, obj):
     yield from drag_a_little()
     small = addon.operators.last_drag()
     assert np.array_equal(np.flatnonzero(small.handle), handle), "the handle is not the selection"
+    mouse(0, 15, "WHEELDOWNMOUSE", "PRESS")  # two steps in quick succession: one new region
     mouse(0, 15, "WHEELDOWNMOUSE", "PRESS")
-    yield 0.5
+    yield 0.6
     large = addon.operators.last_drag()
     assert large is not small and large.free_count > small.free_count, (small.summary(), large.summary())
     assert np.allclose(large.offset, small.offset), "the move was not kept"
     print(f"ok: the wheel grows the radius: {small.free_count} -> {large.free_count} free vertices, move kept")
+    print(f"    the drag before: {small.summary()}; after: {large.summary()}")
     mouse(0, 40, "ESC", "PRESS")
     mouse(0, 40, "ESC", "RELEASE")
     yield 0.3
