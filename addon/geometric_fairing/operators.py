@@ -611,7 +611,9 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
             self.show(context, f"radius {radius * factor:.4g} cannot be prepared, kept {radius:.4g}")
             return
         self._drag = drag
-        frame = drag.frame(old.move)
+        frame = drag.frame(old.move, max_substeps=MAX_SUBSTEPS)  # a long move goes on from the timer
+        self._continuing = frame.converged and not frame.reached
+        self.sync_timer(context)
         mesh_io.write_positions(self._obj, drag.positions, drag.moving)
         self.show(
             context, f"radius {self.radius:.4g}: prepared in {drag.prepare_seconds * 1e3:.0f} ms, {frame.status()}"
