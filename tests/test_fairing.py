@@ -288,9 +288,11 @@ def test_results_do_not_depend_on_the_thread_count():
     # threads cut every parallel loop of the solves and of LiveFairing's warm frames into
     # different chunks: the bytes must agree.
     digests = {}
+    dev = os.path.dirname(os.path.dirname(os.path.abspath(scenes.__file__)))  # geofair_dev's folder
     for threads in ("1", "2", "3"):
         env = {k: v for k, v in os.environ.items() if k not in ("GEOFAIR_NUM_THREADS", "OMP_NUM_THREADS")}
         env["GEOFAIR_NUM_THREADS"] = threads
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (dev, env.get("PYTHONPATH")) if p)
         done = subprocess.run(
             [sys.executable, "-c", THREADS_SCRIPT], capture_output=True, text=True, env=env, timeout=600
         )
