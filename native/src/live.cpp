@@ -163,8 +163,8 @@ struct LiveFairing::State {
   Positions X;              // the last converged frame's region positions (local ids, / scale);
                             // with details its base
   bool warm = false;        // X is a converged solution to start from
-  Positions last_step;      // the last warm frame's change of X (#region×3), the secant predictor's
-  bool has_step = false;
+  Positions last_step;      // the last warm frame's change of X (#region×3; empty after a cold
+                            // frame), the secant predictor's
   FairingResult last;
   int frames = 0, cold_frames = 0;
   mutable std::mutex mutex;  // update() and result() take turns
@@ -190,7 +190,7 @@ struct LiveFairing::State {
   void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
     warm = true;
-    has_step = false;
+    last_step.resize(0, 3);
     if (details) result.vertices = caller_positions(result.vertices, X);
     last = result;
   }
@@ -247,7 +247,7 @@ Positions LiveFairing::State::warm_start(const Positions& X0, bool secant) const
   const int nb = region.n - region.n_free;
   Positions Y = X;
   Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
-  const double last = secant && has_step ? last_step.bottomRows(nb).squaredNorm() : 0.0;
+  const double last = secant && last_step.rows() > 0 ? last_step.bottomRows(nb).squaredNorm() : 0.0;
   if (last > 0.0) {
     const double alpha = std::clamp(moves.cwiseProduct(last_step.bottomRows(nb)).sum() / last,
                                     -kSecantLimit, kSecantLimit);
@@ -293,7 +293,8 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     run.warm = true;
     // The secant start first; where Newton does not converge from it or fails (a drag whose
     // response changes, as triangles squeeze), the harmonic one.
-    const bool secant_first = has_step && last_step.bottomRows(region.n - region.n_free).any();
+    const bool secant_first =
+        last_step.rows() > 0 && last_step.bottomRows(region.n - region.n_free).any();
     for (const bool secant : {true, false}) {
       if (secant && !secant_first) continue;
       retried = secant_first && !secant;
@@ -321,7 +322,6 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     return std::nullopt;
   }
   last_step = Y - X;
-  has_step = true;
   X = Y;
   FairingResult result = warm_result(V, X0, Y, report);
   if (retried)
