@@ -86,6 +86,17 @@ def select_faces(obj, inside):
     bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
 
 
+def select_vertices(obj, vertices):
+    """In Edit Mode, vertex select mode with exactly ``vertices`` (indices) selected."""
+    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
+    bm = bmesh.from_edit_mesh(obj.data)
+    chosen = set(np.asarray(vertices).tolist())
+    for vertex in bm.verts:
+        vertex.select_set(vertex.index in chosen)
+    bm.select_flush_mode()
+    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+
+
 def face_centres(obj):
     """``(P, 3)`` face centres of ``obj``'s mesh (Object Mode)."""
     centres = np.empty(3 * len(obj.data.polygons))

@@ -19,11 +19,18 @@ import sys
 import bpy  # first: the bpy module from PyPI makes bmesh importable
 
 # isort: split
-import bmesh
 import numpy as np
 from mathutils import Euler
 
-from geofair_dev.blender import disable_addon, edit_state, enable_addon, parse_args, positions, select_faces
+from geofair_dev.blender import (
+    disable_addon,
+    edit_state,
+    enable_addon,
+    parse_args,
+    positions,
+    select_faces,
+    select_vertices,
+)
 
 AXIS = np.array([1.0, 0.0, 0.0])
 OFFSET = (0.0, 0.15, 0.0)
@@ -180,17 +187,6 @@ def check_refusals(obj, region_deg):
     expect_refused(obj, "No face is selected", pin_group="Handle")
     select_faces(obj, lambda c: angle_to_axis(c) < region_deg)
     bpy.ops.ed.undo_push(message="selected the region again")
-
-
-def select_vertices(obj, vertices):
-    """Vertex select mode with exactly ``vertices`` selected (Edit Mode)."""
-    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
-    bm = bmesh.from_edit_mesh(obj.data)
-    chosen = set(np.asarray(vertices).tolist())
-    for vertex in bm.verts:
-        vertex.select_set(vertex.index in chosen)
-    bm.select_flush_mode()
-    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
 
 
 def check_region_group(addon, obj, handle):

@@ -10,7 +10,6 @@ Needs a display (Xvfb) and Blender's event simulation, as check_modal.py:
 import sys
 import traceback
 
-import bmesh
 import bpy
 from mathutils import Vector
 
@@ -25,6 +24,8 @@ from geofair_dev.blender import (
     parse_args,
     positions,
     select_faces,
+    select_vertices,
+    wait_until,
     window_view3d,
 )
 
@@ -56,6 +57,15 @@ def drag_a_little():
     for step in range(1, 6):
         mouse(0, 3 * step)
         yield 0.2
+
+
+def escape_restores(obj, before, what):
+    """Press Esc; the mesh must be ``before`` byte for byte."""
+    mouse(0, 40, "ESC", "PRESS")
+    mouse(0, 40, "ESC", "RELEASE")
+    yield 0.3
+    assert edit_state(obj) == before, f"{what} did not restore every byte"
+    print(f"ok: {what} restored the mesh byte for byte")
 
 
 def key(event_type, times=1):
@@ -110,11 +120,7 @@ def checks(addon, obj):
     drag = addon.operators.last_drag()
     assert drag.frames and np.any(positions(obj) != handle), "the drag moved nothing"
     print(f"ok: dragging: {drag.summary()}; last frame: {drag.frames[-1].status()}")
-    mouse(0, 40, "ESC", "PRESS")
-    mouse(0, 40, "ESC", "RELEASE")
-    yield 0.3
-    assert edit_state(obj) == before, "Esc did not restore every byte"
-    print("ok: Esc restored the mesh byte for byte")
+    yield from escape_restores(obj, before, "Esc")
 
     mouse(0, 0)
     yield 0.2
@@ -154,13 +160,8 @@ def checks(addon, obj):
 def radius_by_wheel(addon, obj):
     """With a radius the selected vertices are the handle; the wheel (down: larger, as Proportional
     Editing's) prepares a larger region and keeps the move; Esc restores every byte."""
-    bpy.context.tool_settings.mesh_select_mode = (True, False, False)
     handle = np.flatnonzero(angle_to_axis(positions(obj).astype(np.float64)) < 10.0)
-    bm = bmesh.from_edit_mesh(obj.data)
-    for vertex in bm.verts:
-        vertex.select_set(vertex.index in set(handle.tolist()))
-    bm.select_flush_mode()
-    bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    select_vertices(obj, handle)
     bpy.ops.ed.undo_push(message="selected the handle")
     before = edit_state(obj)
     mouse(0, 0)
@@ -174,17 +175,14 @@ def radius_by_wheel(addon, obj):
     assert np.array_equal(np.flatnonzero(small.handle), handle), "the handle is not the selection"
     mouse(0, 15, "WHEELDOWNMOUSE", "PRESS")  # two steps in quick succession: one new region
     mouse(0, 15, "WHEELDOWNMOUSE", "PRESS")
-    yield 0.6
+    yield 0.3
+    yield from wait_until(lambda: addon.operators.last_drag() is not small, "the wheel's new region")
     large = addon.operators.last_drag()
     assert large is not small and large.free_count > small.free_count, (small.summary(), large.summary())
     assert np.allclose(large.offset, small.offset), "the move was not kept"
     print(f"ok: the wheel grows the radius: {small.free_count} -> {large.free_count} free vertices, move kept")
     print(f"    the drag before: {small.summary()}; after: {large.summary()}")
-    mouse(0, 40, "ESC", "PRESS")
-    mouse(0, 40, "ESC", "RELEASE")
-    yield 0.3
-    assert edit_state(obj) == before, "Esc did not restore every byte"
-    print("ok: Esc after resizing restored the mesh byte for byte")
+    yield from escape_restores(obj, before, "Esc after resizing")
 
 
 def main():
