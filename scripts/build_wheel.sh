@@ -6,9 +6,9 @@
 # GEOFAIR_WHEEL=manylinux_2_28 (default): the wheels that are shipped. zig (PyPI `ziglang`)
 #   compiles for glibc 2.28 (Blender's own Linux builds, EL8, the VFX Reference Platform) with
 #   LLVM's libc++ linked in statically; OpenMesh and SuiteSparse (CHOLMOD, UMFPACK, METIS)
-#   are built once from checksummed sources by cmake/deps into build/deps-manylinux_2_28 and
-#   linked statically; the BLAS is PyPI's scipy-openblas32, a dependency of the wheel that the
-#   module loads at import. The module needs nothing but glibc; auditwheel repair checks and
+#   are built once per machine from checksummed sources by cmake/deps (into the folder that
+#   scripts/deps_folder.py names) and linked statically; the BLAS is PyPI's scipy-openblas32,
+#   a dependency of the wheel that the module loads at import. The module needs nothing but glibc; auditwheel repair checks and
 #   tags it.
 # GEOFAIR_WHEEL=system: this machine's GCC, SuiteSparse and OpenBLAS (Debian's),
 #   copied into geofair.libs/ by auditwheel; the tag follows this machine's glibc
@@ -50,7 +50,11 @@ case "$KIND" in
     # only when no depfile is asked for: the wrappers drop CMake's -MD -MT -MF and write an
     # empty depfile (the object's source is in the build rule). Each wheel is built in a fresh
     # folder (below), so no object outlives a change of a header, and the library's sources
-    # compile once for all wheels; only the bindings compile per Python.
+    # compile once for all wheels; only the bindings compile per Python. zig's cache keys on
+    # absolute paths: ccache in front of it (where installed) keys on the paths under the clone
+    # as relative ones (CCACHE_BASEDIR), so another clone on this machine finds the objects.
+    launcher=""
+    if command -v ccache >/dev/null; then launcher=ccache; fi
     for tool in cc c++; do
       cat > "$zig_dir/$tool" <<WRAPPER
 #!/usr/bin/env bash
@@ -64,16 +68,21 @@ while [ \$# -gt 0 ]; do
   esac
   shift
 done
-"$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" -idirafter "$multiarch" || exit
+CCACHE_BASEDIR="$PWD" $launcher "$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" -idirafter "$multiarch" || exit
 if [ -n "\$depfile" ]; then echo "\$target:" > "\$depfile"; fi
 WRAPPER
       chmod +x "$zig_dir/$tool"
     done
-    # The static dependencies, once (a later run finds them built).
-    deps="$PWD/build/deps-$KIND"
-    cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
-      -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
-    cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 || { tail -40 "$deps/build.log"; exit 1; }
+    # The static dependencies, once per machine (scripts/deps_folder.py: keyed on cmake/deps,
+    # the target and zig's version; a later run, in any clone, finds them built).
+    deps=$(python3 scripts/deps_folder.py "$KIND" "$zig")
+    if [ ! -e "$deps/complete" ]; then
+      rm -rf "$deps"
+      cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
+        -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
+      cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 || { tail -40 "$deps/build.log"; exit 1; }
+      touch "$deps/complete"
+    fi
     export CMAKE_ARGS="-DCMAKE_C_COMPILER=$zig_dir/cc -DCMAKE_CXX_COMPILER=$zig_dir/c++ \
 -DGEOFAIR_DEPS_PREFIX=$deps/prefix"
     plat=(--plat manylinux_2_28_x86_64 --only-plat)
@@ -131,7 +140,7 @@ for wheel in dist/geofair-*.whl build/legacy-wheels/geofair-*.whl; do
   if [ "$KIND" = manylinux_2_28 ]; then
     tag=$(basename "$wheel" | cut -d- -f3)
     zig_lib=$(python3 -c 'import os, ziglang; print(os.path.dirname(ziglang.__file__))')/lib
-    sources="build/deps-$KIND"
+    sources="$deps"
     suitesparse="$sources/suitesparse-prefix/src/suitesparse"
     compiled_in=("OpenMesh=$sources/openmesh-prefix/src/openmesh/OpenMesh/LICENSE"
       "SuiteSparse=$suitesparse/LICENSE.txt" "CHOLMOD=$suitesparse/CHOLMOD/Doc/License.txt"

