@@ -80,7 +80,9 @@ WRAPPER
       rm -rf "$deps"
       cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
         -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
-      cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 || { tail -40 "$deps/build.log"; exit 1; }
+      # Not through ccache: its preprocessing only costs here, where the folder is the cache.
+      CCACHE_DISABLE=1 cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 ||
+        { tail -40 "$deps/build.log"; exit 1; }
       touch "$deps/complete"
     fi
     export CMAKE_ARGS="-DCMAKE_C_COMPILER=$zig_dir/cc -DCMAKE_CXX_COMPILER=$zig_dir/c++ \

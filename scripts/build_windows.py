@@ -124,7 +124,11 @@ def build_library(zig, toolchain, jobs):
         run(["cmake", "-S", REPO / "cmake" / "deps", "-B", deps, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}",
              f"-DCMAKE_INSTALL_PREFIX={prefix}"], stdout=subprocess.DEVNULL)  # fmt: skip
         with open(deps / "build.log", "w") as log:
-            built = subprocess.run(["cmake", "--build", deps, "-j", str(jobs)], stdout=log, stderr=subprocess.STDOUT)
+            # Not through ccache: its preprocessing only costs here, where the folder is the cache.
+            env = dict(os.environ, CCACHE_DISABLE="1")
+            built = subprocess.run(
+                ["cmake", "--build", deps, "-j", str(jobs)], stdout=log, stderr=subprocess.STDOUT, env=env
+            )
         if built.returncode != 0:
             raise SystemExit(f"cmake/deps for Windows failed: {deps / 'build.log'}")
         (deps / "complete").touch()
