@@ -10,8 +10,15 @@ SECONDS_TO_RUN="${1:-30}"
 TARGETS=(fuzz_fair fuzz_fill fuzz_remesh)
 EACH=$(( SECONDS_TO_RUN / ${#TARGETS[@]} ))
 if [ "$EACH" -lt 1 ]; then EACH=1; fi
+# Through ccache where installed, keyed on the paths under the clone as relative ones (and,
+# with debug info, not on the build folder), so another clone on this machine reuses them.
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+fi
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGEOFAIR_FUZZ=ON >/dev/null
+  -DGEOFAIR_FUZZ=ON "${launcher[@]}" >/dev/null
 cmake --build build-fuzz --target "${TARGETS[@]}" -j"$(nproc)" >/dev/null
 for target in "${TARGETS[@]}"; do
   corpus="$(mktemp -d)"

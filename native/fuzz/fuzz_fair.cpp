@@ -4,17 +4,16 @@
 // or throw one of the two documented exceptions. Anything else (a crash, a sanitizer
 // report, another exception, NaN in the result) is a bug.
 //
-// Input layout (little-endian bytes, all wrapped into range): n_vertices (1 byte, 3..66),
-// n_triangles (1 byte, 1..128), options (1 byte: inner, outer fairness, levels, normal
-// weighting), then per vertex 3 coordinates (int8 each, scaled by 1/16) and a free flag
-// (1 bit per vertex), then per triangle 3 vertex indices, then per triangle a polygon id
-// (0..15: any grouping of triangles into polygons, bogus ones included; passed to fair only
-// where the first one is below 8).
+// Input layout: fuzz_input.h's, the flag of a vertex read as free, the option byte as inner
+// and outer fairness, levels and normal weighting; then per triangle a polygon id (0..15:
+// any grouping of triangles into polygons, bogus ones included; passed to fair only where
+// the first one is below 8).
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "intrinsic_delaunay.h"
 #include "mean_curvature.h"
 #include "region.h"
+#include "fuzz_input.h"
 
 #include <cmath>
 #include <cstddef>
@@ -22,30 +21,14 @@
 #include <cstdlib>
 #include <vector>
 
-namespace {
-
-struct Reader {
-  const std::uint8_t* data;
-  std::size_t size, pos = 0;
-  std::uint8_t next() { return pos < size ? data[pos++] : 0; }
-};
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  Reader in{data, size};
-  const int nv = 3 + in.next() % 64;
-  const int nf = 1 + in.next() % 128;
-  const std::uint8_t flags = in.next();
-  geofair::Positions V(nv, 3);
-  std::vector<bool> free(nv);
-  for (int v = 0; v < nv; ++v) {
-    for (int c = 0; c < 3; ++c) V(v, c) = static_cast<std::int8_t>(in.next()) / 16.0;
-    free[v] = in.next() & 1;
-  }
-  geofair::Triangles F(nf, 3);
-  for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < 3; ++c) F(f, c) = in.next() % nv;
+  fuzz::Reader in{data, size};
+  const fuzz::Input input = fuzz::read_input(in);
+  const geofair::Positions& V = input.V;
+  const geofair::Triangles& F = input.F;
+  const std::vector<bool>& free = input.flagged;
+  const std::uint8_t flags = input.options;
+  const int nv = int(V.rows()), nf = int(F.rows());
   std::vector<int> polygons(nf);
   for (int f = 0; f < nf; ++f) polygons[f] = in.next() % 16;
 

@@ -4,12 +4,12 @@
 // record for every hole; or throw one of the two documented exceptions. Anything else (a
 // crash, a sanitizer report, another exception, NaN) is a bug.
 //
-// Input layout: that of fuzz_fair.cpp (so its seed corpus serves), the free flags read as
-// "cut": the triangles with a vertex flagged are dropped, which cuts holes into the seeds'
+// Input layout: fuzz_input.h's, the flag of a vertex read as "cut": the triangles with a vertex flagged are dropped, which cuts holes into the seeds'
 // grids. The option byte picks rim (bit 0: trim unless clear and bit 7 set), the boundary
 // (bit 1: G0), keep_outer_borders (bit 2), max_hole_edges (bits 3-4: 0, 4, 8 or 16) and the
 // iteration (bits 5-6).
 #include "geofair/hole_filling.h"
+#include "fuzz_input.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,33 +18,17 @@
 #include <cstdlib>
 #include <vector>
 
-namespace {
-
-struct Reader {
-  const std::uint8_t* data;
-  std::size_t size, pos = 0;
-  std::uint8_t next() { return pos < size ? data[pos++] : 0; }
-};
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  Reader in{data, size};
-  const int nv = 3 + in.next() % 64;
-  const int nf = 1 + in.next() % 128;
-  const std::uint8_t flags = in.next();
-  geofair::Positions V(nv, 3);
-  std::vector<bool> cut(nv);
-  for (int v = 0; v < nv; ++v) {
-    for (int c = 0; c < 3; ++c) V(v, c) = static_cast<std::int8_t>(in.next()) / 16.0;
-    cut[v] = in.next() & 1;
-  }
+  fuzz::Reader in{data, size};
+  const fuzz::Input input = fuzz::read_input(in);
+  const geofair::Positions& V = input.V;
+  const geofair::Triangles& all = input.F;
+  const std::vector<bool>& cut = input.flagged;
+  const std::uint8_t flags = input.options;
+  const int nv = int(V.rows());
   std::vector<int> kept_rows;
-  geofair::Triangles all(nf, 3);
-  for (int f = 0; f < nf; ++f) {
-    for (int c = 0; c < 3; ++c) all(f, c) = in.next() % nv;
+  for (int f = 0; f < all.rows(); ++f)
     if (!cut[all(f, 0)] && !cut[all(f, 1)] && !cut[all(f, 2)]) kept_rows.push_back(f);
-  }
   geofair::Triangles F(static_cast<Eigen::Index>(kept_rows.size()), 3);
   for (std::size_t k = 0; k < kept_rows.size(); ++k) F.row(Eigen::Index(k)) = all.row(kept_rows[k]);
 

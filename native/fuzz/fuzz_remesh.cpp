@@ -3,9 +3,10 @@
 // rows bit-identical, faces indexing its rows, and origin data of its size, or throw one of
 // the two documented exceptions. Anything else is a bug.
 //
-// Input layout: that of fuzz_fair.cpp (its seed corpus serves); the option byte picks
+// Input layout: fuzz_input.h's, the flag of a vertex read as free; the option byte picks
 // Always or IfNeeded (bit 0), the boundary (bit 1: G0) and the inner fairness (bits 2-3).
 #include "geofair/fairing.h"
+#include "fuzz_input.h"
 
 #include <cmath>
 #include <cstddef>
@@ -13,30 +14,13 @@
 #include <cstdlib>
 #include <vector>
 
-namespace {
-
-struct Reader {
-  const std::uint8_t* data;
-  std::size_t size, pos = 0;
-  std::uint8_t next() { return pos < size ? data[pos++] : 0; }
-};
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  Reader in{data, size};
-  const int nv = 3 + in.next() % 64;
-  const int nf = 1 + in.next() % 128;
-  const std::uint8_t flags = in.next();
-  geofair::Positions V(nv, 3);
-  std::vector<bool> free(nv);
-  for (int v = 0; v < nv; ++v) {
-    for (int c = 0; c < 3; ++c) V(v, c) = static_cast<std::int8_t>(in.next()) / 16.0;
-    free[v] = in.next() & 1;
-  }
-  geofair::Triangles F(nf, 3);
-  for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < 3; ++c) F(f, c) = in.next() % nv;
+  fuzz::Reader in{data, size};
+  const fuzz::Input input = fuzz::read_input(in);
+  const geofair::Positions& V = input.V;
+  const std::vector<bool>& free = input.flagged;
+  const std::uint8_t flags = input.options;
+  const int nv = int(V.rows());
 
   geofair::FairingOptions options;
   options.remesh = flags & 1 ? geofair::Remesh::IfNeeded : geofair::Remesh::Always;
@@ -45,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_iterations = 30;
   options.time_limit = 2.0;
   try {
-    const geofair::FairingResult r = geofair::fair(V, F, free, nullptr, options);
+    const geofair::FairingResult r = geofair::fair(V, input.F, free, nullptr, options);
     const Eigen::Index rows = r.vertices.rows();
     if (!r.vertices.allFinite() || !std::isfinite(r.residual) || rows < nv) std::abort();
     for (int v = 0; v < nv; ++v)
