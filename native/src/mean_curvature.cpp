@@ -2,6 +2,7 @@
 #include "mean_curvature.h"
 
 #include "common.h"
+#include "small_ldlt.h"
 
 #include <Eigen/Dense>
 
@@ -97,15 +98,17 @@ Vec3 fitted_normal(const OneRings& rings, const Positions& X, int i, const Vec3&
     const double dd = d.squaredNorm();
     if (!(dd > 0.0)) return;
     const double x = d.dot(bx), y = d.dot(by), w = 2.0 / dd;
-    Eigen::Matrix<double, 5, 1> row;
-    row << w * x, w * y, 0.5 * w * x * x, w * x * y, 0.5 * w * y * y;
-    AtA.noalias() += row * row.transpose();
-    Atz += row * (w * d.dot(n0));
+    const double row[5] = {w * x, w * y, 0.5 * w * x * x, w * x * y, 0.5 * w * y * y};
+    // The lower triangle alone: what the LDLT and the trace read.
+    for (int c = 0; c < 5; ++c)
+      for (int r = c; r < 5; ++r) AtA(r, c) += row[r] * row[c];
+    const double z = w * d.dot(n0);
+    for (int r = 0; r < 5; ++r) Atz(r) += row[r] * z;
   });
   const double reg = 1e-12 * AtA.trace();
   if (!(reg > 0.0)) return n0;
   AtA.diagonal().array() += reg;
-  const Eigen::Matrix<double, 5, 1> c = AtA.ldlt().solve(Atz);
+  const Eigen::Matrix<double, 5, 1> c = solve_small_ldlt<5>(AtA, Atz);
   const double a = c(0), b = c(1);
   if (!(a * a + b * b < 1.0)) return n0;
   return (n0 - a * bx - b * by).normalized();

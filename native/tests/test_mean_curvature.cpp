@@ -3,10 +3,14 @@
 #include "geofair/building_blocks.h"
 #include "mean_curvature.h"
 #include "meshes.h"
+#include "small_ldlt.h"
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 namespace geofair {
 namespace {
@@ -20,6 +24,42 @@ double sphere_error(const testing::Mesh& m, double r, double radius, bool exact_
   for (int v = 0; v < m.V.rows(); ++v)
     if (in[v]) error = std::max(error, std::abs(H(v) - 1.0 / r));
   return error;
+}
+
+// The quadric normal fit's written-out LDLT gives Eigen's LDLT solution bit for bit: on
+// normal equations like the fit's, on positive definite, indefinite and singular matrices.
+TEST(SmallLDLT, BitIdenticalToEigen) {
+  using M5 = Eigen::Matrix<double, 5, 5>;
+  using V5 = Eigen::Matrix<double, 5, 1>;
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int differ = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    M5 A = M5::Zero(), B;
+    for (int k = 0; k < 25; ++k) B.data()[k] = gauss(rng);
+    switch (trial % 4) {
+      case 0:  // the fit's: weighted rows (x, y, x²/2, xy, y²/2) of ring samples, regularized
+        for (int s = 0; s < 5 + trial % 9; ++s) {
+          const double x = uniform(rng), y = uniform(rng), w = 2.0 / (x * x + y * y + 1e-3);
+          V5 row;
+          row << w * x, w * y, 0.5 * w * x * x, w * x * y, 0.5 * w * y * y;
+          A.noalias() += row * row.transpose();
+        }
+        A.diagonal().array() += 1e-12 * A.trace();
+        break;
+      case 1: A = B * B.transpose(); break;
+      case 2: A = B + B.transpose(); break;  // indefinite: pivots of both signs
+      default:                               // rank 2, or zero
+        B.rightCols(3).setZero();
+        A = trial % 8 == 3 ? M5::Zero() : M5(B * B.transpose());
+    }
+    V5 b;
+    for (int k = 0; k < 5; ++k) b(k) = gauss(rng);
+    const V5 eigen = A.ldlt().solve(b), ours = solve_small_ldlt<5>(A, b);
+    differ += std::memcmp(eigen.data(), ours.data(), sizeof(double) * 5) != 0;
+  }
+  EXPECT_EQ(differ, 0);
 }
 
 TEST(MeanCurvature, ZeroOnAPlane) {
