@@ -8,8 +8,9 @@
 #   LLVM's libc++ linked in statically; OpenMesh and SuiteSparse (CHOLMOD, UMFPACK, METIS)
 #   are built once per machine from checksummed sources by cmake/deps (into the folder that
 #   scripts/deps_folder.py names) and linked statically; the BLAS is PyPI's scipy-openblas32,
-#   a dependency of the wheel that the module loads at import. The module needs nothing but glibc; auditwheel repair checks and
-#   tags it.
+#   a dependency of the wheel that the module loads at import. The module needs nothing but
+#   glibc; auditwheel repair checks and tags it. The compiler wrappers (build/zig/) run zig
+#   through ccache where it is installed.
 # GEOFAIR_WHEEL=system: this machine's GCC, SuiteSparse and OpenBLAS (Debian's),
 #   copied into geofair.libs/ by auditwheel; the tag follows this machine's glibc
 #   (manylinux_2_35 on Debian 12).
@@ -33,7 +34,7 @@ case "$KIND" in
   manylinux_2_28)
     # CMake takes a compiler as one program: wrappers around the zig binary of the ziglang
     # package (by path: pip's isolated build environment hides this Python's packages).
-    python3 -c 'import ziglang' 2>/dev/null || python3 -m pip install --quiet ziglang
+    python3 -c 'import ziglang' 2>/dev/null || python3 -m pip install --quiet "ziglang==0.17.1"
     zig=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "zig"))')
     zig_dir="$PWD/build/zig"
     mkdir -p "$zig_dir"
@@ -68,23 +69,28 @@ while [ \$# -gt 0 ]; do
   esac
   shift
 done
-CCACHE_BASEDIR="$PWD" $launcher "$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" -idirafter "$multiarch" || exit
+CCACHE_BASEDIR="$PWD" $launcher "$zig" $tool -target x86_64-linux-gnu.2.28 "\${args[@]}" \
+  -idirafter "$multiarch" || exit
 if [ -n "\$depfile" ]; then echo "\$target:" > "\$depfile"; fi
 WRAPPER
       chmod +x "$zig_dir/$tool"
     done
     # The static dependencies, once per machine (scripts/deps_folder.py: keyed on cmake/deps,
-    # the target and zig's version; a later run, in any clone, finds them built).
-    deps=$(python3 scripts/deps_folder.py "$KIND" "$zig")
-    if [ ! -e "$deps/complete" ]; then
-      rm -rf "$deps"
-      cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
-        -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
-      # Not through ccache: its preprocessing only costs here, where the folder is the cache.
-      CCACHE_DISABLE=1 cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 ||
-        { tail -40 "$deps/build.log"; exit 1; }
-      touch "$deps/complete"
-    fi
+    # the target and zig's version; a later run, in any clone, finds them built), under a lock
+    # (another clone's setup may build them at the same time).
+    deps=$(python3 scripts/deps_folder.py "$KIND" "$zig" "-target x86_64-linux-gnu.2.28")
+    (
+      flock 9
+      if [ ! -e "$deps/complete" ]; then
+        rm -rf "$deps"
+        cmake -S cmake/deps -B "$deps" -DCMAKE_C_COMPILER="$zig_dir/cc" \
+          -DCMAKE_CXX_COMPILER="$zig_dir/c++" -DCMAKE_INSTALL_PREFIX="$deps/prefix" >/dev/null
+        # Not through ccache: its preprocessing only costs here, where the folder is the cache.
+        CCACHE_DISABLE=1 cmake --build "$deps" -j"$(nproc)" >"$deps/build.log" 2>&1 ||
+          { tail -40 "$deps/build.log"; exit 1; }
+        touch "$deps/complete"
+      fi
+    ) 9>"$deps.lock"
     export CMAKE_ARGS="-DCMAKE_C_COMPILER=$zig_dir/cc -DCMAKE_CXX_COMPILER=$zig_dir/c++ \
 -DGEOFAIR_DEPS_PREFIX=$deps/prefix"
     plat=(--plat manylinux_2_28_x86_64 --only-plat)

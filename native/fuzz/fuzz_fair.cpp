@@ -8,12 +8,12 @@
 // and outer fairness, levels and normal weighting; then per triangle a polygon id (0..15:
 // any grouping of triangles into polygons, bogus ones included; passed to fair only where
 // the first one is below 8).
+#include "fuzz_input.h"
 #include "geofair/building_blocks.h"
 #include "geofair/fairing.h"
 #include "intrinsic_delaunay.h"
 #include "mean_curvature.h"
 #include "region.h"
-#include "fuzz_input.h"
 
 #include <cmath>
 #include <cstddef>

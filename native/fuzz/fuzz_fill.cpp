@@ -4,12 +4,12 @@
 // record for every hole; or throw one of the two documented exceptions. Anything else (a
 // crash, a sanitizer report, another exception, NaN) is a bug.
 //
-// Input layout: fuzz_input.h's, the flag of a vertex read as "cut": the triangles with a vertex flagged are dropped, which cuts holes into the seeds'
-// grids. The option byte picks rim (bit 0: trim unless clear and bit 7 set), the boundary
+// Input layout: fuzz_input.h's, the flag of a vertex read as "cut": the triangles with a
+// vertex flagged are dropped, which cuts holes into the seeds' grids. The option byte picks rim (bit 0: trim unless clear and bit 7 set), the boundary
 // (bit 1: G0), keep_outer_borders (bit 2), max_hole_edges (bits 3-4: 0, 4, 8 or 16) and the
 // iteration (bits 5-6).
-#include "geofair/hole_filling.h"
 #include "fuzz_input.h"
+#include "geofair/hole_filling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 //
 // Input layout: fuzz_input.h's, the flag of a vertex read as free; the option byte picks
 // Always or IfNeeded (bit 0), the boundary (bit 1: G0) and the inner fairness (bits 2-3).
-#include "geofair/fairing.h"
 #include "fuzz_input.h"
+#include "geofair/fairing.h"
 
 #include <cmath>
 #include <cstddef>
@@ -18,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::Reader in{data, size};
   const fuzz::Input input = fuzz::read_input(in);
   const geofair::Positions& V = input.V;
+  const geofair::Triangles& F = input.F;
   const std::vector<bool>& free = input.flagged;
   const std::uint8_t flags = input.options;
   const int nv = int(V.rows());
@@ -29,7 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_iterations = 30;
   options.time_limit = 2.0;
   try {
-    const geofair::FairingResult r = geofair::fair(V, input.F, free, nullptr, options);
+    const geofair::FairingResult r = geofair::fair(V, F, free, nullptr, options);
     const Eigen::Index rows = r.vertices.rows();
     if (!r.vertices.allFinite() || !std::isfinite(r.residual) || rows < nv) std::abort();
     for (int v = 0; v < nv; ++v)

@@ -1,8 +1,9 @@
-// Solving a small symmetric system by LDLᵀ with diagonal pivoting, written out for a size
-// known at compile time: the operations and their order are those of Eigen 3.4's
-// Eigen::LDLT (lower triangle; ldlt_inplace::unblocked, then LDLT::solve), so the solution
-// is bit-identical to Eigen's (native/tests/test_mean_curvature.cpp compares them) without
-// the general code's dynamic-size blocks, which cost more than the arithmetic at this size.
+// Solving a small symmetric system (N ≤ 6) by LDLᵀ with diagonal pivoting, written out for
+// its size: the operations and their order are those of Eigen 3.4's Eigen::LDLT (lower
+// triangle; ldlt_inplace::unblocked, then LDLT::solve) where Eigen sums packets of two doubles
+// and fuses no multiply-add (x86-64's SSE2, our builds), so the solution is bit-identical to
+// Eigen's there (native/tests/test_mean_curvature.cpp compares them), without the general
+// code's dynamic-size blocks, which cost more than the arithmetic at this size.
 #pragma once
 
 #include <Eigen/Core>
@@ -88,6 +89,7 @@ inline bool factor_step(Eigen::Matrix<double, N, N>& m, int (&transposition)[N])
     for (int j = 1; j < K; ++j) s = s + m(K, j) * temp[j];
     m(K, K) -= s;
     for (int i = K + 1; i < N; ++i) {
+      // From 0 as Eigen's packet path (its scalar path starts at the first term: a zero's sign).
       double c = 0.0;
       for (int j = 0; j < K; ++j) c = m(i, j) * temp[j] + c;
       m(i, K) -= c;
@@ -117,7 +119,9 @@ inline void factor(Eigen::Matrix<double, N, N>& m, int (&transposition)[N]) {
 // Eigen::LDLT<Matrix<double, N, N>>(A).solve(b) gives it, zero pivots included (their rows
 // of x are zero).
 template <int N>
-Eigen::Matrix<double, N, 1> solve_small_ldlt(Eigen::Matrix<double, N, N> m, const Eigen::Matrix<double, N, 1>& b) {
+Eigen::Matrix<double, N, 1> solve_small_ldlt(Eigen::Matrix<double, N, N> m,
+                                             const Eigen::Matrix<double, N, 1>& b) {
+  static_assert(N >= 1 && N <= 6, "Eigen sums three or more packets of Lᵀ's rows by halves");
   int transposition[N];
   small_ldlt_detail::factor<N>(m, transposition);
   Eigen::Matrix<double, N, 1> x = b;

@@ -29,7 +29,7 @@ double sphere_error(const testing::Mesh& m, double r, double radius, bool exact_
 // The quadric normal fit's written-out LDLT gives Eigen's LDLT solution bit for bit: on
 // normal equations like the fit's, on positive definite, indefinite and singular matrices.
 TEST(SmallLDLT, BitIdenticalToEigen) {
-#ifdef EIGEN_VECTORIZE_FMA
+#if defined(EIGEN_VECTORIZE_FMA) || defined(__ARM_FEATURE_FMA) || defined(__FMA__)
   GTEST_SKIP() << "fused multiply-adds: Eigen's order of rounding differs from the written-out one";
 #endif
   if (Eigen::internal::packet_traits<double>::size != 2)
