@@ -24,15 +24,18 @@ void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eige
   if (blocks > 1) start = x;  // one block reads only its own rows
   parallel_for(blocks, blocks > 1, [&](int block) {
     const int lo = first_row(block), hi = first_row(block + 1);
+    // The row's entries in column order (sorted), as runs: columns before the block read
+    // the start, the block's own columns x, the diagonal is kept apart, columns after the
+    // block the start again; each run subtracts in the same order as one loop would.
     auto relax_row = [&](int r) {
       double sum = b(r), diagonal = 0.0;
-      for (int p = outer[r]; p < outer[r + 1]; ++p) {
-        const int c = column[p];
-        if (c == r)
-          diagonal = value[p];
-        else
-          sum -= value[p] * (c >= lo && c < hi ? x(c) : start(c));
-      }
+      int p = outer[r];
+      const int end = outer[r + 1];
+      for (; p < end && column[p] < lo; ++p) sum -= value[p] * start(column[p]);
+      for (; p < end && column[p] < r; ++p) sum -= value[p] * x(column[p]);
+      if (p < end && column[p] == r) diagonal = value[p++];
+      for (; p < end && column[p] < hi; ++p) sum -= value[p] * x(column[p]);
+      for (; p < end; ++p) sum -= value[p] * start(column[p]);
       if (diagonal != 0.0) x(r) = sum / diagonal;
     };
     if (forward)

@@ -18,7 +18,8 @@ namespace geofair {
 /// with `blocks` > 1 the rows are cut into that many fixed blocks of whole row pairs, swept
 /// in parallel, each block reading the others' values of the start of the sweep (a hybrid
 /// Gauss–Seidel: the result does not depend on the threads). A row without a diagonal
-/// entry, or with a zero one, keeps its value.
+/// entry, or with a zero one, keeps its value. A must be compressed with its column indices
+/// sorted within each row (as setFromTriplets and makeCompressed leave them).
 void gauss_seidel_sweep(const SparseRowMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                         bool forward = true, int blocks = 1);
 
