@@ -239,6 +239,33 @@ def test_the_module_loads_openblas_from_scipy_openblas32(venv):
     assert wrong.returncode != 0 and "/nonexistent/libopenblas.so" in wrong.stderr, wrong.stderr
 
 
+def test_the_import_starts_no_blas_thread(venv):
+    """OpenBLAS's worker threads spin for about 0.1 s of a core once started, which a solve
+    right after the import lost; fair() runs its BLAS on one thread. The module loads its
+    OpenBLAS with one thread, so the import starts none, and the caller's OPENBLAS_NUM_THREADS
+    is left as it was (unset, or 3) in the process's environment and in os.environ."""
+    python, _, _ = venv
+    probe = (
+        "import ctypes, os, pathlib, numpy\n"
+        "def tasks(): return len(os.listdir('/proc/self/task'))\n"
+        "before = tasks()\n"
+        "import geofair, scipy_openblas32\n"
+        "after = tasks()\n"
+        "folder = pathlib.Path(scipy_openblas32.get_lib_dir())\n"
+        "blas = ctypes.CDLL(str(next(folder.glob('libscipy_openblas*.so'))))\n"
+        "libc = ctypes.CDLL(None)\n"
+        "libc.getenv.restype = ctypes.c_char_p\n"
+        "print(after - before, blas.scipy_openblas_get_num_threads(),"
+        " libc.getenv(b'OPENBLAS_NUM_THREADS'), os.environ.get('OPENBLAS_NUM_THREADS'))"
+    )
+    for value, expected in ((None, ["None", "None"]), ("3", ["b'3'", "3"])):
+        env = {k: v for k, v in clean_env().items() if k != "OPENBLAS_NUM_THREADS"}
+        if value is not None:
+            env["OPENBLAS_NUM_THREADS"] = value
+        done = subprocess.run([python, "-c", probe], capture_output=True, text=True, env=env, cwd="/")
+        assert done.stdout.split() == ["0", "1", *expected], done.stdout + done.stderr
+
+
 @pytest.mark.parametrize("python_tag", TAGS)
 def test_auditwheel_show_agrees_with_the_platform_tag(python_tag):
     """auditwheel finds the wheel consistent with its tag or an older glibc's (the module needs

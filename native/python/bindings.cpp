@@ -1754,11 +1754,41 @@ the cold path raises. Either leaves the state as it was.)doc");
       update_docstring.c_str());
 }
 
+// OPENBLAS_NUM_THREADS=1 in os.environ while alive, the earlier value (or none) restored
+// after. OpenBLAS starts its worker threads as it is loaded, and they wait for work by
+// spinning (about 0.1 s of a core): a fair() called right after the import lost that core.
+// fair() runs its BLAS on one thread (BlasThreads).
+class OneBlasThreadWhileLoading {
+ public:
+  OneBlasThreadWhileLoading() : environ_(py::module_::import("os").attr("environ")) {
+    if (environ_.contains(kName)) earlier_ = environ_[kName];
+    environ_[kName] = "1";
+  }
+  ~OneBlasThreadWhileLoading() {
+    try {
+      if (earlier_)
+        environ_[kName] = *earlier_;
+      else
+        environ_.attr("pop")(kName, py::none());
+    } catch (py::error_already_set&) {  // never from a destructor
+    }
+  }
+  OneBlasThreadWhileLoading(const OneBlasThreadWhileLoading&) = delete;
+  OneBlasThreadWhileLoading& operator=(const OneBlasThreadWhileLoading&) = delete;
+
+ private:
+  static constexpr const char* kName = "OPENBLAS_NUM_THREADS";
+  py::object environ_;
+  std::optional<py::object> earlier_;
+};
+
 // The OpenBLAS of a build that loads its BLAS at run time (geofair/blas.h): the file that
 // the environment variable GEOFAIR_BLAS names (the legacy add-on sets it to the copy beside
-// the module), else that of PyPI's scipy-openblas32, a dependency of the wheel.
+// the module), else that of PyPI's scipy-openblas32, a dependency of the wheel (whose import
+// loads it), with one thread (OneBlasThreadWhileLoading).
 void load_openblas() {
   if (!blas_loaded_at_run_time()) return;
+  const OneBlasThreadWhileLoading one_thread;
   std::string path;
   if (const char* named = std::getenv("GEOFAIR_BLAS"); named && *named) {
     path = named;

@@ -1,8 +1,6 @@
 // Linear Δ²f = 0 fairing with G1 boundary conditions (section 7.4).
 #include "bilaplacian.h"
 
-#include "sparse_lu.h"
-
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 #ifdef GEOFAIR_PORTABLE
@@ -122,10 +120,7 @@ bool solve_by_cg(const BilaplacianSystem& system, int nf, double relative_residu
   Eigen::SparseMatrix<double> Ks(nf, nf);
   Ks.setFromTriplets(system.scalar.begin(), system.scalar.end());
   CholeskyLLT llt;
-  {
-    const BlasThreads threads(factorization_blas_threads(nf));
-    llt.compute(Ks);
-  }
+  llt.compute(Ks);
   if (llt.info() != Eigen::Success) return false;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
                            CoordinateBlocks>
@@ -142,10 +137,7 @@ bool solve_by_cg(const BilaplacianSystem& system, int nf, double relative_residu
 Eigen::VectorXd solve_by_lu(const BilaplacianSystem& system) {
   const Eigen::Index n = system.K.rows();
   SparseLUFactorization lu;
-  {
-    const BlasThreads threads(factorization_blas_threads(int(n)));
-    lu.compute(system.K);
-  }
+  lu.compute(system.K);
   if (lu.info() != Eigen::Success)
     throw SolverError("fair: the bilaplacian system Δ²f = 0 could not be factorized (singular "
                       "system: degenerate triangles or a free vertex without a fixed path to "
@@ -199,10 +191,7 @@ Positions membrane_positions(const FairingRegion& region, const InnerFairnessWei
   Eigen::SparseMatrix<double> K(nf, nf);
   K.setFromTriplets(triplets.begin(), triplets.end());
   CholeskyLLT llt;
-  {
-    const BlasThreads threads(factorization_blas_threads(nf));
-    llt.compute(K);
-  }
+  llt.compute(K);
   if (llt.info() != Eigen::Success)
     throw SolverError("fair: the membrane system Δf = 0 could not be factorized");
   const Eigen::MatrixXd f = llt.solve(rhs);

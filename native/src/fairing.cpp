@@ -188,7 +188,7 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
                     const Positions* boundary_normals, const FairingOptions& options,
                     const std::vector<int>* polygon_ids) {
   set_loop_threads(solve_threads());
-  const BlasThreads blas_threads(1);  // more only for large factorizations (sparse_lu.h)
+  const BlasThreads blas_threads(1);  // results independent of the thread count (sparse_lu.h)
   const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids,
                                               options.boundary);
   const Positions X0 = gather(V, region.global);  // the original mesh

@@ -18,7 +18,6 @@
 #include <dlfcn.h>
 #define GEOFAIR_OPENBLAS_LOOKUP
 #endif
-#include "parallel.h"
 
 namespace geofair {
 namespace {
@@ -74,7 +73,6 @@ BlasThreads::~BlasThreads() {
   if (previous_ > 0 && previous_ != get_threads()()) set_threads()(previous_);
 }
 
-int factorization_blas_threads(int n) { return n >= kThreadedBlasMin ? loop_threads() : 1; }
 
 namespace {
 
@@ -156,7 +154,6 @@ void PatternLU::analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_
 bool PatternLU::factorize(const Eigen::SparseMatrix<double>& A) {
   Factors& f = *factors_;
   f.wide_in_use = A.rows() >= kWideIndexMin;
-  const BlasThreads threads(factorization_blas_threads(int(A.rows())));
   return f.wide_in_use ? f.wide.factorize(A) : f.narrow.factorize(A);
 }
 

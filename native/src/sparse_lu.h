@@ -22,10 +22,10 @@ int stored_entry(const Sparse& A, int outer, int inner) {
 /// object; the earlier count is restored after. Only OpenBLAS can be told (looked up at run
 /// time); with another BLAS this does nothing.
 ///
-/// fair() runs on one BLAS thread and gives OpenBLAS the solve's threads only for the
-/// factorizations of at least kThreadedBlasMin unknowns (PatternLU::factorize, the linear
-/// initial mesh): OpenBLAS's threads wait for work by spinning, which takes the cores from
-/// the OpenMP loops between the BLAS calls (docs/DESIGN_NOTES.md, "Threads").
+/// fair() and LiveFairing run their BLAS on one thread: OpenBLAS's threaded kernels round
+/// otherwise than its serial ones, so results would depend on the thread count, and its
+/// threads wait for work by spinning, which takes the cores from the loops between the BLAS
+/// calls (docs/DESIGN_NOTES.md, "Threads").
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);
@@ -37,9 +37,6 @@ class BlasThreads {
   int previous_ = 0;
 };
 
-/// Sparse factorizations of at least this many unknowns run their BLAS on the solve's
-/// threads (BlasThreads).
-constexpr int kThreadedBlasMin = 50000;
 /// Newton preconditioners analyzed ahead (PatternLU::analyze, Construction::prepare_newton)
 /// with at least this many unknowns take METIS's nested dissection ordering. Only the
 /// finest level's is analyzed ahead, on the second thread during the decimation, where the
@@ -52,8 +49,6 @@ constexpr int kNestedDissectionMin = 10000;
 /// large factorizations failed for lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
 constexpr int kWideIndexMin = 500000;
 
-/// The BLAS threads of a factorization of n unknowns (see BlasThreads).
-int factorization_blas_threads(int n);
 
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
 /// matrices that change values but not pattern from one factorization to the next: the
