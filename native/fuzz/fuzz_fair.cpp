@@ -24,10 +24,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   fuzz::Reader in{data, size};
   const fuzz::Input input = fuzz::read_input(in);
-  const geofair::Positions& V = input.V;
-  const geofair::Triangles& F = input.F;
-  const std::vector<bool>& free = input.flagged;
-  const std::uint8_t flags = input.options;
+  const auto& [V, F, free, flags] = input;
   const int nv = int(V.rows()), nf = int(F.rows());
   std::vector<int> polygons(nf);
   for (int f = 0; f < nf; ++f) polygons[f] = in.next() % 16;

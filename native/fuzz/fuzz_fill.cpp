@@ -21,10 +21,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   fuzz::Reader in{data, size};
   const fuzz::Input input = fuzz::read_input(in);
-  const geofair::Positions& V = input.V;
-  const geofair::Triangles& all = input.F;
-  const std::vector<bool>& cut = input.flagged;
-  const std::uint8_t flags = input.options;
+  const auto& [V, all, cut, flags] = input;
   const int nv = int(V.rows());
   std::vector<int> kept_rows;
   for (int f = 0; f < all.rows(); ++f)

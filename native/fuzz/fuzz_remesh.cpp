@@ -17,10 +17,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   fuzz::Reader in{data, size};
   const fuzz::Input input = fuzz::read_input(in);
-  const geofair::Positions& V = input.V;
-  const geofair::Triangles& F = input.F;
-  const std::vector<bool>& free = input.flagged;
-  const std::uint8_t flags = input.options;
+  const auto& [V, F, free, flags] = input;
   const int nv = int(V.rows());
 
   geofair::FairingOptions options;

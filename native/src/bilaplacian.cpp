@@ -135,7 +135,6 @@ bool solve_by_cg(const BilaplacianSystem& system, int nf, double relative_residu
 
 // The system by UMFPACK's LU of K.
 Eigen::VectorXd solve_by_lu(const BilaplacianSystem& system) {
-  const Eigen::Index n = system.K.rows();
   SparseLUFactorization lu;
   lu.compute(system.K);
   if (lu.info() != Eigen::Success)
