@@ -1770,7 +1770,7 @@ class OneBlasThreadWhileLoading {
         environ_[kName] = *earlier_;
       else
         environ_.attr("pop")(kName, py::none());
-    } catch (py::error_already_set&) {  // never from a destructor
+    } catch (...) {  // never from a destructor
     }
   }
   OneBlasThreadWhileLoading(const OneBlasThreadWhileLoading&) = delete;

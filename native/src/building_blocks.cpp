@@ -6,6 +6,7 @@
 #include "inner_fairness.h"
 #include "progressive_mesh.h"
 #include "region.h"
+#include "sparse_lu.h"
 
 namespace geofair {
 
@@ -25,6 +26,7 @@ std::pair<Positions, double> relax_inner_fairness(const Positions& V, const Tria
   const InnerFairnessWeights lambda = inner_fairness_weights(region, X, inner);
   TangentialSolver solver(region.rings, lambda, region.n_free,
                           PaperIterationTuning{}.tangential_iterations);
+  const BlasThreads blas_threads(1);  // as fair() (sparse_lu.h)
   const double scale = solver.relax(lambda, N, X, /*lagged=*/false, planes);
   if (!(scale > 0.0))
     throw SolverError("relax_inner_fairness: the tangential system is singular or an edge "

@@ -73,7 +73,6 @@ BlasThreads::~BlasThreads() {
   if (previous_ > 0 && previous_ != get_threads()()) set_threads()(previous_);
 }
 
-
 namespace {
 
 // UMFPACK with Index as its index type: int (umfpack_di_*) or SuiteSparse_long

@@ -22,7 +22,7 @@ int stored_entry(const Sparse& A, int outer, int inner) {
 /// object; the earlier count is restored after. Only OpenBLAS can be told (looked up at run
 /// time); with another BLAS this does nothing.
 ///
-/// fair() and LiveFairing run their BLAS on one thread: OpenBLAS's threaded kernels round
+/// fair(), LiveFairing and relax_inner_fairness run their BLAS on one thread: OpenBLAS's threaded kernels round
 /// otherwise than its serial ones, so results would depend on the thread count, and its
 /// threads wait for work by spinning, which takes the cores from the loops between the BLAS
 /// calls (docs/DESIGN_NOTES.md, "Threads").
@@ -48,7 +48,6 @@ constexpr int kNestedDissectionMin = 10000;
 /// interface (umfpack_dl_*): with int indices its workspace is addressed in int units, and
 /// large factorizations failed for lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
 constexpr int kWideIndexMin = 500000;
-
 
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
 /// matrices that change values but not pattern from one factorization to the next: the
