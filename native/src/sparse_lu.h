@@ -22,10 +22,10 @@ int stored_entry(const Sparse& A, int outer, int inner) {
 /// object; the earlier count is restored after. Only OpenBLAS can be told (looked up at run
 /// time); with another BLAS this does nothing.
 ///
-/// fair(), LiveFairing and relax_inner_fairness run their BLAS on one thread: OpenBLAS's threaded kernels round
-/// otherwise than its serial ones, so results would depend on the thread count, and its
-/// threads wait for work by spinning, which takes the cores from the loops between the BLAS
-/// calls (docs/DESIGN_NOTES.md, "Threads").
+/// fair(), LiveFairing and relax_inner_fairness run their BLAS on one thread: OpenBLAS's
+/// threaded kernels round otherwise than its serial ones, so results would depend on the
+/// thread count, and its threads wait for work by spinning, which takes the cores from the
+/// loops between the BLAS calls (docs/DESIGN_NOTES.md, "Threads").
 class BlasThreads {
  public:
   explicit BlasThreads(int threads);
