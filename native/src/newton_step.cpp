@@ -35,7 +35,6 @@ NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning,
   }
   // The pattern of A = D J (2-ring) and, per term of the assembly in solve(), the index of
   // its entry in A's values.
-  std::vector<Eigen::Triplet<double>> pattern;
   auto for_each_term = [&](auto&& term) {
     for (int i = 0; i < nf; ++i) {
       for (int k = r.offset[i]; k < r.offset[i + 1]; ++k)
@@ -44,14 +43,33 @@ NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning,
       for (int p = row_offset_[i]; p < row_offset_[i + 1]; ++p) term(i, row_column_[p]);
     }
   };
-  for_each_term([&](int i, int c) { pattern.emplace_back(i, c, 0.0); });
+  // The distinct entries (i, c) row by row (a row's terms repeat them), each term's entry
+  // among them, then A's compressed columns by counting (rows ascending in each column):
+  // the pattern without sorting the terms.
+  std::vector<int> entry_row, entry_column, term_pair, last_row(nf, -1), slot(nf);
+  for_each_term([&](int i, int c) {
+    if (last_row[c] != i) {
+      last_row[c] = i, slot[c] = int(entry_column.size());
+      entry_row.push_back(i), entry_column.push_back(c);
+    }
+    term_pair.push_back(slot[c]);
+  });
+  const int nnz = int(entry_column.size());
   A_.resize(nf, nf);
-  A_.setFromTriplets(pattern.begin(), pattern.end());
-  A_.makeCompressed();
-  // The index of entry (i, c) in A's values (A is column-major).
-  auto entry = [&](int i, int c) { return stored_entry(A_, c, i); };
-  term_entry_.reserve(pattern.size());
-  for_each_term([&](int i, int c) { term_entry_.push_back(entry(i, c)); });
+  A_.resizeNonZeros(nnz);
+  int* start = A_.outerIndexPtr();
+  std::fill(start, start + nf + 1, 0);
+  for (const int c : entry_column) ++start[c + 1];
+  for (int c = 0; c < nf; ++c) start[c + 1] += start[c];
+  std::fill(A_.valuePtr(), A_.valuePtr() + nnz, 0.0);
+  std::vector<int> next(start, start + nf), pair_entry(nnz);
+  for (int q = 0; q < nnz; ++q) {
+    pair_entry[q] = next[entry_column[q]]++;
+    A_.innerIndexPtr()[pair_entry[q]] = entry_row[q];
+  }
+  term_entry_.resize(term_pair.size());
+  for (std::size_t t = 0; t < term_pair.size(); ++t) term_entry_[t] = pair_entry[term_pair[t]];
+  auto entry = [&](int i, int c) { return stored_entry(A_, c, i); };  // A is column-major
   diagonal_entry_.resize(nf);
   for (int c = 0; c < nf; ++c) diagonal_entry_[c] = entry(c, c);
 }
