@@ -1,6 +1,8 @@
 // The thread pool behind parallel_chunks (parallel.h).
 #include "parallel.h"
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdlib>
 #include <cstdint>
@@ -8,6 +10,9 @@
 #include <mutex>
 #include <thread>
 
+#if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
+#include <immintrin.h>
+#endif
 #ifdef _WIN32
 #include <windows.h>
 #else
@@ -17,9 +22,36 @@
 namespace geofair {
 namespace {
 
+// Before it sleeps, a thread that waits (a worker for the next loop, the caller for the
+// workers' chunks) checks for this long: the loops of a solve follow each other within
+// microseconds to a millisecond, and a sleeping thread takes tens of microseconds to wake
+// (docs/DESIGN_NOTES.md, "Threads").
+constexpr auto kSpin = std::chrono::microseconds(200);
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
+  _mm_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+// Calls relax until done() or kSpin has passed; done()'s last answer.
+template <class Done>
+bool spin_until(Done&& done) {
+  const auto end = std::chrono::steady_clock::now() + kSpin;
+  for (int k = 1;; ++k) {
+    if (done()) return true;
+    if (k % 64 == 0 && std::chrono::steady_clock::now() > end) return false;
+    cpu_relax();
+  }
+}
+
 // Workers wait for a loop, run their chunk and report back; the calling thread runs chunk 0.
 // A pool lives as long as the process (never destroyed: joining threads while a library
-// unloads can deadlock), its workers detached.
+// unloads can deadlock), its workers detached. What a loop is (chunk_, n_, threads_) is
+// written and read under mutex_; generation_ and pending_ are atomic besides, so that a
+// waiting thread can check them without the mutex while it spins.
 class Pool {
  public:
   // Runs the loop on `threads` threads; false (nothing run) while another loop has the pool.
@@ -35,9 +67,9 @@ class Pool {
     chunk_ = &chunk;
     n_ = n;
     threads_ = threads;
-    pending_ = threads - 1;
+    pending_.store(threads - 1);
     error_ = nullptr;
-    ++generation_;
+    generation_.fetch_add(1);
     lock.unlock();
     start_.notify_all();
     std::exception_ptr own;
@@ -46,8 +78,9 @@ class Pool {
     } catch (...) {
       own = std::current_exception();
     }
+    spin_until([this] { return pending_.load() == 0; });
     lock.lock();
-    done_.wait(lock, [this] { return pending_ == 0; });
+    done_.wait(lock, [this] { return pending_.load() == 0; });
     chunk_ = nullptr;
     if (own) std::rethrow_exception(own);
     if (error_) std::rethrow_exception(error_);
@@ -59,10 +92,11 @@ class Pool {
 
   void work(int id) {
     std::uint64_t seen = 0;
-    std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
-      start_.wait(lock, [&] { return generation_ != seen; });
-      seen = generation_;
+      spin_until([&] { return generation_.load() != seen; });
+      std::unique_lock<std::mutex> lock(mutex_);
+      start_.wait(lock, [&] { return generation_.load() != seen; });
+      seen = generation_.load();
       if (id >= threads_) continue;  // this loop uses fewer threads
       const auto* chunk = chunk_;
       const int begin = bound(id), end = bound(id + 1);
@@ -75,7 +109,7 @@ class Pool {
       }
       lock.lock();
       if (error && !error_) error_ = error;
-      if (--pending_ == 0) done_.notify_one();
+      if (pending_.fetch_sub(1) == 1) done_.notify_one();
     }
   }
 
@@ -84,8 +118,9 @@ class Pool {
   std::condition_variable start_, done_;
   int workers_ = 0;
   const std::function<void(int, int, int)>* chunk_ = nullptr;
-  int n_ = 0, threads_ = 1, pending_ = 0;
-  std::uint64_t generation_ = 0;
+  int n_ = 0, threads_ = 1;
+  std::atomic<int> pending_{0};
+  std::atomic<std::uint64_t> generation_{0};
   std::exception_ptr error_;
 };
 
