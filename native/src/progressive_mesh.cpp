@@ -36,16 +36,28 @@ float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1, floa
 // its assertions on, and there every status access compares type names and allocates a
 // string: most of the decimation's time (docs/DESIGN_NOTES.md, "The decimation's speed").
 // This type answers with the same
-// conditions, its status accesses inlined here; so do valence and find_halfedge, which the
-// decimater and the priority module ask for every candidate too (each handle access inside
-// the library checks its validity through a call).
+// conditions, its status accesses inlined here; so does find_halfedge, and valence reads a
+// count kept per vertex: the decimater and the priority module ask both for every
+// candidate too (each handle access inside the library checks its validity through a call).
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   using TriMesh_ArrayKernelT::find_halfedge;
   using TriMesh_ArrayKernelT::valence;
-  unsigned int valence(VertexHandle v) const {
-    unsigned int n = 0;
-    for (auto it = cvoh_iter(v); it.is_valid(); ++it) ++n;
-    return n;
+  // The valences, counted once (count_valences) and updated at each collapse (collapsed).
+  unsigned int valence(VertexHandle v) const { return valences[v.idx()]; }
+  std::vector<unsigned int> valences;
+  void count_valences() {
+    valences.assign(n_vertices(), 0);
+    for (const VertexHandle v : vertices())
+      for (auto it = cvoh_iter(v); it.is_valid(); ++it) ++valences[v.idx()];
+  }
+  // Before the collapse of v0 into v1 with apexes vl, vr (invalid on the border): v1 takes
+  // v0's neighbours but v1 and the apexes (its own already: the link condition), and each
+  // apex loses v0.
+  void collapsed(VertexHandle v0, VertexHandle v1, VertexHandle vl, VertexHandle vr) {
+    const unsigned int apexes = unsigned(vl.is_valid()) + unsigned(vr.is_valid());
+    valences[v1.idx()] += valences[v0.idx()] - 2 - apexes;
+    if (vl.is_valid()) --valences[vl.idx()];
+    if (vr.is_valid()) --valences[vr.idx()];
   }
   HalfedgeHandle find_halfedge(VertexHandle from, VertexHandle to) const {
     for (const HalfedgeHandle h : voh_range(from))
@@ -62,7 +74,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
     const VertexHandle v0 = from_vertex_handle(v0v1);
     if (v0v1 == halfedge_handle(v0) || v0 != sweep.from) {
       sweep.start(v0, priority_factor(v0));
-      for (const VertexHandle a : vv_range(v0)) sweep.ring.push_back(a.idx());
+      for (const VertexHandle a : vv_range(v0)) sweep.mark(a.idx());
     } else if (length_priority(point(v0), point(to_vertex_handle(v0v1)), sweep.factor) > sweep.best)
       return false;
     return keeps_manifold(v0v1);
@@ -91,7 +103,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // length equals `best`, and only longer ones are skipped. The hierarchy is the same as
   // with every candidate weighed (docs/DESIGN_NOTES.md, "The decimation's speed").
   // The sweep also keeps what every candidate of `from` reads and the collapses leave
-  // unchanged until one is made: the one-ring of `from` (ring, for the link condition) and
+  // unchanged until one is made: the one-ring of `from` (marked, for the link condition) and
   // its triangles with their normals (faces, for the priority module).
   struct Face {
     FaceHandle handle;
@@ -101,13 +113,22 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   struct Sweep {
     VertexHandle from;
     float best = FLT_MAX, factor = 1.0f;  // factor: priority_factor(from)
-    std::vector<int> ring;
     std::vector<Face> faces;
     bool faces_known = false;
     void start(VertexHandle v, float f = 1.0f) {
       from = v, best = FLT_MAX, factor = f;
-      ring.clear(), faces.clear(), faces_known = false;
+      ++stamp, faces.clear(), faces_known = false;
     }
+    // The ring of `from`: the vertices whose ring_stamp is this sweep's stamp.
+    void mark(int vertex) {
+      if (vertex >= int(ring_stamp.size())) ring_stamp.resize(vertex + 1, 0);
+      ring_stamp[vertex] = stamp;
+    }
+    bool in_ring(int vertex) const {
+      return vertex < int(ring_stamp.size()) && ring_stamp[vertex] == stamp;
+    }
+    std::vector<std::uint64_t> ring_stamp;
+    std::uint64_t stamp = 1;
   } sweep;
 
  private:
@@ -131,8 +152,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
     // but the apexes.
     for (const VertexHandle b : vv_range(v1)) {
       if (b == vl || b == vr) continue;
-      if (std::find(sweep.ring.begin(), sweep.ring.end(), b.idx()) != sweep.ring.end())
-        return false;
+      if (sweep.in_ring(b.idx())) return false;
     }
     return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
   }
@@ -189,6 +209,7 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   // Records the collapsed vertex with its one-ring before the collapse.
   void preprocess_collapse(const CollapseInfo& ci) override {
     mesh_.sweep.start(typename MeshT::VertexHandle());  // a collapse ends the sweep
+    mesh_.collapsed(ci.v0, ci.v1, ci.vl, ci.vr);
     collapses.vertex.push_back(ci.v0.idx());
     for (auto v : mesh_.vv_range(ci.v0)) collapses.ring.push_back(v.idx());
     collapses.offset.push_back(int(collapses.ring.size()));
@@ -292,6 +313,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
     mesh.add_face(mesh.vertex_handle(region.triangles(t, 0)), mesh.vertex_handle(region.triangles(t, 1)),
                   mesh.vertex_handle(region.triangles(t, 2)));
 
+  mesh.count_valences();
   OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
   typename ModFairingHierarchyT<Mesh>::Handle module;
   decimater.add(module);
