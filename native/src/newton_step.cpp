@@ -33,7 +33,7 @@ NewtonStep::NewtonStep(const FairingRegion& region, const NewtonTuning& tuning,
       row_column_[fill[j]] = m, row_source_[fill[j]++] = nf + k;
     }
   }
-  // The pattern of A = D J (2-ring) and, per term of the assembly in solve(), the index of
+  // The pattern of A = D J (2-ring) and, per term of the assembly in assemble(), the index of
   // its entry in A's values.
   auto for_each_term = [&](auto&& term) {
     for (int i = 0; i < nf; ++i) {

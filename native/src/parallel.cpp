@@ -23,26 +23,32 @@ namespace geofair {
 namespace {
 
 // Before it sleeps, a thread that waits (a worker for the next loop, the caller for the
-// workers' chunks) checks for this long: the loops of a solve follow each other within
-// microseconds to a millisecond, and a sleeping thread takes tens of microseconds to wake
-// (docs/DESIGN_NOTES.md, "Threads").
+// workers' chunks) checks for this long: the loops of a solve follow each other closely,
+// and waking a sleeping thread costs more than a short spin (docs/DESIGN_NOTES.md,
+// "Threads").
 constexpr auto kSpin = std::chrono::microseconds(200);
 
 void cpu_relax() {
 #if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
   _mm_pause();
+#elif defined(__aarch64__) && (defined(__GNUC__) || defined(__clang__))
+  __asm__ __volatile__("yield");
 #else
   std::this_thread::yield();
 #endif
 }
 
-// Calls relax until done() or kSpin has passed; done()'s last answer.
+// Calls cpu_relax until done() or kSpin has passed, and yields the core now and then to
+// another thread that may be waiting for it (the one being waited for, where threads
+// outnumber the cores).
 template <class Done>
-bool spin_until(Done&& done) {
+void spin_until(Done&& done) {
   const auto end = std::chrono::steady_clock::now() + kSpin;
-  for (int k = 1;; ++k) {
-    if (done()) return true;
-    if (k % 64 == 0 && std::chrono::steady_clock::now() > end) return false;
+  for (int k = 1; !done(); ++k) {
+    if (k % 64 == 0) {
+      if (std::chrono::steady_clock::now() > end) return;
+      std::this_thread::yield();
+    }
     cpu_relax();
   }
 }
@@ -92,12 +98,14 @@ class Pool {
 
   void work(int id) {
     std::uint64_t seen = 0;
+    bool spin = true;  // false after a loop that used fewer threads: sleep at once
     for (;;) {
-      spin_until([&] { return generation_.load() != seen; });
+      if (spin) spin_until([&] { return generation_.load() != seen; });
       std::unique_lock<std::mutex> lock(mutex_);
       start_.wait(lock, [&] { return generation_.load() != seen; });
       seen = generation_.load();
-      if (id >= threads_) continue;  // this loop uses fewer threads
+      spin = id < threads_;
+      if (!spin) continue;  // this loop uses fewer threads
       const auto* chunk = chunk_;
       const int begin = bound(id), end = bound(id + 1);
       lock.unlock();

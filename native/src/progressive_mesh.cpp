@@ -37,12 +37,13 @@ float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1, floa
 // string: most of the decimation's time (docs/DESIGN_NOTES.md, "The decimation's speed").
 // This type answers with the same
 // conditions, its status accesses inlined here; so does find_halfedge, and valence reads a
-// count kept per vertex: the decimater and the priority module ask both for every
-// candidate too (each handle access inside the library checks its validity through a call).
+// count kept per vertex: the decimater's legality check and the priority module ask for
+// them too (each handle access inside the library checks its validity through a call).
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   using TriMesh_ArrayKernelT::find_halfedge;
   using TriMesh_ArrayKernelT::valence;
-  // The valences, counted once (count_valences) and updated at each collapse (collapsed).
+  // The valences, counted once (count_valences) and updated at each collapse
+  // (before_collapse).
   unsigned int valence(VertexHandle v) const { return valences[v.idx()]; }
   std::vector<unsigned int> valences;
   void count_valences() {
@@ -53,7 +54,7 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   // Before the collapse of v0 into v1 with apexes vl, vr (invalid on the border): v1 takes
   // v0's neighbours but v1 and the apexes (its own already: the link condition), and each
   // apex loses v0.
-  void collapsed(VertexHandle v0, VertexHandle v1, VertexHandle vl, VertexHandle vr) {
+  void before_collapse(VertexHandle v0, VertexHandle v1, VertexHandle vl, VertexHandle vr) {
     const unsigned int apexes = unsigned(vl.is_valid()) + unsigned(vr.is_valid());
     valences[v1.idx()] += valences[v0.idx()] - 2 - apexes;
     if (vl.is_valid()) --valences[vl.idx()];
@@ -209,7 +210,7 @@ class ModFairingHierarchyT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   // Records the collapsed vertex with its one-ring before the collapse.
   void preprocess_collapse(const CollapseInfo& ci) override {
     mesh_.sweep.start(typename MeshT::VertexHandle());  // a collapse ends the sweep
-    mesh_.collapsed(ci.v0, ci.v1, ci.vl, ci.vr);
+    mesh_.before_collapse(ci.v0, ci.v1, ci.vl, ci.vr);
     collapses.vertex.push_back(ci.v0.idx());
     for (auto v : mesh_.vv_range(ci.v0)) collapses.ring.push_back(v.idx());
     collapses.offset.push_back(int(collapses.ring.size()));
