@@ -42,14 +42,16 @@ float length_priority(const OpenMesh::Vec3d& p0, const OpenMesh::Vec3d& p1, floa
 struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
   using TriMesh_ArrayKernelT::find_halfedge;
   using TriMesh_ArrayKernelT::valence;
-  // The valences, counted once (count_valences) and updated at each collapse
+  // The valences, counted once (start_decimation) and updated at each collapse
   // (before_collapse).
   unsigned int valence(VertexHandle v) const { return valences[v.idx()]; }
   std::vector<unsigned int> valences;
-  void count_valences() {
+  // Once the mesh is built: its valences, and a ring mark per vertex for the sweeps.
+  void start_decimation() {
     valences.assign(n_vertices(), 0);
     for (const VertexHandle v : vertices())
       for (auto it = cvoh_iter(v); it.is_valid(); ++it) ++valences[v.idx()];
+    sweep.ring_stamp.assign(n_vertices(), 0);
   }
   // Before the collapse of v0 into v1 with apexes vl, vr (invalid on the border): v1 takes
   // v0's neighbours but v1 and the apexes (its own already: the link condition), and each
@@ -121,14 +123,9 @@ struct Mesh : OpenMesh::TriMesh_ArrayKernelT<DoubleTraits> {
       ++stamp, faces.clear(), faces_known = false;
     }
     // The ring of `from`: the vertices whose ring_stamp is this sweep's stamp.
-    void mark(int vertex) {
-      if (vertex >= int(ring_stamp.size())) ring_stamp.resize(vertex + 1, 0);
-      ring_stamp[vertex] = stamp;
-    }
-    bool in_ring(int vertex) const {
-      return vertex < int(ring_stamp.size()) && ring_stamp[vertex] == stamp;
-    }
-    std::vector<std::uint64_t> ring_stamp;
+    void mark(int vertex) { ring_stamp[vertex] = stamp; }
+    bool in_ring(int vertex) const { return ring_stamp[vertex] == stamp; }
+    std::vector<std::uint64_t> ring_stamp;  // per vertex (start_decimation)
     std::uint64_t stamp = 1;
   } sweep;
 
@@ -314,7 +311,7 @@ ProgressiveMesh build_progressive_mesh(const FairingRegion& region, const Positi
     mesh.add_face(mesh.vertex_handle(region.triangles(t, 0)), mesh.vertex_handle(region.triangles(t, 1)),
                   mesh.vertex_handle(region.triangles(t, 2)));
 
-  mesh.count_valences();
+  mesh.start_decimation();
   OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
   typename ModFairingHierarchyT<Mesh>::Handle module;
   decimater.add(module);
