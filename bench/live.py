@@ -130,14 +130,16 @@ def region_diagonal(vertices, faces, free):
 
 
 def newton_steps(result):
-    """The Newton steps of a warm frame; None where the frame ran the cold path."""
-    return None if "cold path" in result.message else result.newton_iterations
+    """The Newton steps of a warm frame; None where the frame ran the cold path or remeshed."""
+    if "cold path" in result.message or "remeshed" in result.message:
+        return None
+    return result.newton_iterations
 
 
 def run(n, kind, args):
     v, f, free, handle, normals = handle_scene(n, kind, args.handle)
     t = time.perf_counter()
-    live = geofair.LiveFairing(v, f, free, boundary_normals=normals, inner_fairness=args.inner)
+    live = geofair.LiveFairing(v, f, free, boundary_normals=normals, inner_fairness=args.inner, remesh=args.remesh)
     prepare = time.perf_counter() - t
     print(
         f"# {kind} n={n}: {int(free.sum())} free, {int(handle.sum())} handle vertices; "
@@ -163,11 +165,11 @@ def run(n, kind, args):
                 phases.setdefault(name, []).append(seconds * 1000)
         failed += not r.converged
         folds.append(r.folds)
-        rad = np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max() if phase == "slide" else None
+        rad = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max() if phase == "slide" else None
         if rad is not None:
             radial.append(rad)
         if args.frames:
-            how = f"{s} steps" if s is not None else "cold"
+            how = f"{s} steps" if s is not None else ("remesh" if "remeshed" in r.message else "cold")
             rad_text = f" radial {rad:.1e}" if rad is not None else ""
             print(
                 f"  {i + 1:3d} {phase:5s} {dt * 1000:7.1f} ms  {how:9s} residual {r.residual:.1e} "
@@ -190,7 +192,9 @@ def run(n, kind, args):
         c = geofair.fair(w, f, free, boundary_normals=n_w, inner_fairness=args.inner)
         cold_times.append(time.perf_counter() - t)
         cold_bad += not c.converged or c.new_folds > 0
-        if c.converged and c.new_folds == 0 and results[i].converged:
+        # A remeshed frame's mesh is not the cold fair's (no row-wise comparison).
+        same_mesh = len(results[i].vertices) == len(c.vertices) and np.array_equal(results[i].faces, c.faces)
+        if c.converged and c.new_folds == 0 and results[i].converged and same_mesh:
             L = region_diagonal(w, f, free)
             distance = max(distance, float(np.abs(c.vertices - results[i].vertices).max()) / L)
     ms = np.array(times) * 1000
@@ -204,6 +208,8 @@ def run(n, kind, args):
         f"{cold_bad}/{len(picks)}",
         flush=True,
     )
+    if args.remesh != "off":
+        print(f"  remeshes: {live.remeshes} (frames that replaced the region's triangles)")
     print("  warm phases, median ms: " + ", ".join(f"{k} {np.median(t):.1f}" for k, t in phases.items()))
     print(
         f"  linear bi-Laplacian (prefactorized): median {np.median(linear_times) * 1000:.1f} ms a frame, "
@@ -219,6 +225,7 @@ def main():
     parser.add_argument("--slide", type=float, default=20.0, help="slide along the sphere, degrees")
     parser.add_argument("--slide-frames", type=int, default=20)
     parser.add_argument("--inner", default="uniform")
+    parser.add_argument("--remesh", default="off", choices=["off", "if_needed"], help="LiveFairing's remesh option")
     parser.add_argument("--cold-every", type=int, default=5)
     parser.add_argument("--frames", action="store_true", help="a row per frame")
     args = parser.parse_args()

@@ -101,6 +101,37 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
     assert np.abs(r.vertices[free] - v[free]).max() > 0.1
 
 
+def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
+    # 30° along the sphere, 2° a frame: the triangles between the handle and the region's
+    # border squeeze until the warm start folds or fails (about 20°); with remesh="if_needed"
+    # such a frame remeshes the region from the last frame's surface and the drag goes on,
+    # every frame on the sphere without a folded edge. The fixed vertices keep their rows.
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free, remesh="if_needed")
+    fixed = ~free
+    for k in range(1, 16):
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        r = live.update(w)
+        assert r.converged and r.folds == 0, (k, r.message)
+        assert np.array_equal(r.vertices[: len(v)][fixed], w[fixed])
+        radial = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max()
+        assert radial < 1e-4, (k, radial)
+    assert live.remeshes >= 1
+    assert not (r.faces.shape == f.shape and np.array_equal(r.faces, f))
+    assert live.frames == 15
+    # The remeshed mesh: its free vertices are the region's (none of the fixed rows), every
+    # face of the input without a free vertex is kept, and the next update takes the live
+    # mesh's rows as well as the input's.
+    assert not np.any(r.free[: len(v)] & fixed)
+    outside = f[~free[f].any(axis=1)]
+    assert {tuple(t) for t in outside} <= {tuple(t) for t in r.faces}
+    again = live.update(np.vstack([w, r.vertices[len(v) :]]))
+    assert again.converged and np.array_equal(again.vertices[: len(v)][fixed], w[fixed])
+    with pytest.raises(geofair.InvalidInputError, match="rows"):
+        live.update(w[:-1])
+
+
 def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
     v, f, free, handle = handle_scene
     # A time limit for the failing frame's cold path, with room for the good frames on a
@@ -176,8 +207,10 @@ def test_constructor_checks_its_input(handle_scene):
         geofair.LiveFairing(v, f, free[:-1])
     with pytest.raises(geofair.InvalidInputError, match="tolerance"):
         geofair.LiveFairing(v, f, free, tolerance=-1.0)
-    with pytest.raises(TypeError):
+    with pytest.raises(geofair.InvalidInputError, match="remesh must be off or if_needed"):
         geofair.LiveFairing(v, f, free, remesh="always")
+    with pytest.raises(geofair.InvalidInputError, match="details=True"):
+        geofair.LiveFairing(v, f, free, remesh="if_needed", details=True)
 
 
 def test_g0_handle_on_a_plane_is_the_cold_fair():

@@ -1614,6 +1614,15 @@ details : False (default): the region is the fair surface itself. True: detail
     are the base's), and live.result at the start is the input itself.
 max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
     the frame runs the cold path.
+remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
+    "if_needed": connectivity that follows the drag. A frame whose warm start does not
+    converge, or folds more edges than the last converged frame, replaces the region's
+    triangles by geofair.remesh_region's remesh of the last converged frame's surface (with
+    the frame's fixed positions) and fairs that cold; the result's .remeshed, .faces, .free
+    and .origin_face (into the last frame's faces) say so, and later frames start warm on the
+    new mesh. The fixed vertices keep their rows; new free vertices take free rows the remesh
+    leaves over, then appended rows (n' >= n rows). The constructor's fair uses it too. Not
+    with details=True (its details are coded per vertex of the input).
 boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
 tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning :
     as for geofair.fair; boundary_normals are those of the constructor's vertices (an
@@ -1628,7 +1637,8 @@ frames, cold_frames : updates finished so far, and those that ran the cold path.
 Raises
 ------
 geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
-geofair.fair; InvalidInputError for max_warm_steps < 1; SolverError with details=True where
+geofair.fair; InvalidInputError for max_warm_steps < 1, remesh=True ("always"), or
+remesh="if_needed" with details=True; SolverError with details=True where
 the input's base (its cold fair) did not converge.)doc");
   py::class_<LiveFairing, std::shared_ptr<LiveFairing>> cls(m, "LiveFairing",
                                                             class_docstring.c_str());
@@ -1637,8 +1647,9 @@ the input's base (its cold fair) did not converge.)doc");
   const CheckedFunction make = checked_function(
       "LiveFairing", "__init__",
       [](const py::object& vertices, const py::object& faces, const py::object& free,
-         bool details, int max_warm_steps, const std::string& boundary,
-         const py::object& boundary_normals, const py::object& polygon_ids,
+         bool details, int max_warm_steps, const py::object& remesh,
+         const std::string& boundary, const py::object& boundary_normals,
+         const py::object& polygon_ids,
          const std::string& inner_fairness, const std::string& outer_fairness,
          const std::string& normal_weighting, double tolerance, int max_iterations,
          double damping, int cg_iterations, int levels, const std::string& iteration,
@@ -1648,10 +1659,11 @@ the input's base (its cold fair) did not converge.)doc");
         const std::vector<bool> mask = to_mask(free, V.rows());
         std::optional<std::vector<int>> polygons;
         if (!polygon_ids.is_none()) polygons = to_polygon_ids(polygon_ids, F.rows());
-        const FairingOptions options = fairing_options(
+        FairingOptions options = fairing_options(
             boundary, inner_fairness, outer_fairness, normal_weighting, tolerance,
             max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning,
             "LiveFairing");
+        options.remesh = parse_remesh(remesh);
         std::optional<Positions> normals;
         if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
           normals = to_positions(boundary_normals, "boundary_normals");
@@ -1669,6 +1681,7 @@ the input's base (its cold fair) did not converge.)doc");
       py::arg("vertices"), py::arg("faces"), py::arg("free"), py::kw_only(),
       py::arg("details") = live_defaults.details,
       py::arg("max_warm_steps") = live_defaults.max_warm_steps,
+      py::arg("remesh") = remesh_value(d.remesh),
       py::arg("boundary") = name(d.boundary, kBoundaryNames),
       py::arg("boundary_normals") = py::none(), py::arg("polygon_ids") = py::none(),
       py::arg("inner_fairness") = name(d.inner_fairness, kInnerFairnessNames),
@@ -1693,24 +1706,26 @@ converged frame (see LiveFairing).
 
 Parameters
 ----------
-vertices : (n, 3) float64 array, mesh units, n as at construction: the rows of fixed
-    vertices are the frame's positions (the handle's and the surroundings'); the rows of
-    free vertices are not read (any values, NaN too).
+vertices : (n, 3) float64 array, mesh units, n as at construction or, after a remesh, the
+    live mesh's n' rows (.result.vertices): the rows of fixed vertices are the frame's
+    positions (the handle's and the surroundings'); the rows of free vertices are not read
+    (any values, NaN too).
 boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
     handle's included), or None (default): estimated from vertices as geofair.fair does.
 
 Returns
 -------
-FairingResult as geofair.fair's for the frame's input: .vertices (n, 3) with the fixed rows
+FairingResult as geofair.fair's for the frame's input: .vertices (n', 3) (the live mesh's
+rows; n' = n unless remesh="if_needed" replaced the triangles) with the fixed rows
 bit-identical to vertices; .message says how the frame was solved ("warm start from the
-last frame (k Newton steps)", or "cold path (fair): the warm start did not converge (...)").
-A frame that did not converge even on the cold path is returned unconverged, with the
+last frame (k Newton steps)", "remeshed from the last frame (...)", or "cold path (fair):
+the warm start did not converge (...)"). A frame that did not converge even on the cold path is returned unconverged, with the
 reason in .message, and leaves .result and the next warm start at the last converged frame.
 
 Raises
 ------
 geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
-construction, a fixed vertex of a triangle has a non-finite coordinate (the vertex is
+construction (or than the live mesh after a remesh), a fixed vertex of a triangle has a non-finite coordinate (the vertex is
 named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
 the cold path raises. Either leaves the state as it was.)doc");
   // The properties and __repr__ first, with the signatures pybind11 writes; then the
@@ -1730,6 +1745,10 @@ the cold path raises. Either leaves the state as it was.)doc");
   cls.def_property_readonly("cold_frames",
                             released([](const LiveFairing& live) { return live.cold_frames(); }),
                             "Finished updates that ran the cold path (geofair.fair).");
+  cls.def_property_readonly("remeshes",
+                            released([](const LiveFairing& live) { return live.remeshes(); }),
+                            "Finished updates that replaced the region's triangles "
+                            "(remesh=\"if_needed\").");
   cls.def("__repr__", [](const LiveFairing& live) {
     int frames = 0, cold = 0;
     {

@@ -2,6 +2,8 @@
 // frame (live.h).
 #include "geofair/live.h"
 
+#include "geofair/building_blocks.h"
+
 #include "common.h"
 #include "construction.h"
 #include "inner_fairness.h"
@@ -147,8 +149,10 @@ class DetailCoding {
 }  // namespace
 
 struct LiveFairing::State {
-  Triangles F;
+  Triangles F;              // the live mesh: the input's, or the last remesh's
   std::vector<bool> free;
+  int input_rows = 0;       // the constructor's vertex count (update accepts it or the live mesh's)
+  int mesh_folds = 0;       // folded edges of the live mesh's first converged frame
   std::optional<std::vector<int>> polygon_ids;
   FairingOptions options;  // the user's, without a progress callback
   LiveOptions live;
@@ -166,8 +170,39 @@ struct LiveFairing::State {
   Positions last_step;      // the last warm frame's change of X (#region×3; empty after a cold
                             // frame), the secant predictor's
   FairingResult last;
-  int frames = 0, cold_frames = 0;
+  int frames = 0, cold_frames = 0, remeshes = 0;
   mutable std::mutex mutex;  // update() and result() take turns
+
+  // Prepares the region of the live mesh (F, free) with V0 = V / scale: the region, the
+  // construction with its symbolic analysis, the predictor, the fixed vertices to check.
+  void prepare(const Positions& V, const Positions* boundary_normals);
+
+  // The caller's V (input_rows or the live mesh's rows) as the live mesh's rows: rows the
+  // caller's mesh lacks (rows a remesh appended, free) are taken from `fill`.
+  Positions live_rows(const Positions& V, const Positions& fill) const {
+    if (V.rows() == fill.rows()) return V;
+    Positions out = fill;
+    out.topRows(V.rows()) = V;
+    return out;
+  }
+
+  // The remesh of a frame (Remesh::IfNeeded) from the last converged frame's surface: the
+  // frame's fixed rows with the last frame's free ones, remesh_region, then fair() of that
+  // mesh (fair's Remesh::Always on that input, with the frame's normals).
+  FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
+
+  // update()'s checks of its input; V_in (and normals_in) as the live mesh's rows.
+  Positions checked_input(const Positions& V_in, const Positions* normals_in,
+                          std::optional<Positions>& normals) const;
+
+  // remesh_frame with the reason in its message (`folded`: the warm start converged with
+  // more folds; else it did not converge, `why`); nullopt (why extended) where it threw.
+  std::optional<FairingResult> try_remesh(const Positions& V, const Positions* boundary_normals,
+                                          bool folded, std::string& why) const;
+
+  // Makes a remeshed result's mesh the live one (prepare; boundary_normals: the old mesh's
+  // rows or nullptr).
+  void switch_mesh(const FairingResult& result, const Positions* boundary_normals);
 
   // The frame's input (/ scale): V's fixed rows, the original free rows.
   Positions frame_input(const Positions& V) const {
@@ -330,45 +365,103 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   return result;
 }
 
+void LiveFairing::State::prepare(const Positions& V, const Positions* boundary_normals) {
+  FairingRegion checked = extract_region(V / scale, F, free, boundary_normals, true,
+                                         polygon_ids ? &*polygon_ids : nullptr, options.boundary);
+  V0 = V / scale;
+  region = std::move(checked);
+  finest = region;
+  std::iota(finest.global.begin(), finest.global.end(), 0);
+  const Positions X0 = gather(V0, region.global);
+  construction = std::make_unique<Construction>(
+      finest, inner_fairness_weights(finest, X0, options.inner_fairness), options, diagonal(X0));
+  construction->prepare_newton();  // the symbolic analysis, once per mesh
+  predictor = std::make_unique<DisplacementPredictor>(finest);
+  std::vector<bool> used(free.size(), false);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
+  used_fixed.clear();
+  for (std::size_t v = 0; v < free.size(); ++v)
+    if (used[v] && !free[v]) used_fixed.push_back(int(v));
+}
+
+FairingResult LiveFairing::State::remesh_frame(const Positions& V,
+                                               const Positions* boundary_normals) const {
+  Laps laps;
+  Positions U = V;  // the live mesh's rows: the frame's fixed rows
+  const Positions& surface = last.vertices;  // the last converged frame's free rows
+  for (int i = 0; i < region.n_free; ++i)
+    U.row(region.global[i]) = surface.row(region.global[i]);
+  // At fair()'s remesh length (the region's border edges), which also resolves the strip
+  // that a handle dragged towards the border squeezes.
+  const RemeshedRegion mesh = remesh_region(U, F, free, RemeshOptions{});
+  std::optional<Positions> normals;  // the fixed rows keep theirs; new rows are not read
+  if (boundary_normals)
+    normals = live_rows(*boundary_normals, Positions::Zero(mesh.vertices.rows(), 3));
+  FairingOptions kept = options;
+  kept.remesh = Remesh::Off;
+  const double seconds = laps.lap();
+  FairingResult result =
+      fair(mesh.vertices, mesh.faces, mesh.free, normals ? &*normals : nullptr, kept, nullptr);
+  result.remeshed = true;
+  result.unreferenced = mesh.unreferenced;
+  result.origin_face = mesh.origin_face;
+  result.origin_barycentric = mesh.origin_barycentric;
+  result.phase_seconds.insert(result.phase_seconds.begin(), {"remesh", seconds});
+  return result;
+}
+
+void LiveFairing::State::switch_mesh(const FairingResult& result,
+                                     const Positions* boundary_normals) {
+  std::optional<Positions> normals;  // the new rows (free) are not read
+  if (boundary_normals)
+    normals = live_rows(*boundary_normals, Positions::Zero(result.vertices.rows(), 3));
+  Triangles old_F = std::move(F);
+  std::vector<bool> old_free = std::move(free);
+  std::optional<std::vector<int>> old_polygon_ids = std::move(polygon_ids);
+  F = result.faces;
+  free = result.free;
+  polygon_ids.reset();  // the remesh's triangles come from no polygon
+  try {  // prepare throws before it changes anything (extract_region first)
+    prepare(result.vertices, normals ? &*normals : nullptr);
+  } catch (...) {
+    F = std::move(old_F), free = std::move(old_free), polygon_ids = std::move(old_polygon_ids);
+    throw;
+  }
+}
+
 LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                          const Positions* boundary_normals, const FairingOptions& options,
                          const LiveOptions& live, const std::vector<int>* polygon_ids)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
-  if (options.remesh != Remesh::Off)
-    throw InvalidInputError("LiveFairing: remesh must be off");
+  if (options.remesh == Remesh::Always)
+    throw InvalidInputError("LiveFairing: remesh must be off or if_needed");
+  if (options.remesh == Remesh::IfNeeded && live.details)
+    throw InvalidInputError("LiveFairing: details=True keeps the input's triangles (its details "
+                            "are coded per vertex): remesh must be off");
   if (live.max_warm_steps < 1) throw InvalidInputError("LiveFairing: max_warm_steps must be >= 1");
   s.F = F;
   s.free = free;
+  s.input_rows = int(V.rows());
   if (polygon_ids) s.polygon_ids = *polygon_ids;
   s.options = options;
   s.options.progress = nullptr;
   s.live = live;
-  // The cold solve first: fair's checks of the input and options, and the first frame.
-  FairingResult first = fair(V, F, free, boundary_normals, s.options, polygon_ids);
+  // The cold solve first: fair's checks of the input and options, and the first frame, on
+  // the input's triangles (the frames remesh).
+  FairingOptions kept = s.options;
+  kept.remesh = Remesh::Off;
+  FairingResult first = fair(V, F, free, boundary_normals, kept, polygon_ids);
   s.scale = working_scale(V, F, "LiveFairing");
-  s.V0 = V / s.scale;
-  s.region = extract_region(s.V0, F, free, boundary_normals, true, polygon_ids, options.boundary);
-  s.finest = s.region;
-  std::iota(s.finest.global.begin(), s.finest.global.end(), 0);
-  const Positions X0 = gather(s.V0, s.region.global);
-  const double L = diagonal(X0);
-  s.construction = std::make_unique<Construction>(
-      s.finest, inner_fairness_weights(s.finest, X0, options.inner_fairness), s.options, L);
-  s.construction->prepare_newton();  // the symbolic analysis, once
-  s.predictor = std::make_unique<DisplacementPredictor>(s.finest);
-  std::vector<bool> used(std::size_t(V.rows()), false);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
-  for (Eigen::Index v = 0; v < V.rows(); ++v)
-    if (used[std::size_t(v)] && !free[std::size_t(v)]) s.used_fixed.push_back(int(v));
+  s.prepare(V, boundary_normals);
   if (live.details) {
     // The input's details over its base (the cold fair): the first frame is the input.
     if (!first.converged)
       throw SolverError("LiveFairing: details=True needs the input's base, and its fair did not "
                         "converge (" + first.message + ")");
     s.X = gather(first.vertices / s.scale, s.region.global);
-    s.details = std::make_unique<DetailCoding>(s.finest, s.X, X0);
+    s.details = std::make_unique<DetailCoding>(s.finest, s.X, gather(s.V0, s.region.global));
     s.warm = true;
     first.vertices = V;
     s.last = std::move(first);
@@ -378,6 +471,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
     s.adopt(first);
   else
     s.last = std::move(first);
+  s.mesh_folds = s.last.folds;
 }
 
 LiveFairing::~LiveFairing() = default;
@@ -396,52 +490,125 @@ int LiveFairing::cold_frames() const {
   const std::lock_guard<std::mutex> lock(state_->mutex);
   return state_->cold_frames;
 }
+int LiveFairing::remeshes() const {
+  const std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->remeshes;
+}
 
-FairingResult LiveFairing::update(const Positions& V, const Positions* boundary_normals) {
-  State& s = *state_;
-  const std::lock_guard<std::mutex> lock(s.mutex);
-  const Eigen::Index n = Eigen::Index(s.free.size());
-  if (V.rows() != n)
-    throw InvalidInputError(std::string(kUpdate) + ": vertices has " + std::to_string(V.rows()) +
-                            " rows, the mesh " + std::to_string(n) + " vertices");
-  for (int v : s.used_fixed)
+std::optional<FairingResult> LiveFairing::State::try_remesh(const Positions& V,
+                                                           const Positions* boundary_normals,
+                                                           bool folded, std::string& why) const {
+  try {
+    FairingResult result = remesh_frame(V, boundary_normals);
+    result.message += "; remeshed from the last frame (the warm start " +
+                      std::string(folded ? "folded: " : "did not converge: ") + why + ")";
+    return result;
+  } catch (const std::exception& error) {
+    why += std::string("; remeshing failed: ") + error.what();
+    return std::nullopt;
+  }
+}
+
+Positions LiveFairing::State::checked_input(const Positions& V_in, const Positions* normals_in,
+                                           std::optional<Positions>& normals) const {
+  const Eigen::Index n = Eigen::Index(free.size());
+  const std::string rows = n == input_rows ? std::to_string(n)
+                                            : std::to_string(input_rows) + " or " +
+                                                  std::to_string(n) + " (remeshed)";
+  if (V_in.rows() != n && V_in.rows() != input_rows)
+    throw InvalidInputError(std::string(kUpdate) + ": vertices has " +
+                            std::to_string(V_in.rows()) + " rows, the mesh " + rows +
+                            " vertices");
+  if (normals_in && normals_in->rows() != V_in.rows())
+    throw InvalidInputError(std::string(kUpdate) + ": boundary_normals has " +
+                            std::to_string(normals_in->rows()) + " rows for " +
+                            std::to_string(V_in.rows()) + " vertices");
+  Positions V = live_rows(V_in, last.vertices);
+  if (normals_in) normals = live_rows(*normals_in, Positions::Zero(n, 3));
+  for (int v : used_fixed)
     if (!V.row(v).allFinite())
       throw InvalidInputError(std::string(kUpdate) + ": vertex " + std::to_string(v) +
                               " has a non-finite coordinate");
-  if (boundary_normals && boundary_normals->rows() != n)
-    throw InvalidInputError(std::string(kUpdate) + ": boundary_normals has " +
-                            std::to_string(boundary_normals->rows()) + " rows for " +
-                            std::to_string(n) + " vertices");
+  return V;
+}
+
+FairingResult LiveFairing::update(const Positions& V_in, const Positions* normals_in) {
+  State& s = *state_;
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  const Eigen::Index n = Eigen::Index(s.free.size());
+  std::optional<Positions> normals_rows;
+  const Positions V = s.checked_input(V_in, normals_in, normals_rows);
+  const Positions* boundary_normals = normals_rows ? &*normals_rows : nullptr;
   set_loop_threads(solve_threads());
   const BlasThreads blas_threads(1);
   Laps laps;
   const Positions W = s.frame_input(V);
   Phases phases;
   std::string why = "the last frame did not converge";
+  const bool remesh = s.options.remesh == Remesh::IfNeeded;
+  // With remesh="if_needed", a converged warm frame that folds more edges than the last
+  // converged frame is kept only where remeshing does not do better.
+  std::optional<FairingResult> folded;
   if (s.warm) {
     // The boundary data are the frame's own; X changes only where the frame converged.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
-      result->phase_seconds = std::move(phases);
-      s.last = *result;
-      ++s.frames;
-      return std::move(*result);
+      if (!remesh || result->folds <= s.mesh_folds) {
+        result->phase_seconds = std::move(phases);
+        s.last = *result;
+        ++s.frames;
+        return std::move(*result);
+      }
+      why = std::to_string(result->folds) + " folded edges, the mesh's first frame " +
+            std::to_string(s.mesh_folds);
+      folded = std::move(result);
     }
   }
-  // The cold path: fair() of the frame's input, its whole schedule.
   const double warm_seconds = laps.lap();
-  FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, s.options,
+  if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
+  // Returns a frame solved anew (remeshed or cold): a converged one becomes the warm start,
+  // on its mesh where remeshed.
+  auto take = [&](FairingResult& result) {
+    phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
+    result.phase_seconds = std::move(phases);
+    ++s.frames;
+    if (!result.converged) return;  // the live mesh and warm start stay the last frame's
+    if (result.remeshed) {
+      s.switch_mesh(result, boundary_normals);
+      s.mesh_folds = result.folds;
+      ++s.remeshes;
+    }
+    s.adopt(result);
+  };
+  // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
+  std::optional<FairingResult> remeshed;
+  if (remesh && s.warm) remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
+  // Taken where it converged, unless the warm frame converged with fewer folds: the cold
+  // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
+  if (remeshed && remeshed->converged &&
+      (!folded || remeshed->folds <= s.mesh_folds || remeshed->folds < folded->folds)) {
+    take(*remeshed);
+    return std::move(*remeshed);
+  }
+  if (remeshed) why += "; remeshing did not help (" + remeshed->message + ")";
+  if (folded) {  // remeshing did not do better: the folded warm frame stands (X is its own)
+    if (remeshed) folded->message += "; " + why.substr(why.find("remeshing did not help"));
+    folded->phase_seconds = std::move(phases);
+    s.last = *folded;
+    ++s.frames;
+    return std::move(*folded);
+  }
+  // The cold path: fair() of the frame's input on the live mesh, its whole schedule.
+  FairingOptions kept = s.options;
+  kept.remesh = Remesh::Off;
+  FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, kept,
                             s.polygon_ids ? &*s.polygon_ids : nullptr);
-  ++s.frames;
-  ++s.cold_frames;
-  for (int v = 0; v < int(n); ++v)  // fixed rows bit-identical to V's
+  ++s.cold_frames;  // (take counts the frame)
+  for (Eigen::Index v = 0; v < n; ++v)  // fixed rows bit-identical to V's
     if (!s.free[std::size_t(v)]) cold.vertices.row(v) = V.row(v);
   cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
-  if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
-  phases.insert(phases.end(), cold.phase_seconds.begin(), cold.phase_seconds.end());
-  cold.phase_seconds = std::move(phases);
-  if (cold.converged)
-    s.adopt(cold);
-  else if (s.details)
+  const bool details = bool(s.details);
+  take(cold);
+  if (!cold.converged && details)
     cold.vertices = s.caller_positions(cold.vertices, gather(cold.vertices / s.scale, s.region.global));
   return cold;
 }

@@ -56,8 +56,14 @@ class LiveFairing {
   /// Prepares the region of (V, F, free) and fairs it cold (fair(); result(), with
   /// live.details the input V itself, its details coded over that fair base).
   /// \param V, F, free, boundary_normals, options, polygon_ids  as for fair (fairing.h);
-  ///        options.remesh must be Off; options.progress is not called.
-  /// \throw InvalidInputError as fair, or for options.remesh or live.max_warm_steps out of
+  ///        options.remesh Off or IfNeeded (connectivity that follows the drag: a frame whose
+  ///        warm start does not converge or folds more edges than the last converged frame
+  ///        is remeshed, remesh_region of the last converged frame's surface with the frame's
+  ///        fixed positions, and faired cold; later frames start warm on that mesh, whose
+  ///        rows are remesh_region's layout: fixed rows kept, #V' >= #V);
+  ///        options.progress is not called.
+  /// \throw InvalidInputError as fair, or for options.remesh Always, IfNeeded with
+  ///        live.details (details are coded per input vertex) or live.max_warm_steps out of
   ///        range; SolverError as fair, or with live.details where the base did not converge.
   LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
               const Positions* boundary_normals, const FairingOptions& options,
@@ -67,16 +73,19 @@ class LiveFairing {
   LiveFairing& operator=(LiveFairing&&) noexcept;
 
   /// Fairs the region for new positions of the fixed vertices.
-  /// \param V  #V×3 positions, mesh units: the rows of fixed vertices are the frame's data,
-  ///           those of free vertices are not read
+  /// \param V  #V×3 positions, mesh units (#V the construction's or, after a remesh, the
+  ///           live mesh's #V'): the rows of fixed vertices are the frame's data, those of
+  ///           free vertices are not read
   /// \param boundary_normals  #V×3 unit normals read at the G1 boundary vertices (handle
   ///           included), or nullptr: estimated from V as fair does
-  /// \return the frame's FairingResult as fair's (rows of fixed vertices bit-identical to
-  ///         V; with details the base's fair surface plus the details, the residual and
+  /// \return the frame's FairingResult as fair's (the live mesh's #V' rows, faces and free;
+  ///         remeshed where this frame replaced the triangles, origin_face then into the
+  ///         last frame's faces; rows of fixed vertices bit-identical to V; with details the base's fair surface plus the details, the residual and
   ///         folds the base's); a frame that did not converge (the cold path failed too) is returned
   ///         unconverged, with the reason in message, and leaves result() and the next
   ///         warm start at the last converged frame
-  /// \throw InvalidInputError if V has another number of rows than the construction's, a
+  /// \throw InvalidInputError if V has another number of rows (than the construction's
+  ///        or the live mesh's), a
   ///        fixed vertex of a triangle has a non-finite coordinate, or for the normals (as
   ///        fair); SolverError where the cold path raises (as fair). Either leaves the
   ///        state unchanged.
@@ -86,9 +95,11 @@ class LiveFairing {
   /// or not).
   FairingResult result() const;
 
-  /// Frames since the construction: all of them, and those that ran the cold path.
+  /// Frames since the construction: all of them, those that ran the cold path, and those
+  /// that replaced the region's triangles (remesh = IfNeeded).
   int frames() const;
   int cold_frames() const;
+  int remeshes() const;
 
  private:
   struct State;

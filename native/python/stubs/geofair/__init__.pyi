@@ -272,6 +272,15 @@ class LiveFairing:
         are the base's), and live.result at the start is the input itself.
     max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
         the frame runs the cold path.
+    remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
+        "if_needed": connectivity that follows the drag. A frame whose warm start does not
+        converge, or folds more edges than the last converged frame, replaces the region's
+        triangles by geofair.remesh_region's remesh of the last converged frame's surface (with
+        the frame's fixed positions) and fairs that cold; the result's .remeshed, .faces, .free
+        and .origin_face (into the last frame's faces) say so, and later frames start warm on the
+        new mesh. The fixed vertices keep their rows; new free vertices take free rows the remesh
+        leaves over, then appended rows (n' >= n rows). The constructor's fair uses it too. Not
+        with details=True (its details are coded per vertex of the input).
     boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
     tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning :
         as for geofair.fair; boundary_normals are those of the constructor's vertices (an
@@ -286,10 +295,11 @@ class LiveFairing:
     Raises
     ------
     geofair.InvalidInputError (a ValueError) and geofair.SolverError (a RuntimeError) as
-    geofair.fair; InvalidInputError for max_warm_steps < 1; SolverError with details=True where
+    geofair.fair; InvalidInputError for max_warm_steps < 1, remesh=True ("always"), or
+    remesh="if_needed" with details=True; SolverError with details=True where
     the input's base (its cold fair) did not converge.
     """
-    def __init__(self, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, details: bool = False, max_warm_steps: typing.SupportsInt | typing.SupportsIndex = 8, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> None:
+    def __init__(self, vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typing.NDArray[numpy.integer[typing.Any]], free: numpy.typing.NDArray[numpy.bool_], *, details: bool = False, max_warm_steps: typing.SupportsInt | typing.SupportsIndex = 8, remesh: bool | typing.Literal['off', 'always', 'if_needed'] = False, boundary: typing.Literal['g1', 'g0'] = 'g1', boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, polygon_ids: numpy.typing.NDArray[numpy.integer[typing.Any]] | None = None, inner_fairness: typing.Literal['uniform', 'conformal', 'conformal_intrinsic'] = 'uniform', outer_fairness: typing.Literal['intrinsic', 'bilaplacian'] = 'intrinsic', normal_weighting: typing.Literal['area', 'angle', 'max', 'quadric'] = 'quadric', tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, max_iterations: typing.SupportsInt | typing.SupportsIndex = 20000, damping: typing.SupportsFloat | typing.SupportsIndex = 0.9, cg_iterations: typing.SupportsInt | typing.SupportsIndex = 10, levels: typing.SupportsInt | typing.SupportsIndex = 0, iteration: typing.Literal['auto', 'newton', 'paper'] = 'auto', time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None, tuning: dict[str, typing.Any] | None = None) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -300,24 +310,26 @@ class LiveFairing:
         
         Parameters
         ----------
-        vertices : (n, 3) float64 array, mesh units, n as at construction: the rows of fixed
-            vertices are the frame's positions (the handle's and the surroundings'); the rows of
-            free vertices are not read (any values, NaN too).
+        vertices : (n, 3) float64 array, mesh units, n as at construction or, after a remesh, the
+            live mesh's n' rows (.result.vertices): the rows of fixed vertices are the frame's
+            positions (the handle's and the surroundings'); the rows of free vertices are not read
+            (any values, NaN too).
         boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
             handle's included), or None (default): estimated from vertices as geofair.fair does.
         
         Returns
         -------
-        FairingResult as geofair.fair's for the frame's input: .vertices (n, 3) with the fixed rows
+        FairingResult as geofair.fair's for the frame's input: .vertices (n', 3) (the live mesh's
+        rows; n' = n unless remesh="if_needed" replaced the triangles) with the fixed rows
         bit-identical to vertices; .message says how the frame was solved ("warm start from the
-        last frame (k Newton steps)", or "cold path (fair): the warm start did not converge (...)").
-        A frame that did not converge even on the cold path is returned unconverged, with the
+        last frame (k Newton steps)", "remeshed from the last frame (...)", or "cold path (fair):
+        the warm start did not converge (...)"). A frame that did not converge even on the cold path is returned unconverged, with the
         reason in .message, and leaves .result and the next warm start at the last converged frame.
         
         Raises
         ------
         geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
-        construction, a fixed vertex of a triangle has a non-finite coordinate (the vertex is
+        construction (or than the live mesh after a remesh), a fixed vertex of a triangle has a non-finite coordinate (the vertex is
         named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
         the cold path raises. Either leaves the state as it was.
         """
@@ -330,6 +342,11 @@ class LiveFairing:
     def frames(self) -> int:
         """
         Updates finished so far (returned, converged or not).
+        """
+    @property
+    def remeshes(self) -> int:
+        """
+        Finished updates that replaced the region's triangles (remesh="if_needed").
         """
     @property
     def result(self) -> FairingResult:
