@@ -39,7 +39,11 @@ frame, started from the last one, does not fold.
 
     PYTHONPATH=build/python python3 bench/live.py [n_free ...] [--caps irregular,regular,random,icosphere]
         [--handle DEG] [--slide DEG] [--slide-frames N] [--inner uniform|conformal]
-        [--cold-every K] [--frames]
+        [--cold-every K] [--remesh off|if_needed] [--frames]
+
+With --remesh if_needed (LiveFairing's remesh option) the "cold" column counts the frames
+that remeshed too, the radial error is over each frame's own free vertices, the comparison
+with the cold fair skips remeshed frames, and a line under the summary gives the remeshes.
 
 Defaults: sizes 2000 and 13000, all four constructions. The machine may be shared (the
 times are wall times): rerun when a figure matters.
