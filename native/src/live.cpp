@@ -40,6 +40,9 @@ double diagonal(const Positions& X) {
   return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
 }
 
+// Frames between remesh attempts for folds that a remesh left (LiveFairing::State).
+constexpr int kRemeshRetry = 3;
+
 // The secant predictor's largest multiple of the last frame's response (warm_frame).
 constexpr double kSecantLimit = 2.0;
 
@@ -153,6 +156,15 @@ struct LiveFairing::State {
   std::vector<bool> free;
   int input_rows = 0;       // the constructor's vertex count (update accepts it or the live mesh's)
   int mesh_folds = 0;       // folded edges of the live mesh's first converged frame
+  int input_folds = 0;      // ... of the constructor's frame (the input's own)
+  int remesh_tried = -kRemeshRetry;  // the frame (count) of the last remesh attempt
+
+  // Whether a converged warm frame with `folds` folded edges is remeshed (remesh
+  // IfNeeded): more than the live mesh's first frame has, or, kRemeshRetry frames after the
+  // last attempt, more than the input has.
+  bool wants_remesh(int folds) const {
+    return folds > mesh_folds || (folds > input_folds && frames - remesh_tried >= kRemeshRetry);
+  }
   std::optional<std::vector<int>> polygon_ids;
   FairingOptions options;  // the user's, without a progress callback
   LiveOptions live;
@@ -471,7 +483,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
     s.adopt(first);
   else
     s.last = std::move(first);
-  s.mesh_folds = s.last.folds;
+  s.mesh_folds = s.input_folds = s.last.folds;
 }
 
 LiveFairing::~LiveFairing() = default;
@@ -546,13 +558,13 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   Phases phases;
   std::string why = "the last frame did not converge";
   const bool remesh = s.options.remesh == Remesh::IfNeeded;
-  // With remesh="if_needed", a converged warm frame that folds more edges than the last
-  // converged frame is kept only where remeshing does not do better.
+  // With remesh="if_needed", a converged warm frame with folds (State::wants_remesh) is
+  // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
   if (s.warm) {
     // The boundary data are the frame's own; X changes only where the frame converged.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
-      if (!remesh || result->folds <= s.mesh_folds) {
+      if (!remesh || !s.wants_remesh(result->folds)) {
         result->phase_seconds = std::move(phases);
         s.last = *result;
         ++s.frames;
@@ -581,7 +593,10 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   };
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   std::optional<FairingResult> remeshed;
-  if (remesh && s.warm) remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
+  if (remesh && s.warm) {
+    s.remesh_tried = s.frames;
+    remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
+  }
   // Taken where it converged, unless the warm frame converged with fewer folds: the cold
   // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
   if (remeshed && remeshed->converged &&
