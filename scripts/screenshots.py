@@ -30,7 +30,7 @@ import bmesh
 import numpy as np
 from mathutils import Vector
 
-from geofair_dev.blender import add_subdivided_suzanne, enable_addon
+from geofair_dev.blender import add_subdivided_suzanne, enable_addon, side_by_side
 
 BROW = np.array([0.4, -0.7, 0.72])
 TIMEOUT = 120.0
@@ -104,29 +104,6 @@ def sidebar_to_fairing_tab(area):
         window.event_simulate(type="WHEELDOWNMOUSE", value="PRESS", x=x, y=y, ctrl=True)
 
 
-def combine(before, after, out):
-    """Put two screenshots side by side (a white gap between) and save as PNG."""
-    images = [bpy.data.images.load(str(path)) for path in (before, after)]
-    pixels = []
-    for image in images:
-        data = np.empty(len(image.pixels), dtype=np.float32)
-        image.pixels.foreach_get(data)
-        pixels.append(data.reshape(image.size[1], image.size[0], 4))
-    height = min(p.shape[0] for p in pixels)
-    gap = np.ones((height, 12, 4), dtype=np.float32)
-    combined = np.concatenate([pixels[0][:height], gap, pixels[1][:height]], axis=1)
-    result = bpy.data.images.new("zebra_before_after", combined.shape[1], combined.shape[0], alpha=True)
-    result.pixels.foreach_set(combined.ravel())
-    result.scale(combined.shape[1] * 3 // 4, combined.shape[0] * 3 // 4)  # a lighter file, still sharp
-    result.filepath_raw = str(out)
-    result.file_format = "PNG"
-    result.save()
-    for image in (*images, result):
-        bpy.data.images.remove(image)
-    for path in (before, after):
-        path.unlink()
-
-
 def finish(code):
     sys.stdout.flush()
     os._exit(code)
@@ -159,7 +136,7 @@ def steps(addon, out):
     after = out / "_after.png"
     with override():
         bpy.ops.screen.screenshot_area(filepath=str(after))
-    combine(before, after, out / "zebra_before_after.png")
+    side_by_side([before, after], out / "zebra_before_after.png")
 
     area.header_text_set(None)
     clean_view(space, False)

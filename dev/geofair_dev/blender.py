@@ -217,3 +217,34 @@ class FailingModule:
 
     def __getattr__(self, name):
         return getattr(self.real, name)
+
+
+def side_by_side(paths, out, shrink=0.75, crop=1.0):
+    """Put screenshots (PNG files) side by side, white gaps between, each cut to the middle
+    ``crop`` of its width, scaled by ``shrink`` (a lighter file, still sharp), and save the
+    strip as PNG at ``out``; the inputs are deleted."""
+    images = [bpy.data.images.load(str(path)) for path in paths]
+    pixels = []
+    for image in images:
+        data = np.empty(len(image.pixels), dtype=np.float32)
+        image.pixels.foreach_get(data)
+        data = data.reshape(image.size[1], image.size[0], 4)
+        keep = int(round(crop * data.shape[1]))
+        start = (data.shape[1] - keep) // 2
+        pixels.append(data[:, start : start + keep])
+    height = min(p.shape[0] for p in pixels)
+    gap = np.ones((height, 12, 4), dtype=np.float32)
+    parts = [pixels[0][:height]]
+    for p in pixels[1:]:
+        parts += [gap, p[:height]]
+    combined = np.concatenate(parts, axis=1)
+    result = bpy.data.images.new(pathlib.Path(out).stem, combined.shape[1], combined.shape[0], alpha=True)
+    result.pixels.foreach_set(combined.ravel())
+    result.scale(int(combined.shape[1] * shrink), int(combined.shape[0] * shrink))
+    result.filepath_raw = str(out)
+    result.file_format = "PNG"
+    result.save()
+    for image in (*images, result):
+        bpy.data.images.remove(image)
+    for path in paths:
+        pathlib.Path(path).unlink()
