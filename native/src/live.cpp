@@ -203,9 +203,11 @@ struct LiveFairing::State {
   // mesh (fair's Remesh::Always on that input, with the frame's normals).
   FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
 
-  // update()'s checks of its input; V_in (and normals_in) as the live mesh's rows.
-  Positions checked_input(const Positions& V_in, const Positions* normals_in,
-                          std::optional<Positions>& normals) const;
+  // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
+  // the live mesh more (a remesh), `padded` (`padded_normals`) gets the live mesh's rows.
+  void check_input(const Positions& V_in, const Positions* normals_in,
+                   std::optional<Positions>& padded,
+                   std::optional<Positions>& padded_normals) const;
 
   // remesh_frame with the reason in its message (`folded`: the warm start converged with
   // more folds; else it did not converge, `why`); nullopt (why extended) where it threw.
@@ -521,8 +523,9 @@ std::optional<FairingResult> LiveFairing::State::try_remesh(const Positions& V,
   }
 }
 
-Positions LiveFairing::State::checked_input(const Positions& V_in, const Positions* normals_in,
-                                           std::optional<Positions>& normals) const {
+void LiveFairing::State::check_input(const Positions& V_in, const Positions* normals_in,
+                                     std::optional<Positions>& padded,
+                                     std::optional<Positions>& padded_normals) const {
   const Eigen::Index n = Eigen::Index(free.size());
   const std::string rows = n == input_rows ? std::to_string(n)
                                             : std::to_string(input_rows) + " or " +
@@ -535,22 +538,25 @@ Positions LiveFairing::State::checked_input(const Positions& V_in, const Positio
     throw InvalidInputError(std::string(kUpdate) + ": boundary_normals has " +
                             std::to_string(normals_in->rows()) + " rows for " +
                             std::to_string(V_in.rows()) + " vertices");
-  Positions V = live_rows(V_in, last.vertices);
-  if (normals_in) normals = live_rows(*normals_in, Positions::Zero(n, 3));
+  if (V_in.rows() != n) {
+    padded = live_rows(V_in, last.vertices);
+    if (normals_in) padded_normals = live_rows(*normals_in, Positions::Zero(n, 3));
+  }
+  const Positions& V = padded ? *padded : V_in;
   for (int v : used_fixed)
     if (!V.row(v).allFinite())
       throw InvalidInputError(std::string(kUpdate) + ": vertex " + std::to_string(v) +
                               " has a non-finite coordinate");
-  return V;
 }
 
 FairingResult LiveFairing::update(const Positions& V_in, const Positions* normals_in) {
   State& s = *state_;
   const std::lock_guard<std::mutex> lock(s.mutex);
   const Eigen::Index n = Eigen::Index(s.free.size());
-  std::optional<Positions> normals_rows;
-  const Positions V = s.checked_input(V_in, normals_in, normals_rows);
-  const Positions* boundary_normals = normals_rows ? &*normals_rows : nullptr;
+  std::optional<Positions> padded, padded_normals;
+  s.check_input(V_in, normals_in, padded, padded_normals);
+  const Positions& V = padded ? *padded : V_in;  // the live mesh's rows
+  const Positions* boundary_normals = padded_normals ? &*padded_normals : normals_in;
   set_loop_threads(solve_threads());
   const BlasThreads blas_threads(1);
   Laps laps;
