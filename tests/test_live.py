@@ -117,17 +117,30 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
         assert np.array_equal(r.vertices[: len(v)][fixed], w[fixed])
         radial = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max()
         assert radial < 1e-4, (k, radial)
-    assert live.remeshes >= 1
+    assert live.remeshes >= 1 and live.frames == 15
     assert not (r.faces.shape == f.shape and np.array_equal(r.faces, f))
-    assert live.frames == 15
     # The remeshed mesh: its free vertices are the region's (none of the fixed rows), every
-    # face of the input without a free vertex is kept, and the next update takes the live
-    # mesh's rows as well as the input's.
+    # face of the input without a free vertex is kept, and the rows in no face are listed.
     assert not np.any(r.free[: len(v)] & fixed)
     outside = f[~free[f].any(axis=1)]
     assert {tuple(t) for t in outside} <= {tuple(t) for t in r.faces}
-    again = live.update(np.vstack([w, r.vertices[len(v) :]]))
-    assert again.converged and np.array_equal(again.vertices[: len(v)][fixed], w[fixed])
+    in_faces = np.zeros(len(r.vertices), dtype=bool)
+    in_faces[r.faces] = True
+    assert np.array_equal(np.sort(r.unreferenced), np.flatnonzero(~in_faces))
+    # The same frame again, its free rows NaN (the caller's free rows are not read, also
+    # where the remesh left them in no face): the same surface, every row finite.
+    w_nan = w.copy()
+    w_nan[free] = np.nan
+    again = live.update(w_nan)
+    assert again.converged and np.all(np.isfinite(again.vertices)), again.message
+    assert np.array_equal(again.vertices[: len(v)][fixed], w[fixed])
+    assert np.array_equal(again.unreferenced, r.unreferenced)
+    assert np.abs(again.vertices - r.vertices).max() < 1e-5
+    # Normals given for the input's rows (the sphere's: the estimate's within its error).
+    exact = live.update(w, boundary_normals=w / np.linalg.norm(w, axis=1)[:, None])
+    assert exact.converged and np.abs(exact.vertices - r.vertices).max() < 1e-3, exact.message
+    # The live mesh's own row count is taken as well; another one is refused.
+    live.update(np.vstack([w, r.vertices[len(v) :]]))
     with pytest.raises(geofair.InvalidInputError, match="rows"):
         live.update(w[:-1])
 

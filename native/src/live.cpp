@@ -15,6 +15,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -155,15 +156,15 @@ struct LiveFairing::State {
   Triangles F;              // the live mesh: the input's, or the last remesh's
   std::vector<bool> free;
   int input_rows = 0;       // the constructor's vertex count (update accepts it or the live mesh's)
-  int mesh_folds = 0;       // folded edges of the live mesh's first converged frame
-  int input_folds = 0;      // ... of the constructor's frame (the input's own)
-  int remesh_tried = -kRemeshRetry;  // the frame (count) of the last remesh attempt
+  int input_folds = 0;      // folded edges of the constructor's frame (the input's own)
+  int remesh_tried = -kRemeshRetry;  // the frame (count) of the last remesh that left folds
+  std::vector<int> unreferenced;  // rows in no face since a remesh (their last positions kept)
 
   // Whether a converged warm frame with `folds` folded edges is remeshed (remesh
-  // IfNeeded): more than the live mesh's first frame has, or, kRemeshRetry frames after the
-  // last attempt, more than the input has.
+  // IfNeeded): more than the input has, and kRemeshRetry frames after the last remesh
+  // attempt that left folds (or failed).
   bool wants_remesh(int folds) const {
-    return folds > mesh_folds || (folds > input_folds && frames - remesh_tried >= kRemeshRetry);
+    return folds > input_folds && frames - remesh_tried >= kRemeshRetry;
   }
   std::optional<std::vector<int>> polygon_ids;
   FairingOptions options;  // the user's, without a progress callback
@@ -172,22 +173,28 @@ struct LiveFairing::State {
   Positions V0;             // the construction's V / scale: the free rows' original positions
   std::vector<int> used_fixed;  // fixed vertices of a triangle, checked for finiteness
   FairingRegion region;     // in the caller's ids (global), its boundary normals the last frame's
-  FairingRegion finest;     // the same with region-local ids: what the construction works on
+  // The same with region-local ids: what the construction and the predictor work on (on
+  // the heap: they keep a reference to it, and prepare() builds a new one before it swaps).
+  std::unique_ptr<FairingRegion> finest;
   std::unique_ptr<Construction> construction;  // kept between frames (the warm start)
   std::unique_ptr<DisplacementPredictor> predictor;
   std::unique_ptr<DetailCoding> details;  // details=True: the input's details over its base
   Positions X;              // the last converged frame's region positions (local ids, / scale);
                             // with details its base
   bool warm = false;        // X is a converged solution to start from
+  Positions pending;         // a warm frame's solution until update() takes it (X's update)
   Positions last_step;      // the last warm frame's change of X (#region×3; empty after a cold
                             // frame), the secant predictor's
   FairingResult last;
   int frames = 0, cold_frames = 0, remeshes = 0;
   mutable std::mutex mutex;  // update() and result() take turns
 
-  // Prepares the region of the live mesh (F, free) with V0 = V / scale: the region, the
-  // construction with its symbolic analysis, the predictor, the fixed vertices to check.
-  void prepare(const Positions& V, const Positions* boundary_normals);
+  // Makes (F_new, free_new) the live mesh with V0 = V / scale (V: its rows): the region,
+  // the construction with its symbolic analysis, the predictor, the fixed vertices to check.
+  // Throws (InvalidInputError, SolverError) before it changes the state.
+  void prepare(Triangles F_new, std::vector<bool> free_new,
+               std::optional<std::vector<int>> polygons, const Positions& V,
+               const Positions* boundary_normals);
 
   // The caller's V (input_rows or the live mesh's rows) as the live mesh's rows: rows the
   // caller's mesh lacks (rows a remesh appended, free) are taken from `fill`.
@@ -214,8 +221,10 @@ struct LiveFairing::State {
   std::optional<FairingResult> try_remesh(const Positions& V, const Positions* boundary_normals,
                                           bool folded, std::string& why) const;
 
-  // Makes a remeshed result's mesh the live one (prepare; boundary_normals: the old mesh's
-  // rows or nullptr).
+  // Makes a remeshed result's mesh the live one (prepare; V0, the reference of later
+  // frames' input and conformal weights, is the result itself: the remesh's own positions
+  // before its fair lie on the last frame's surface, stretched at the handle, and conformal
+  // weights of them folded the next frames; boundary_normals: the old mesh's rows or nullptr).
   void switch_mesh(const FairingResult& result, const Positions* boundary_normals);
 
   // The frame's input (/ scale): V's fixed rows, the original free rows.
@@ -269,6 +278,7 @@ FairingResult LiveFairing::State::warm_result(const Positions& V, const Position
   result.vertices = caller_positions(V, Y);
   result.faces = F;
   result.free = free;
+  result.unreferenced = unreferenced;
   result.origin_face.assign(free.size(), -1);
   result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
   result.converged = true;
@@ -318,7 +328,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   std::optional<Positions> normals;
   if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
   set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
-  finest.g1_normals = region.g1_normals;
+  finest->g1_normals = region.g1_normals;
   const Positions X0 = gather(W, region.global);
   const double L = diagonal(X0);
   if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
@@ -329,11 +339,11 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   // steps) leaves the frame to the cold path.
   try {
     if (options.inner_fairness != InnerFairness::Uniform) {
-      InnerFairnessWeights lambda = inner_fairness_weights(finest, X0, options.inner_fairness);
+      InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
       if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
-        construction = std::make_unique<Construction>(finest, std::move(lambda), options, L);
+        construction = std::make_unique<Construction>(*finest, std::move(lambda), options, L);
     }
-    construction->set_boundary(finest.g1_normals, L);
+    construction->set_boundary(finest->g1_normals, L);
     NewtonRun run;
     run.max_iterations = live.max_warm_steps;
     run.tolerance = options.tolerance;
@@ -370,8 +380,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
     return std::nullopt;
   }
-  last_step = Y - X;
-  X = Y;
+  pending = Y;  // X becomes Y where update() returns this frame (take_warm)
   FairingResult result = warm_result(V, X0, Y, report);
   if (retried)
     result.message += "; from the harmonic predictor (Newton did not converge from the secant one)";
@@ -379,24 +388,36 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   return result;
 }
 
-void LiveFairing::State::prepare(const Positions& V, const Positions* boundary_normals) {
-  FairingRegion checked = extract_region(V / scale, F, free, boundary_normals, true,
-                                         polygon_ids ? &*polygon_ids : nullptr, options.boundary);
-  V0 = V / scale;
-  region = std::move(checked);
-  finest = region;
-  std::iota(finest.global.begin(), finest.global.end(), 0);
-  const Positions X0 = gather(V0, region.global);
-  construction = std::make_unique<Construction>(
-      finest, inner_fairness_weights(finest, X0, options.inner_fairness), options, diagonal(X0));
-  construction->prepare_newton();  // the symbolic analysis, once per mesh
-  predictor = std::make_unique<DisplacementPredictor>(finest);
-  std::vector<bool> used(free.size(), false);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) used[std::size_t(F(f, c))] = true;
-  used_fixed.clear();
-  for (std::size_t v = 0; v < free.size(); ++v)
-    if (used[v] && !free[v]) used_fixed.push_back(int(v));
+void LiveFairing::State::prepare(Triangles F_new, std::vector<bool> free_new,
+                                 std::optional<std::vector<int>> polygons, const Positions& V,
+                                 const Positions* boundary_normals) {
+  // Everything is built first; the state then changes by moves alone, which do not throw.
+  Positions V0_new = V / scale;
+  FairingRegion region_new = extract_region(V0_new, F_new, free_new, boundary_normals, true,
+                                            polygons ? &*polygons : nullptr, options.boundary);
+  auto finest_new = std::make_unique<FairingRegion>(region_new);
+  std::iota(finest_new->global.begin(), finest_new->global.end(), 0);
+  const Positions X0 = gather(V0_new, region_new.global);
+  auto construction_new = std::make_unique<Construction>(
+      *finest_new, inner_fairness_weights(*finest_new, X0, options.inner_fairness), options,
+      diagonal(X0));
+  construction_new->prepare_newton();  // the symbolic analysis, once per mesh
+  auto predictor_new = std::make_unique<DisplacementPredictor>(*finest_new);
+  std::vector<bool> used(free_new.size(), false);
+  for (Eigen::Index f = 0; f < F_new.rows(); ++f)
+    for (int c = 0; c < 3; ++c) used[std::size_t(F_new(f, c))] = true;
+  std::vector<int> used_fixed_new;
+  for (std::size_t v = 0; v < free_new.size(); ++v)
+    if (used[v] && !free_new[v]) used_fixed_new.push_back(int(v));
+  F = std::move(F_new);
+  free = std::move(free_new);
+  polygon_ids = std::move(polygons);
+  V0 = std::move(V0_new);
+  region = std::move(region_new);
+  construction = std::move(construction_new);  // before finest: they refer to it
+  predictor = std::move(predictor_new);
+  finest = std::move(finest_new);
+  used_fixed = std::move(used_fixed_new);
 }
 
 FairingResult LiveFairing::State::remesh_frame(const Positions& V,
@@ -422,6 +443,10 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   result.origin_face = mesh.origin_face;
   result.origin_barycentric = mesh.origin_barycentric;
   result.phase_seconds.insert(result.phase_seconds.begin(), {"remesh", seconds});
+  // Rows in no face: the remesh's spare rows and those of earlier remeshes.
+  for (int v : unreferenced)
+    if (!mesh.free[std::size_t(v)]) result.unreferenced.push_back(v);
+  std::sort(result.unreferenced.begin(), result.unreferenced.end());
   return result;
 }
 
@@ -430,18 +455,10 @@ void LiveFairing::State::switch_mesh(const FairingResult& result,
   std::optional<Positions> normals;  // the new rows (free) are not read
   if (boundary_normals)
     normals = live_rows(*boundary_normals, Positions::Zero(result.vertices.rows(), 3));
-  Triangles old_F = std::move(F);
-  std::vector<bool> old_free = std::move(free);
-  std::optional<std::vector<int>> old_polygon_ids = std::move(polygon_ids);
-  F = result.faces;
-  free = result.free;
-  polygon_ids.reset();  // the remesh's triangles come from no polygon
-  try {  // prepare throws before it changes anything (extract_region first)
-    prepare(result.vertices, normals ? &*normals : nullptr);
-  } catch (...) {
-    F = std::move(old_F), free = std::move(old_free), polygon_ids = std::move(old_polygon_ids);
-    throw;
-  }
+  std::vector<int> rows_in_no_face = result.unreferenced;
+  // The remesh's triangles come from no polygon.
+  prepare(result.faces, result.free, std::nullopt, result.vertices, normals ? &*normals : nullptr);
+  unreferenced = std::move(rows_in_no_face);
 }
 
 LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vector<bool>& free,
@@ -455,8 +472,6 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
     throw InvalidInputError("LiveFairing: details=True keeps the input's triangles (its details "
                             "are coded per vertex): remesh must be off");
   if (live.max_warm_steps < 1) throw InvalidInputError("LiveFairing: max_warm_steps must be >= 1");
-  s.F = F;
-  s.free = free;
   s.input_rows = int(V.rows());
   if (polygon_ids) s.polygon_ids = *polygon_ids;
   s.options = options;
@@ -468,14 +483,14 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
   kept.remesh = Remesh::Off;
   FairingResult first = fair(V, F, free, boundary_normals, kept, polygon_ids);
   s.scale = working_scale(V, F, "LiveFairing");
-  s.prepare(V, boundary_normals);
+  s.prepare(F, free, s.polygon_ids, V, boundary_normals);
   if (live.details) {
     // The input's details over its base (the cold fair): the first frame is the input.
     if (!first.converged)
       throw SolverError("LiveFairing: details=True needs the input's base, and its fair did not "
                         "converge (" + first.message + ")");
     s.X = gather(first.vertices / s.scale, s.region.global);
-    s.details = std::make_unique<DetailCoding>(s.finest, s.X, gather(s.V0, s.region.global));
+    s.details = std::make_unique<DetailCoding>(*s.finest, s.X, gather(s.V0, s.region.global));
     s.warm = true;
     first.vertices = V;
     s.last = std::move(first);
@@ -485,7 +500,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
     s.adopt(first);
   else
     s.last = std::move(first);
-  s.mesh_folds = s.input_folds = s.last.folds;
+  s.input_folds = s.last.folds;
 }
 
 LiveFairing::~LiveFairing() = default;
@@ -511,7 +526,8 @@ int LiveFairing::remeshes() const {
 
 std::optional<FairingResult> LiveFairing::State::try_remesh(const Positions& V,
                                                            const Positions* boundary_normals,
-                                                           bool folded, std::string& why) const {
+                                                           bool folded,
+                                                           std::string& why) const {
   try {
     FairingResult result = remesh_frame(V, boundary_normals);
     result.message += "; remeshed from the last frame (the warm start " +
@@ -542,6 +558,10 @@ void LiveFairing::State::check_input(const Positions& V_in, const Positions* nor
     padded = live_rows(V_in, last.vertices);
     if (normals_in) padded_normals = live_rows(*normals_in, Positions::Zero(n, 3));
   }
+  if (!unreferenced.empty()) {  // rows in no face keep their last positions, not the caller's
+    if (!padded) padded = V_in;
+    for (int v : unreferenced) padded->row(v) = last.vertices.row(v);
+  }
   const Positions& V = padded ? *padded : V_in;
   for (int v : used_fixed)
     if (!V.row(v).allFinite())
@@ -552,7 +572,6 @@ void LiveFairing::State::check_input(const Positions& V_in, const Positions* nor
 FairingResult LiveFairing::update(const Positions& V_in, const Positions* normals_in) {
   State& s = *state_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  const Eigen::Index n = Eigen::Index(s.free.size());
   std::optional<Positions> padded, padded_normals;
   s.check_input(V_in, normals_in, padded, padded_normals);
   const Positions& V = padded ? *padded : V_in;  // the live mesh's rows
@@ -564,20 +583,26 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   Phases phases;
   std::string why = "the last frame did not converge";
   const bool remesh = s.options.remesh == Remesh::IfNeeded;
+  // Returns a warm frame: its solution becomes the warm start.
+  auto take_warm = [&](FairingResult& result) {
+    result.phase_seconds = std::move(phases);
+    s.last_step = s.pending - s.X;
+    s.X = std::move(s.pending);
+    s.last = result;
+    ++s.frames;
+  };
   // With remesh="if_needed", a converged warm frame with folds (State::wants_remesh) is
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
   if (s.warm) {
-    // The boundary data are the frame's own; X changes only where the frame converged.
+    // The boundary data are the frame's own.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
       if (!remesh || !s.wants_remesh(result->folds)) {
-        result->phase_seconds = std::move(phases);
-        s.last = *result;
-        ++s.frames;
+        take_warm(*result);
         return std::move(*result);
       }
-      why = std::to_string(result->folds) + " folded edges, the mesh's first frame " +
-            std::to_string(s.mesh_folds);
+      why = std::to_string(result->folds) + " folded edges, the input " +
+            std::to_string(s.input_folds);
       folded = std::move(result);
     }
   }
@@ -588,34 +613,31 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   auto take = [&](FairingResult& result) {
     phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
     result.phase_seconds = std::move(phases);
-    ++s.frames;
-    if (!result.converged) return;  // the live mesh and warm start stay the last frame's
-    if (result.remeshed) {
+    if (result.converged && result.remeshed) {
       s.switch_mesh(result, boundary_normals);
-      s.mesh_folds = result.folds;
       ++s.remeshes;
     }
-    s.adopt(result);
+    ++s.frames;
+    if (result.converged) s.adopt(result);  // the live mesh and warm start stay otherwise
   };
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   std::optional<FairingResult> remeshed;
-  if (remesh && s.warm) {
-    s.remesh_tried = s.frames;
-    remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
-  }
-  // Taken where it converged, unless the warm frame converged with fewer folds: the cold
+  if (remesh && s.warm) remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
+  // Taken where it converged, unless the warm frame converged with as few folds: the cold
   // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
-  if (remeshed && remeshed->converged &&
-      (!folded || remeshed->folds <= s.mesh_folds || remeshed->folds < folded->folds)) {
+  const bool use_remesh = remeshed && remeshed->converged &&
+                          (!folded || remeshed->folds < folded->folds);
+  if (remesh && s.warm)  // a remesh that leaves folds is tried again kRemeshRetry frames on
+    s.remesh_tried = use_remesh && remeshed->folds <= s.input_folds ? -kRemeshRetry : s.frames;
+  if (use_remesh) {
     take(*remeshed);
     return std::move(*remeshed);
   }
   if (remeshed) why += "; remeshing did not help (" + remeshed->message + ")";
-  if (folded) {  // remeshing did not do better: the folded warm frame stands (X is its own)
-    if (remeshed) folded->message += "; " + why.substr(why.find("remeshing did not help"));
-    folded->phase_seconds = std::move(phases);
-    s.last = *folded;
-    ++s.frames;
+  if (folded) {  // remeshing did not do better: the folded warm frame stands
+    if (const auto note = why.find("; "); note != std::string::npos)
+      folded->message += why.substr(note);  // what the remesh did
+    take_warm(*folded);
     return std::move(*folded);
   }
   // The cold path: fair() of the frame's input on the live mesh, its whole schedule.
@@ -624,8 +646,9 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, kept,
                             s.polygon_ids ? &*s.polygon_ids : nullptr);
   ++s.cold_frames;  // (take counts the frame)
-  for (Eigen::Index v = 0; v < n; ++v)  // fixed rows bit-identical to V's
-    if (!s.free[std::size_t(v)]) cold.vertices.row(v) = V.row(v);
+  for (std::size_t v = 0; v < s.free.size(); ++v)  // fixed rows bit-identical to V's
+    if (!s.free[v]) cold.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
+  cold.unreferenced = s.unreferenced;
   cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
   const bool details = bool(s.details);
   take(cold);

@@ -33,9 +33,10 @@ struct LiveOptions {
 /// tangential relaxation towards inner fairness and Newton's method on the finest level
 /// (Construction::run_newton), both preconditioned by the factorizations of the last frame
 /// where GMRES still converges on them, then the polishes of fair. A frame whose warm start
-/// does not converge in LiveOptions::max_warm_steps Newton steps (or fails) runs the cold
-/// path, fair() with the whole schedule (bounded by options.time_limit, as fair), and says
-/// so in FairingResult::message. Design and measurements: docs/LIVE.md.
+/// does not converge in LiveOptions::max_warm_steps Newton steps (or fails) is remeshed
+/// where options.remesh is IfNeeded (see the constructor) and otherwise, or where that did
+/// not converge, runs the cold path, fair() with the whole schedule (bounded by
+/// options.time_limit, as fair); FairingResult::message says which. Design and measurements: docs/LIVE.md.
 ///
 /// Fixed vertices inside the region (a handle) are boundary conditions like the outer ones
 /// (fair does the same): their positions and, with G1, the tangent planes estimated from
@@ -57,10 +58,14 @@ class LiveFairing {
   /// live.details the input V itself, its details coded over that fair base).
   /// \param V, F, free, boundary_normals, options, polygon_ids  as for fair (fairing.h);
   ///        options.remesh Off or IfNeeded (connectivity that follows the drag: a frame whose
-  ///        warm start does not converge or folds more edges than the last converged frame
-  ///        is remeshed, remesh_region of the last converged frame's surface with the frame's
-  ///        fixed positions, and faired cold; later frames start warm on that mesh, whose
-  ///        rows are remesh_region's layout: fixed rows kept, #V' >= #V);
+  ///        warm start does not converge, or converges with more folded edges than the
+  ///        input, is remeshed, remesh_region of the last converged frame's surface with the
+  ///        frame's fixed positions, and faired cold; taken where it converged, with fewer
+  ///        folds than a converged warm start; a remesh that leaves folds is tried again
+  ///        three frames later at the earliest; later frames start warm on that mesh
+  ///        (its result their input's reference), whose rows are remesh_region's layout:
+  ///        fixed rows kept, #V' >= #V, rows in no face keep their last positions; the
+  ///        constructor fairs the input's own triangles);
   ///        options.progress is not called.
   /// \throw InvalidInputError as fair, or for options.remesh Always, IfNeeded with
   ///        live.details (details are coded per input vertex) or live.max_warm_steps out of

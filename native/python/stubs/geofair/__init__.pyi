@@ -274,13 +274,17 @@ class LiveFairing:
         the frame runs the cold path.
     remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
-        converge, or folds more edges than the last converged frame, replaces the region's
-        triangles by geofair.remesh_region's remesh of the last converged frame's surface (with
-        the frame's fixed positions) and fairs that cold; the result's .remeshed, .faces, .free
-        and .origin_face (into the last frame's faces) say so, and later frames start warm on the
-        new mesh. The fixed vertices keep their rows; new free vertices take free rows the remesh
-        leaves over, then appended rows (n' >= n rows). The constructor's fair uses it too. Not
-        with details=True (its details are coded per vertex of the input).
+        converge, or converges with more folded edges than the input had, is remeshed:
+        geofair.remesh_region's remesh of the last converged frame's surface (with the frame's
+        fixed positions), faired cold. It is taken where it converged (with fewer folds than
+        the warm start's, where that converged); a remesh that leaves folds is tried again three
+        frames later at the earliest. The result's .remeshed, .faces, .free, .unreferenced and
+        .origin_face (into the last frame's faces) say so, and later frames start warm on the
+        new mesh, whose result is their input's reference (the conformal weights' too). The
+        fixed vertices keep their rows; new free vertices take free rows the remesh leaves over,
+        then appended rows (n' >= n rows); rows left in no face keep their last positions. The
+        constructor fairs the input's own triangles. Not with details=True (its details are
+        coded per vertex of the input).
     boundary, boundary_normals, polygon_ids, inner_fairness, outer_fairness, normal_weighting,
     tolerance, max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning :
         as for geofair.fair; boundary_normals are those of the constructor's vertices (an
@@ -290,7 +294,8 @@ class LiveFairing:
     Attributes
     ----------
     result : the last converged frame's FairingResult (the constructor's cold fair until then).
-    frames, cold_frames : updates finished so far, and those that ran the cold path.
+    frames, cold_frames, remeshes : updates finished so far, those that ran the cold path, and
+        those that replaced the region's triangles (remesh="if_needed").
     
     Raises
     ------
