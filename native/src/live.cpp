@@ -216,6 +216,11 @@ struct LiveFairing::State {
                    std::optional<Positions>& padded,
                    std::optional<Positions>& padded_normals) const;
 
+  // The cold path: fair() of the frame's input W (/ scale) on the live mesh, its whole
+  // schedule; V's fixed rows, `why` the warm start's end.
+  FairingResult cold_frame(const Positions& V, const Positions& W,
+                           const Positions* boundary_normals, const std::string& why) const;
+
   // remesh_frame with the reason in its message (`folded`: the warm start converged with
   // more folds; else it did not converge, `why`); nullopt (why extended) where it threw.
   std::optional<FairingResult> try_remesh(const Positions& V, const Positions* boundary_normals,
@@ -524,6 +529,20 @@ int LiveFairing::remeshes() const {
   return state_->remeshes;
 }
 
+FairingResult LiveFairing::State::cold_frame(const Positions& V, const Positions& W,
+                                             const Positions* boundary_normals,
+                                             const std::string& why) const {
+  FairingOptions kept = options;
+  kept.remesh = Remesh::Off;
+  FairingResult cold =
+      fair(scale * W, F, free, boundary_normals, kept, polygon_ids ? &*polygon_ids : nullptr);
+  for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
+    if (!free[v]) cold.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
+  cold.unreferenced = unreferenced;
+  cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
+  return cold;
+}
+
 std::optional<FairingResult> LiveFairing::State::try_remesh(const Positions& V,
                                                            const Positions* boundary_normals,
                                                            bool folded,
@@ -640,16 +659,8 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
     take_warm(*folded);
     return std::move(*folded);
   }
-  // The cold path: fair() of the frame's input on the live mesh, its whole schedule.
-  FairingOptions kept = s.options;
-  kept.remesh = Remesh::Off;
-  FairingResult cold = fair(s.scale * W, s.F, s.free, boundary_normals, kept,
-                            s.polygon_ids ? &*s.polygon_ids : nullptr);
+  FairingResult cold = s.cold_frame(V, W, boundary_normals, why);
   ++s.cold_frames;  // (take counts the frame)
-  for (std::size_t v = 0; v < s.free.size(); ++v)  // fixed rows bit-identical to V's
-    if (!s.free[v]) cold.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
-  cold.unreferenced = s.unreferenced;
-  cold.message += "; cold path (fair): the warm start did not converge (" + why + ")";
   const bool details = bool(s.details);
   take(cold);
   if (!cold.converged && details)
