@@ -2,8 +2,6 @@
 // frame (live.h).
 #include "geofair/live.h"
 
-#include "geofair/building_blocks.h"
-
 #include "common.h"
 #include "construction.h"
 #include "inner_fairness.h"
@@ -206,12 +204,13 @@ struct LiveFairing::State {
   }
 
   // The remesh of a frame (Remesh::IfNeeded) from the last converged frame's surface: the
-  // frame's fixed rows with the last frame's free ones, remesh_region, then fair() of that
-  // mesh (fair's Remesh::Always on that input, with the frame's normals).
+  // frame's fixed rows with the last frame's free ones, faired by fair() with
+  // Remesh::Always (remesh_region, then the fair of that mesh).
   FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
 
   // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
-  // the live mesh more (a remesh), `padded` (`padded_normals`) gets the live mesh's rows.
+  // the live mesh more (a remesh), or rows are in no face, `padded` (`padded_normals`) gets
+  // the live mesh's rows (those in no face their last positions).
   void check_input(const Positions& V_in, const Positions* normals_in,
                    std::optional<Positions>& padded,
                    std::optional<Positions>& padded_normals) const;
@@ -427,30 +426,18 @@ void LiveFairing::State::prepare(Triangles F_new, std::vector<bool> free_new,
 
 FairingResult LiveFairing::State::remesh_frame(const Positions& V,
                                                const Positions* boundary_normals) const {
-  Laps laps;
   Positions U = V;  // the live mesh's rows: the frame's fixed rows
   const Positions& surface = last.vertices;  // the last converged frame's free rows
   for (int i = 0; i < region.n_free; ++i)
     U.row(region.global[i]) = surface.row(region.global[i]);
-  // At fair()'s remesh length (the region's border edges), which also resolves the strip
-  // that a handle dragged towards the border squeezes.
-  const RemeshedRegion mesh = remesh_region(U, F, free, RemeshOptions{});
-  std::optional<Positions> normals;  // the fixed rows keep theirs; new rows are not read
-  if (boundary_normals)
-    normals = live_rows(*boundary_normals, Positions::Zero(mesh.vertices.rows(), 3));
-  FairingOptions kept = options;
-  kept.remesh = Remesh::Off;
-  const double seconds = laps.lap();
+  // fair()'s remesh (at the length of the region's border edges, which also resolves the
+  // strip that a handle dragged towards the border squeezes), then its fair.
+  FairingOptions remeshed = options;
+  remeshed.remesh = Remesh::Always;
   FairingResult result =
-      fair(mesh.vertices, mesh.faces, mesh.free, normals ? &*normals : nullptr, kept, nullptr);
-  result.remeshed = true;
-  result.unreferenced = mesh.unreferenced;
-  result.origin_face = mesh.origin_face;
-  result.origin_barycentric = mesh.origin_barycentric;
-  result.phase_seconds.insert(result.phase_seconds.begin(), {"remesh", seconds});
-  // Rows in no face: the remesh's spare rows and those of earlier remeshes.
-  for (int v : unreferenced)
-    if (!mesh.free[std::size_t(v)]) result.unreferenced.push_back(v);
+      fair(U, F, free, boundary_normals, remeshed, polygon_ids ? &*polygon_ids : nullptr);
+  // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
+  result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());
   return result;
 }
@@ -562,12 +549,12 @@ void LiveFairing::State::check_input(const Positions& V_in, const Positions* nor
                                      std::optional<Positions>& padded,
                                      std::optional<Positions>& padded_normals) const {
   const Eigen::Index n = Eigen::Index(free.size());
-  const std::string rows = n == input_rows ? std::to_string(n)
-                                            : std::to_string(input_rows) + " or " +
-                                                  std::to_string(n) + " (remeshed)";
   if (V_in.rows() != n && V_in.rows() != input_rows)
     throw InvalidInputError(std::string(kUpdate) + ": vertices has " +
-                            std::to_string(V_in.rows()) + " rows, the mesh " + rows +
+                            std::to_string(V_in.rows()) + " rows, the mesh " +
+                            (n == input_rows ? std::to_string(n)
+                                             : std::to_string(input_rows) + " or " +
+                                                   std::to_string(n) + " (remeshed)") +
                             " vertices");
   if (normals_in && normals_in->rows() != V_in.rows())
     throw InvalidInputError(std::string(kUpdate) + ": boundary_normals has " +
