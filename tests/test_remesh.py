@@ -161,6 +161,10 @@ def test_target_edge_length_option():
     lengths = interior_edge_lengths(r) / L
     assert np.median(lengths) == pytest.approx(1.0, abs=0.15)
     assert r.free.sum() < free.sum() / 2.5  # twice the edge length: about a quarter the vertices
+    assert r.target_edge_length == L
+    # The default: the mean length of the region's border edges.
+    default = geofair.remesh_region(v, f, free).target_edge_length
+    assert default == pytest.approx(target_length(v, f, free), rel=1e-12)
 
 
 def shapes(v, f):

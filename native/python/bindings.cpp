@@ -1503,6 +1503,9 @@ void bind_remesh(py::module_& m) {
                     "(n', 3) float64 barycentric coordinates in origin_face (rows sum to 1; "
                     "vertices[i] = Σ_k b[i, k] * input_vertices[input_faces[f, k]] to "
                     "round-off); zeros where origin_face is -1.")
+      .def_readonly("target_edge_length", &RemeshedRegion::target_edge_length,
+                    "float: the target edge length L the remesh used (the given one, or the "
+                    "mean length of the region's border edges), mesh units.")
       .def("__repr__", [](const RemeshedRegion& r) {
         return "RemeshedRegion(vertices=" + std::to_string(r.vertices.rows()) +
                ", faces=" + std::to_string(r.faces.rows()) +

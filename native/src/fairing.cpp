@@ -3,6 +3,8 @@
 #include "geofair/fairing.h"
 
 #include "common.h"
+#include "displacement_predictor.h"
+#include "fairing_internal.h"
 #include "inner_fairness.h"
 #include "mesh_scale.h"
 #include "nested_iteration.h"
@@ -282,16 +284,44 @@ FairingResult fair_kept(const Positions& V, const Triangles& F, const std::vecto
   return result;
 }
 
-// fair() on remesh_region's remesh of the region, with the G1 normals of the input (the
-// given ones, or the estimate from the input's surrounding surface) at the kept rows.
+// fair_remeshed_from's second remesh: its target edge length relative to the first's.
+constexpr double kFinerRemesh = 0.8;
+
+// Moves a remesh of another surface to V: the fixed rows (which keep their index) to V's,
+// the free ones by the harmonic extension of the fixed ones' moves (DisplacementPredictor),
+// so that the vertices next to a handle that has moved on are not left under it.
+void follow_fixed_moves(const Positions& V, RemeshedRegion& mesh, BoundaryCondition boundary) {
+  const FairingRegion region =
+      extract_region(mesh.vertices, mesh.faces, mesh.free, nullptr, true, nullptr, boundary);
+  const int nb = region.n - region.n_free;
+  Positions moves(nb, 3);
+  for (int b = 0; b < nb; ++b) {
+    const int v = region.global[region.n_free + b];
+    moves.row(b) = V.row(v) - mesh.vertices.row(v);
+  }
+  Positions Y = Positions::Zero(region.n, 3);
+  DisplacementPredictor(region).predict(moves, Y);  // where it fails, the free rows stay
+  for (int i = 0; i < region.n_free; ++i) mesh.vertices.row(region.global[i]) += Y.row(i);
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (!mesh.free[std::size_t(v)]) mesh.vertices.row(v) = V.row(v);
+}
+
+// fair() on remesh_region's remesh of the region of `surface` (V where nullptr; the same
+// rows), with V's fixed positions and the G1 normals of the input (the given ones, or the
+// estimate from V's surrounding surface) at the kept rows.
 FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                             const Positions* boundary_normals, const FairingOptions& options,
-                            const std::vector<int>* polygon_ids) {
+                            const std::vector<int>* polygon_ids,
+                            const Positions* surface = nullptr,
+                            const RemeshOptions& remesh = RemeshOptions{},
+                            double* target_edge_length = nullptr) {
   Laps laps;
   // The input's region first: fair()'s checks and messages, and the input's G1 normals.
   const FairingRegion region =
       extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
-  RemeshedRegion mesh = remesh_region(V, F, free, RemeshOptions{});
+  RemeshedRegion mesh = remesh_region(surface ? *surface : V, F, free, remesh);
+  if (target_edge_length) *target_edge_length = mesh.target_edge_length;
+  if (surface) follow_fixed_moves(V, mesh, options.boundary);
   std::optional<Positions> normals;  // not read with G0
   if (options.boundary == BoundaryCondition::G1) {
     normals = Positions::Zero(mesh.vertices.rows(), 3);
@@ -374,17 +404,14 @@ FairingResult fair_scaled(const Positions& V, const Triangles& F, const std::vec
   return fair_kept(V, F, free, boundary_normals, options, polygon_ids);
 }
 
-}  // namespace
-
-FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                   const Positions* boundary_normals, const FairingOptions& options,
-                   const std::vector<int>* polygon_ids) {
-  check_fairing_options(options);
+// `solve` (of positions and the scale they were divided by) at the working scale
+// (mesh_scale.h) of V; the result in V's units, the rows the solve did not move V's.
+template <class Solve>
+FairingResult at_working_scale(const Positions& V, const Triangles& F, Solve&& solve) {
   const double scale = working_scale(V, F, "fair");
-  if (scale == 1.0) return fair_scaled(V, F, free, boundary_normals, options, polygon_ids);
+  if (scale == 1.0) return solve(V, 1.0);
   // Divided and multiplied by a power of two: exact, the solve sees edges about 1 long.
-  FairingResult result =
-      fair_scaled(V / scale, F, free, boundary_normals, options, polygon_ids);
+  FairingResult result = solve(V / scale, scale);
   result.vertices *= scale;
   // Rows the solve did not move are the input's, also where V / scale was subnormal.
   const Eigen::Index n = std::min(V.rows(), result.vertices.rows());
@@ -392,6 +419,42 @@ FairingResult fair(const Positions& V, const Triangles& F, const std::vector<boo
     if (!result.free[std::size_t(v)]) result.vertices.row(v) = V.row(v);
   for (int v : result.unreferenced) result.vertices.row(v) = V.row(v);
   return result;
+}
+
+}  // namespace
+
+FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const Positions* boundary_normals, const FairingOptions& options,
+                   const std::vector<int>* polygon_ids) {
+  check_fairing_options(options);
+  return at_working_scale(V, F, [&](const Positions& X, double) {
+    return fair_scaled(X, F, free, boundary_normals, options, polygon_ids);
+  });
+}
+
+FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, const Triangles& F,
+                                 const std::vector<bool>& free, const Positions* boundary_normals,
+                                 const FairingOptions& options) {
+  check_fairing_options(options);
+  if (surface.rows() != V.rows() || !surface.allFinite())
+    throw InvalidInputError("fair: the surface to remesh needs the rows of vertices, finite");
+  return at_working_scale(V, F, [&](const Positions& X, double scale) {
+    const Positions S = surface / scale;
+    double L = 0.0;
+    FairingResult result = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S,
+                                         RemeshOptions{}, &L);
+    if (result.converged && result.new_folds == 0) return result;
+    // Where it did not converge or folded (a free vertex fanned over several short border
+    // edges of a handle sits inside it under uniform weights), once more at a finer length.
+    RemeshOptions finer;
+    finer.target_edge_length = kFinerRemesh * L;
+    FairingResult second = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S, finer);
+    const bool take = second.converged && (!result.converged || second.folds < result.folds);
+    FairingResult& out = take ? second : result;
+    out.message += take ? "; remeshed again at 4/5 of the edge length"
+                        : "; a remesh at 4/5 of the edge length did not do better";
+    return std::move(out);
+  });
 }
 
 }  // namespace geofair

@@ -4,6 +4,8 @@
 
 #include "common.h"
 #include "construction.h"
+#include "displacement_predictor.h"
+#include "fairing_internal.h"
 #include "inner_fairness.h"
 #include "mesh_scale.h"
 #include "nested_iteration.h"
@@ -11,7 +13,6 @@
 #include "region.h"
 #include "sparse_lu.h"
 
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -44,47 +45,6 @@ constexpr int kRemeshRetry = 3;
 
 // The secant predictor's largest multiple of the last frame's response (warm_frame).
 constexpr double kSecantLimit = 2.0;
-
-// The warm start's predictor: the harmonic extension (uniform weights, Δu = 0 at the free
-// vertices) of the fixed vertices' moves since the last frame into the free ones, so that the
-// vertices next to a moving handle move with it instead of being squashed against it (a
-// start within Newton's reach where the last frame alone folds its triangles).
-class DisplacementPredictor {
- public:
-  explicit DisplacementPredictor(const FairingRegion& region) : region_(region) {
-    const OneRings& rings = region.rings;
-    const int nf = region.n_free;
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int i = 0; i < nf; ++i) {
-      entries.emplace_back(i, i, double(rings.valence(i)));
-      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-        if (rings.ring[k] < nf) entries.emplace_back(i, rings.ring[k], -1.0);
-    }
-    Eigen::SparseMatrix<double> L(nf, nf);
-    L.setFromTriplets(entries.begin(), entries.end());
-    ldlt_.compute(L);
-  }
-
-  // Adds to the free rows of Y the extension of `moves` (#V_B×3, the fixed rows' moves);
-  // false (Y unchanged) where the factorization or the solve failed.
-  bool predict(const Positions& moves, Positions& Y) const {
-    if (ldlt_.info() != Eigen::Success) return false;
-    const OneRings& rings = region_.rings;
-    const int nf = region_.n_free;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 3);
-    for (int i = 0; i < nf; ++i)
-      for (int k = rings.offset[i]; k < rings.offset[i + 1]; ++k)
-        if (rings.ring[k] >= nf) rhs.row(i) += moves.row(rings.ring[k] - nf);
-    const Eigen::MatrixXd u = ldlt_.solve(rhs);
-    if (ldlt_.info() != Eigen::Success || !u.allFinite()) return false;
-    Y.topRows(nf) += u;
-    return true;
-  }
-
- private:
-  const FairingRegion& region_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
-};
 
 // Detail coding (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the offsets x_i − b_i of a
 // region x from its base b, per free vertex in the base's local frame (n_i, t_i, n_i × t_i),
@@ -426,16 +386,13 @@ void LiveFairing::State::prepare(Triangles F_new, std::vector<bool> free_new,
 
 FairingResult LiveFairing::State::remesh_frame(const Positions& V,
                                                const Positions* boundary_normals) const {
-  Positions U = V;  // the live mesh's rows: the frame's fixed rows
-  const Positions& surface = last.vertices;  // the last converged frame's free rows
-  for (int i = 0; i < region.n_free; ++i)
-    U.row(region.global[i]) = surface.row(region.global[i]);
   // fair()'s remesh (at the length of the region's border edges, which also resolves the
-  // strip that a handle dragged towards the border squeezes), then its fair.
+  // strip that a handle dragged towards the border squeezes) of the last converged frame,
+  // whose free vertices fit its fixed ones (with the frame's, those the handle has moved
+  // over would fan over it), then its fair with the frame's fixed positions.
   FairingOptions remeshed = options;
   remeshed.remesh = Remesh::Always;
-  FairingResult result =
-      fair(U, F, free, boundary_normals, remeshed, polygon_ids ? &*polygon_ids : nullptr);
+  FairingResult result = fair_remeshed_from(V, last.vertices, F, free, boundary_normals, remeshed);
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());

@@ -617,6 +617,7 @@ RemeshedRegion Remesher::result() {
   out.free.assign(rows, false);
   out.origin_face.assign(rows, -1);
   out.origin_barycentric = Positions::Zero(rows, 3);
+  out.target_edge_length = L_;
   for (VH v : mesh_.vertices()) {
     if (!is_free(v)) continue;
     const int r = row[v.idx()];

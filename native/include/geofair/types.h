@@ -208,6 +208,7 @@ struct RemeshedRegion {
   /// Σ_k b_k V[F(origin_face, k)] to round-off); zeros where origin_face is -1. Lets a caller
   /// carry per-corner data (UVs) over from the input.
   Positions origin_barycentric;
+  double target_edge_length = 0.0;  ///< the target length L the remesh used, mesh units
 };
 
 // The outcome of fair (fairing.h).

@@ -142,6 +142,11 @@ class RemeshedRegion:
         (n',) int32: for each free vertex the input face (row of the input faces) its position lies on; -1 for fixed vertices and unreferenced rows.
         """
     @property
+    def target_edge_length(self) -> float:
+        """
+        float: the target edge length L the remesh used (the given one, or the mean length of the region's border edges), mesh units.
+        """
+    @property
     def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
         """
         (k,) int32: input free rows that no new vertex reuses (in no face, not free).

@@ -1,0 +1,20 @@
+// Entry points of fair() (geofair/fairing.h) for the library's other parts.
+#pragma once
+
+#include "geofair/types.h"
+
+#include <vector>
+
+namespace geofair {
+
+/// fair() with Remesh::Always, the region remeshed (remesh_region) on another surface of
+/// the same mesh: `surface` (#V×3, mesh units, finite) gives the positions the remesher
+/// follows, V the fixed positions and the boundary normals' estimate (G1, as fair()).
+/// LiveFairing remeshes the last converged frame this way: its free vertices fit its own
+/// fixed ones, not a handle that has moved on. Throws InvalidInputError as fair() does, and
+/// for a `surface` of other rows or with non-finite values.
+FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, const Triangles& F,
+                                 const std::vector<bool>& free, const Positions* boundary_normals,
+                                 const FairingOptions& options);
+
+}  // namespace geofair
