@@ -159,7 +159,14 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
       refactorize_ = false;
     }
     t = gmres_.solve(b);
-    if (gmres_.iterations() > tuning_.krylov_iterations / 2) refactorize_ = true;
+    // The iterations a stale factorization costs beyond a fresh one's, summed until a
+    // refactorization would have been cheaper.
+    const int iterations = int(gmres_.iterations());
+    if (fresh) first_iterations_ = iterations, extra_products_ = 0;
+    extra_products_ += std::max(0, iterations - first_iterations_);
+    if (iterations > tuning_.krylov_iterations / 2 ||
+        extra_products_ >= tuning_.refactorization_products)
+      refactorize_ = true;
     if (gmres_.info() == Eigen::Success && t.allFinite()) return true;
     refactorize_ = true;
     if (fresh) break;

@@ -91,9 +91,11 @@ namespace geofair {
 /// prescribed), so D J_1 is a 2-ring sparse matrix. Left out: the weights' change and the
 /// reach of the spiral samples (valence 3 and 4) and of the normal fit's flaps (valence
 /// below 5) beyond the ring. It is factorized at the first step and again only after a step
-/// whose GMRES needed more than half of its iterations or failed, or when the shift σ
-/// differs from the factorized one by more than NewtonTuning::shift_refactorization (shifts
-/// below shift_negligible count as none).
+/// whose GMRES needed more than half of its iterations or failed, once the iterations beyond
+/// those of the factorization's first solve add up to NewtonTuning::refactorization_products
+/// (a lagged factorization ages as the iterate moves on, over the frames of LiveFairing
+/// too), or when the shift σ differs from the factorized one by more than
+/// NewtonTuning::shift_refactorization (shifts below shift_negligible count as none).
 ///
 /// Why the normals in the preconditioner: the Jacobian with the normals held fixed ignores
 /// how the fitted normals tilt with the neighbours, and on decimated coarse levels GMRES
@@ -153,6 +155,8 @@ class NewtonStep {
   Eigen::SparseMatrix<double> A_;
   PatternLU lu_;
   bool refactorize_ = true;
+  int first_iterations_ = 0;  // GMRES iterations of the first solve on the factorization
+  int extra_products_ = 0;    // iterations beyond first_iterations_ since, summed
   // GMRES preconditioned by the last factorization of D J_1, of an earlier iterate.
   Eigen::GMRES<JacobianOperator, LaggedFactorization> gmres_;
 };

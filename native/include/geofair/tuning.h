@@ -76,6 +76,10 @@ struct NewtonTuning {
   /// GMRES iterations of a step at most (Eigen's GMRES without restart); a step that needs
   /// more than half of them refactorizes its preconditioner at the next step.
   int krylov_iterations = 30;
+  /// The preconditioner ages as the iterate moves away from where it was factorized: it is
+  /// refactorized at the next step once the GMRES iterations beyond its first solve's add up
+  /// to this many Jacobian products (about what assembling and factorizing it costs).
+  int refactorization_products = 15;
   /// GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ of a step (an inexact Newton step).
   double krylov_tolerance = 1e-3;
   /// The preconditioner of a shifted step is refactorized when the shift differs from the
@@ -244,6 +248,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.shift_negligible", t.newton.shift_negligible, 0, 1, false, true);
   f("newton.krylov_iterations", t.newton.krylov_iterations, 1, inf, false, false);
   f("newton.krylov_tolerance", t.newton.krylov_tolerance, 0, 1, true, true);
+  f("newton.refactorization_products", t.newton.refactorization_products, 0, inf, false, false);
   f("newton.shift_refactorization", t.newton.shift_refactorization, 1, inf, true, false);
   f("tangential.max_stretch", t.tangential.max_stretch, 0, 1, true, true);
   f("tangential.max_turn", t.tangential.max_turn, 0, inf, true, false);
