@@ -281,7 +281,8 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   const NewtonTuning& newton = options_.tuning.newton;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
-  const bool relaxed = !tangential_ || relax_before_steps(X, newton_run.warm);
+  const bool relaxed =
+      !tangential_ || newton_run.skip_relaxation || relax_before_steps(X, newton_run.warm);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
   if (!relaxed) {

@@ -43,6 +43,9 @@ struct NewtonRun {
   /// first one on, are preconditioned by the factorization of the last call's, and stop after
   /// the first that the stretch limit did not cut short.
   bool warm = false;
+  /// X already near inner fairness (a warm start that repeats the last frame's response):
+  /// no tangential relaxation before the steps, only the polish at convergence.
+  bool skip_relaxation = false;
 };
 
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix

@@ -322,6 +322,9 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
       if (secant && !secant_first) continue;
       retried = secant_first && !secant;
       Y = warm_start(X0, secant);
+      // The secant start carries the last frame's tangential response: the polish at
+      // convergence is enough (the harmonic one squeezes vertices against a moving handle).
+      run.skip_relaxation = secant;
       phases.emplace_back("boundary data and predictor", laps.lap());
       try {
         report = construction->run_newton(Y, run);
