@@ -145,6 +145,26 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
         live.update(w[:-1])
 
 
+def test_remesh_of_a_small_handle_with_given_normals():
+    # A 4-vertex handle: its vertices have no triangle without a free vertex, so their
+    # normals must come from boundary_normals, in the remesh's steps too (a remesh that
+    # estimated them failed, and the drag fell to the cold path and did not converge).
+    s = scenes.sphere(n_vertices=3000, irregular=True, seed=1)
+    v, f = s.vertices, s.faces
+    polar = np.degrees(np.arccos(np.clip(v[:, 2], -1.0, 1.0)))
+    handle = polar < 4.0
+    free = (polar < 50.0) & ~handle
+    live = geofair.LiveFairing(v, f, free, boundary_normals=v, remesh="if_needed")
+    for k in range(1, 16):
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        r = live.update(w, boundary_normals=w)  # the unit sphere's normals
+        assert r.converged and r.folds == 0 and "remeshing failed" not in r.message, (k, r.message)
+        radial = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max()
+        assert radial < 1e-4, (k, radial)
+    assert live.remeshes >= 1 and live.cold_frames == 0
+
+
 def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
     v, f, free, handle = handle_scene
     # A time limit for the failing frame's cold path, with room for the good frames on a

@@ -290,9 +290,12 @@ constexpr double kFinerRemesh = 0.8;
 // Moves a remesh of another surface to V: the fixed rows (which keep their index) to V's,
 // the free ones by the harmonic extension of the fixed ones' moves (DisplacementPredictor),
 // so that the vertices next to a handle that has moved on are not left under it.
-void follow_fixed_moves(const Positions& V, RemeshedRegion& mesh, BoundaryCondition boundary) {
+// `normals`: the G1 normals of the kept rows (nullptr with G0), which the remesh's region
+// needs but the extension does not read.
+void follow_fixed_moves(const Positions& V, RemeshedRegion& mesh, const Positions* normals,
+                        BoundaryCondition boundary) {
   const FairingRegion region =
-      extract_region(mesh.vertices, mesh.faces, mesh.free, nullptr, true, nullptr, boundary);
+      extract_region(mesh.vertices, mesh.faces, mesh.free, normals, true, nullptr, boundary);
   const int nb = region.n - region.n_free;
   Positions moves(nb, 3);
   for (int b = 0; b < nb; ++b) {
@@ -321,13 +324,13 @@ FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::v
       extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
   RemeshedRegion mesh = remesh_region(surface ? *surface : V, F, free, remesh);
   if (target_edge_length) *target_edge_length = mesh.target_edge_length;
-  if (surface) follow_fixed_moves(V, mesh, options.boundary);
   std::optional<Positions> normals;  // not read with G0
   if (options.boundary == BoundaryCondition::G1) {
     normals = Positions::Zero(mesh.vertices.rows(), 3);
     for (int b = 0; b < region.n - region.n_free; ++b)
       normals->row(region.global[region.n_free + b]) = region.g1_normals.row(b);
   }
+  if (surface) follow_fixed_moves(V, mesh, normals ? &*normals : nullptr, options.boundary);
   const double seconds = laps.lap();
   // The new triangles come from no polygon: polygon_ids no longer apply.
   FairingResult result = fair_kept(mesh.vertices, mesh.faces, mesh.free,
