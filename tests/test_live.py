@@ -148,7 +148,8 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
 def test_remesh_of_a_small_handle_with_given_normals():
     # A 4-vertex handle: its vertices have no triangle without a free vertex, so their
     # normals must come from boundary_normals, in the remesh's steps too (a remesh that
-    # estimated them failed, and the drag fell to the cold path and did not converge).
+    # estimated them failed, and the drag fell to the cold path and did not converge). The
+    # free rows are NaN: a remesh reads the last frame's, not the caller's.
     s = scenes.sphere(n_vertices=3000, irregular=True, seed=1)
     v, f = s.vertices, s.faces
     polar = np.degrees(np.arccos(np.clip(v[:, 2], -1.0, 1.0)))
@@ -158,8 +159,11 @@ def test_remesh_of_a_small_handle_with_given_normals():
     for k in range(1, 16):
         w = v.copy()
         w[handle] = v[handle] @ rotation_x(2.0 * k).T
-        r = live.update(w, boundary_normals=w)  # the unit sphere's normals
+        normals = w.copy()  # the unit sphere's
+        w[free] = np.nan  # not read, in remeshed frames neither
+        r = live.update(w, boundary_normals=normals)
         assert r.converged and r.folds == 0 and "remeshing failed" not in r.message, (k, r.message)
+        assert np.all(np.isfinite(r.vertices))
         radial = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max()
         assert radial < 1e-4, (k, radial)
     assert live.remeshes >= 1 and live.cold_frames == 0

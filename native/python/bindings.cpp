@@ -1505,7 +1505,8 @@ void bind_remesh(py::module_& m) {
                     "round-off); zeros where origin_face is -1.")
       .def_readonly("target_edge_length", &RemeshedRegion::target_edge_length,
                     "float: the target edge length L the remesh used (the given one, or the "
-                    "mean length of the region's border edges), mesh units.")
+                    "mean length of the region's border edges, of all its edges where it has "
+                    "no border), mesh units.")
       .def("__repr__", [](const RemeshedRegion& r) {
         return "RemeshedRegion(vertices=" + std::to_string(r.vertices.rows()) +
                ", faces=" + std::to_string(r.faces.rows()) +
@@ -1620,8 +1621,10 @@ max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may tak
 remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
     "if_needed": connectivity that follows the drag. A frame whose warm start does not
     converge, or converges with more folded edges than the input had, is remeshed:
-    geofair.remesh_region's remesh of the last converged frame's surface (with the frame's
-    fixed positions), faired cold. It is taken where it converged (with fewer folds than
+    geofair.remesh_region's remesh of the last converged frame's surface, its new free
+    vertices moved with the fixed ones to the frame (their harmonic extension), faired cold
+    with the frame's fixed positions (where that folds or does not converge, remeshed once
+    more at 4/5 of the edge length). It is taken where it converged (with fewer folds than
     the warm start's, where that converged); a remesh that leaves folds is tried again three
     frames later at the earliest. The result's .remeshed, .faces, .free, .unreferenced and
     .origin_face (into the last frame's faces) say so, and later frames start warm on the

@@ -443,19 +443,35 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
     throw InvalidInputError("fair: the surface to remesh needs the rows of vertices, finite");
   return at_working_scale(V, F, [&](const Positions& X, double scale) {
     const Positions S = surface / scale;
+    Laps laps;
     double L = 0.0;
     FairingResult result = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S,
                                          RemeshOptions{}, &L);
-    if (result.converged && result.new_folds == 0) return result;
+    const double spent = laps.lap();
+    if ((result.converged && result.folds == 0) || result.stop_reason == StopReason::Cancelled ||
+        (options.time_limit >= 0.0 && spent >= options.time_limit))
+      return result;
     // Where it did not converge or folded (a free vertex fanned over several short border
     // edges of a handle sits inside it under uniform weights), once more at a finer length.
     RemeshOptions finer;
     finer.target_edge_length = kFinerRemesh * L;
-    FairingResult second = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S, finer);
+    FairingResult second;
+    try {
+      second = fair_remeshed(X, F, free, boundary_normals, options_after(options, spent), nullptr,
+                             &S, finer);
+    } catch (const std::exception& error) {  // keep the first
+      result.message += std::string("; a remesh at 4/5 of the edge length failed (") +
+                        error.what() + ")";
+      return result;
+    }
     const bool take = second.converged && (!result.converged || second.folds < result.folds);
     FairingResult& out = take ? second : result;
     out.message += take ? "; remeshed again at 4/5 of the edge length"
                         : "; a remesh at 4/5 of the edge length did not do better";
+    out.newton_iterations = result.newton_iterations + second.newton_iterations;
+    auto phases = std::move(result.phase_seconds);
+    phases.insert(phases.end(), second.phase_seconds.begin(), second.phase_seconds.end());
+    out.phase_seconds = std::move(phases);
     return std::move(out);
   });
 }

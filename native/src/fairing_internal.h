@@ -7,9 +7,12 @@
 
 namespace geofair {
 
-/// fair() with Remesh::Always, the region remeshed (remesh_region) on another surface of
-/// the same mesh: `surface` (#V×3, mesh units, finite) gives the positions the remesher
-/// follows, V the fixed positions and the boundary normals' estimate (G1, as fair()).
+/// fair() of a remesh (remesh_region) of the region of another surface of the same mesh
+/// (options.remesh is not read): `surface` (#V×3, mesh units, finite) gives the positions
+/// the remesher follows, V the fixed positions and the boundary normals' estimate (G1, as
+/// fair()); the new free vertices follow the fixed ones' moves from `surface` to V (their
+/// harmonic extension) before the fair. Where that fair does not converge or folds, the
+/// region is remeshed once more at 4/5 of the edge length and the better result returned.
 /// LiveFairing remeshes the last converged frame this way: its free vertices fit its own
 /// fixed ones, not a handle that has moved on. Throws InvalidInputError as fair() does, and
 /// for a `surface` of other rows or with non-finite values.

@@ -163,9 +163,8 @@ struct LiveFairing::State {
     return out;
   }
 
-  // The remesh of a frame (Remesh::IfNeeded) from the last converged frame's surface: the
-  // frame's fixed rows with the last frame's free ones, faired by fair() with
-  // Remesh::Always (remesh_region, then the fair of that mesh).
+  // The remesh of a frame (Remesh::IfNeeded): fair_remeshed_from, the last converged
+  // frame's surface remeshed, then faired with the frame's fixed positions.
   FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
 
   // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
@@ -393,9 +392,11 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   // strip that a handle dragged towards the border squeezes) of the last converged frame,
   // whose free vertices fit its fixed ones (with the frame's, those the handle has moved
   // over would fan over it), then its fair with the frame's fixed positions.
-  FairingOptions remeshed = options;
-  remeshed.remesh = Remesh::Always;
-  FairingResult result = fair_remeshed_from(V, last.vertices, F, free, boundary_normals, remeshed);
+  Positions U = V;  // the frame's fixed rows; the caller's free rows are not read
+  for (std::size_t v = 0; v < free.size(); ++v)
+    if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
+  for (const int v : unreferenced) U.row(v) = last.vertices.row(v);
+  FairingResult result = fair_remeshed_from(U, last.vertices, F, free, boundary_normals, options);
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());

@@ -144,7 +144,7 @@ class RemeshedRegion:
     @property
     def target_edge_length(self) -> float:
         """
-        float: the target edge length L the remesh used (the given one, or the mean length of the region's border edges), mesh units.
+        float: the target edge length L the remesh used (the given one, or the mean length of the region's border edges, of all its edges where it has no border), mesh units.
         """
     @property
     def unreferenced(self) -> numpy.typing.NDArray[numpy.int32]:
@@ -280,8 +280,10 @@ class LiveFairing:
     remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
         converge, or converges with more folded edges than the input had, is remeshed:
-        geofair.remesh_region's remesh of the last converged frame's surface (with the frame's
-        fixed positions), faired cold. It is taken where it converged (with fewer folds than
+        geofair.remesh_region's remesh of the last converged frame's surface, its new free
+        vertices moved with the fixed ones to the frame (their harmonic extension), faired cold
+        with the frame's fixed positions (where that folds or does not converge, remeshed once
+        more at 4/5 of the edge length). It is taken where it converged (with fewer folds than
         the warm start's, where that converged); a remesh that leaves folds is tried again three
         frames later at the earliest. The result's .remeshed, .faces, .free, .unreferenced and
         .origin_face (into the last frame's faces) say so, and later frames start warm on the
