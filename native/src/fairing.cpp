@@ -360,6 +360,22 @@ bool better(const FairingResult& a, const FairingResult& b) {
   return a.residual < b.residual;
 }
 
+// Whether a second attempt may follow `first`, which took `spent` seconds: not after a
+// cancel or where the time limit is spent.
+bool time_left(const FairingResult& first, const FairingOptions& options, double spent) {
+  return first.stop_reason != StopReason::Cancelled &&
+         !(options.time_limit >= 0.0 && spent >= options.time_limit);
+}
+
+// `out` (one of two attempts, a and b) with the Newton steps and the phases of both.
+FairingResult& with_both_costs(FairingResult& out, FairingResult& a, const FairingResult& b) {
+  out.newton_iterations = a.newton_iterations + b.newton_iterations;
+  auto phases = std::move(a.phase_seconds);
+  phases.insert(phases.end(), b.phase_seconds.begin(), b.phase_seconds.end());
+  out.phase_seconds = std::move(phases);
+  return out;
+}
+
 // Remesh::IfNeeded: the connectivity kept first; where it fails (remesh_reason) and time is
 // left, the remesh too, and the better of the two (the remesh where it converged without
 // new folds); the phases and Newton steps of both.
@@ -370,9 +386,7 @@ FairingResult fair_if_needed(const Positions& V, const Triangles& F,
   FairingResult kept = fair_kept(V, F, free, boundary_normals, options, polygon_ids);
   const std::string reason = remesh_reason(kept);
   const double spent = laps.lap();
-  if (reason.empty() || kept.stop_reason == StopReason::Cancelled ||
-      (options.time_limit >= 0.0 && spent >= options.time_limit))
-    return kept;
+  if (reason.empty() || !time_left(kept, options, spent)) return kept;
   FairingResult remeshed;
   try {
     remeshed = fair_remeshed(V, F, free, boundary_normals, options_after(options, spent), polygon_ids);
@@ -385,11 +399,7 @@ FairingResult fair_if_needed(const Positions& V, const Triangles& F,
   const FairingResult& other = use_remesh ? kept : remeshed;
   out.message += use_remesh ? "; remeshed: " + reason
                             : "; remeshing did not help (" + other.message + ")";
-  out.newton_iterations = kept.newton_iterations + remeshed.newton_iterations;
-  auto phases = std::move(kept.phase_seconds);
-  phases.insert(phases.end(), remeshed.phase_seconds.begin(), remeshed.phase_seconds.end());
-  out.phase_seconds = std::move(phases);
-  return std::move(out);
+  return std::move(with_both_costs(out, kept, remeshed));
 }
 
 // fair() on positions in the working scale (mesh_scale.h).
@@ -448,8 +458,7 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
     FairingResult result = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S,
                                          RemeshOptions{}, &L);
     const double spent = laps.lap();
-    if ((result.converged && result.folds == 0) || result.stop_reason == StopReason::Cancelled ||
-        (options.time_limit >= 0.0 && spent >= options.time_limit))
+    if ((result.converged && result.folds == 0) || !time_left(result, options, spent))
       return result;
     // Where it did not converge or folded (a free vertex fanned over several short border
     // edges of a handle sits inside it under uniform weights), once more at a finer length.
@@ -468,11 +477,7 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
     FairingResult& out = take ? second : result;
     out.message += take ? "; remeshed again at 4/5 of the edge length"
                         : "; a remesh at 4/5 of the edge length did not do better";
-    out.newton_iterations = result.newton_iterations + second.newton_iterations;
-    auto phases = std::move(result.phase_seconds);
-    phases.insert(phases.end(), second.phase_seconds.begin(), second.phase_seconds.end());
-    out.phase_seconds = std::move(phases);
-    return std::move(out);
+    return std::move(with_both_costs(out, result, second));
   });
 }
 

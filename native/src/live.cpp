@@ -13,7 +13,6 @@
 #include "region.h"
 #include "sparse_lu.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -392,10 +391,9 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   // strip that a handle dragged towards the border squeezes) of the last converged frame,
   // whose free vertices fit its fixed ones (with the frame's, those the handle has moved
   // over would fan over it), then its fair with the frame's fixed positions.
-  Positions U = V;  // the frame's fixed rows; the caller's free rows are not read
-  for (std::size_t v = 0; v < free.size(); ++v)
+  Positions U = V;  // the frame's fixed rows (check_input: rows in no face the last frame's)
+  for (std::size_t v = 0; v < free.size(); ++v)  // the caller's free rows are not read
     if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
-  for (const int v : unreferenced) U.row(v) = last.vertices.row(v);
   FairingResult result = fair_remeshed_from(U, last.vertices, F, free, boundary_normals, options);
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
