@@ -12,7 +12,7 @@ vertices) of both.
         [--normal-weighting quadric|max|area|angle] [--inner uniform|conformal] [--no-cgal]
         [--iteration auto|newton|paper] [--phases] [--caps irregular|regular|random|icosphere]
         [--seeds 1,2,3] [--cache DIR] [--timeout SECONDS]
-        [--module [LABEL=]this|FOLDER|WHEEL ...] [--rounds R]
+        [--module [LABEL=]this|FOLDER|WHEEL ...] [--rounds R] [--settle SECONDS]
 
 ``--module`` (repeatable) names the geofair to time: ``this`` (the default: whatever
 ``import geofair`` finds), a folder with the compiled module (``build/python``), or a wheel
@@ -38,7 +38,11 @@ takes about 5 minutes and 1 GiB (100k: 11 s), so scenes are cached as .npz files
 Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM, which
 includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
 is its own; "solve MiB" is the part added by fair() itself. Times are
-wall times of the fair() call alone (not the scene I/O). The machine may be shared: rerun
+wall times of the fair() call alone (not the scene I/O), which starts ``--settle`` seconds
+(default 0.3, geofair_dev.child.settle) after the child's imports: numpy's OpenBLAS starts
+its threads at ``import numpy`` and they spin for about 0.1 s on the second core that fair()
+uses (in Blender numpy was imported at startup; ``--settle 0`` times a script that fairs at
+once). The machine may be shared: rerun
 when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
 "failed" row; one that exceeds --timeout a "timeout" row. With --phases each row is
 followed by the wall time of the solve's phases (FairingResult.phase_seconds: the
@@ -54,6 +58,7 @@ import time
 
 import numpy as np
 
+from geofair_dev import child as child_process
 from geofair_dev import modules
 from geofair_dev.caps import load_scene
 
@@ -84,6 +89,7 @@ def child(args):
     import geofair
 
     v, f, free, normals = load_scene(args.cache, args.child, args.caps, args.seed)
+    child_process.settle(args.settle)
     before = vm_hwm_mib()
     t = time.perf_counter()
     r = geofair.fair(
@@ -125,7 +131,7 @@ def run_ours(args, n, seed, spec):
     cmd += ["--cache", args.cache]
     cmd += ["--normal-weighting", args.normal_weighting, "--inner", args.inner]
     cmd += ["--max-iterations", str(args.max_iterations), "--iteration", args.iteration]
-    cmd += ["--caps", args.caps]
+    cmd += ["--caps", args.caps, "--settle", str(args.settle)]
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout, env=env)
     except subprocess.TimeoutExpired:
@@ -184,6 +190,12 @@ def main():
     )
     parser.add_argument("--rounds", type=int, default=1, help="interleaved rounds; times are their median")
     parser.add_argument("--cache", default="/tmp/geofair_bench_scenes")
+    parser.add_argument(
+        "--settle",
+        type=float,
+        default=child_process.SETTLE_SECONDS,
+        help="seconds between a child's imports and its timed fair()",
+    )
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)
     parser.add_argument("--seed", type=int, default=1, help=argparse.SUPPRESS)

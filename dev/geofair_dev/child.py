@@ -14,6 +14,16 @@ import numpy as np
 
 IMPORT_RETRIES, IMPORT_WAIT = 40, 15  # geofair may be rebuilt while a benchmark runs: wait for it
 
+# numpy's OpenBLAS starts its threads at ``import numpy``, and they spin for about 0.1 s on
+# the second core that geofair's solves use; in Blender numpy was imported at startup.
+SETTLE_SECONDS = 0.3
+
+
+def settle(seconds=SETTLE_SECONDS):
+    """Waits ``seconds`` after a child's imports, before its timed call: numpy's BLAS threads
+    are asleep then, as in Blender (``SETTLE_SECONDS``)."""
+    time.sleep(seconds)
+
 
 def scalar(x):
     """``x`` as JSON can hold it: numpy scalars as Python ones, sequences element-wise, the
@@ -30,12 +40,13 @@ def scalar(x):
 
 
 def solve(call):
-    """Runs ``call()`` and times it: ``(report, result)``.
+    """Runs ``call()`` after ``settle()`` and times it: ``(report, result)``.
 
     ``report["status"]`` is "done" with the call's wall time in "seconds", or, with no
     result, "invalid" (a ValueError: the library refused the input) or "error" (anything
     else, geofair.SolverError among them) with the error in "message".
     """
+    settle()
     t = time.perf_counter()
     try:
         result = call()
