@@ -231,6 +231,21 @@ struct LiveFairing::State {
   std::optional<FairingResult> warm_frame(const Positions& V, const Positions& W,
                                           const Positions* boundary_normals, Phases& phases,
                                           std::string& why);
+
+  // A warm frame's result taken, `phases` its phases: its solution (pending) becomes X.
+  void take_warm(FairingResult& result, Phases& phases);
+
+  // A frame solved anew (remeshed or cold) taken, its phases after `phases`: a converged one
+  // becomes the warm start, on its mesh where remeshed (boundary_normals: the frame's rows).
+  void take_anew(FairingResult& result, Phases& phases, const Positions* boundary_normals);
+
+  // The frame whose warm start did not converge or, with `folded`, converged with more folded
+  // edges than the input (remesh IfNeeded): remeshed where that converges with fewer folds
+  // (remesh IfNeeded), else the folded warm frame, else the cold path; `why` the warm
+  // start's end, extended by what the remesh did.
+  FairingResult solve_anew(const Positions& V, const Positions& W,
+                           const Positions* boundary_normals, std::optional<FairingResult> folded,
+                           Phases& phases, std::string& why);
 };
 
 FairingResult LiveFairing::State::warm_result(const Positions& V, const Positions& X0,
@@ -547,23 +562,14 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   const Positions W = s.frame_input(V);
   Phases phases;
   std::string why = "the last frame did not converge";
-  const bool remesh = s.options.remesh == Remesh::IfNeeded;
-  // Returns a warm frame: its solution becomes the warm start.
-  auto take_warm = [&](FairingResult& result) {
-    result.phase_seconds = std::move(phases);
-    s.last_step = s.pending - s.X;
-    s.X = std::move(s.pending);
-    s.last = result;
-    ++s.frames;
-  };
   // With remesh="if_needed", a converged warm frame with folds (State::wants_remesh) is
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
   if (s.warm) {
     // The boundary data are the frame's own.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
-      if (!remesh || !s.wants_remesh(result->folds)) {
-        take_warm(*result);
+      if (s.options.remesh != Remesh::IfNeeded || !s.wants_remesh(result->folds)) {
+        s.take_warm(*result, phases);
         return std::move(*result);
       }
       why = std::to_string(result->folds) + " folded edges, the input " +
@@ -573,44 +579,60 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   }
   const double warm_seconds = laps.lap();
   if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
-  // Returns a frame solved anew (remeshed or cold): a converged one becomes the warm start,
-  // on its mesh where remeshed.
-  auto take = [&](FairingResult& result) {
-    phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
-    result.phase_seconds = std::move(phases);
-    if (result.converged && result.remeshed) {
-      s.switch_mesh(result, boundary_normals);
-      ++s.remeshes;
-    }
-    ++s.frames;
-    if (result.converged) s.adopt(result);  // the live mesh and warm start stay otherwise
-  };
+  return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why);
+}
+
+void LiveFairing::State::take_warm(FairingResult& result, Phases& phases) {
+  result.phase_seconds = std::move(phases);
+  last_step = pending - X;
+  X = std::move(pending);
+  last = result;
+  ++frames;
+}
+
+void LiveFairing::State::take_anew(FairingResult& result, Phases& phases,
+                                   const Positions* boundary_normals) {
+  phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
+  result.phase_seconds = std::move(phases);
+  if (result.converged && result.remeshed) {
+    switch_mesh(result, boundary_normals);
+    ++remeshes;
+  }
+  ++frames;
+  if (result.converged) adopt(result);  // the live mesh and warm start stay otherwise
+}
+
+FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions& W,
+                                             const Positions* boundary_normals,
+                                             std::optional<FairingResult> folded,
+                                             Phases& phases, std::string& why) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
+  const bool remesh = options.remesh == Remesh::IfNeeded && warm;
   std::optional<FairingResult> remeshed;
-  if (remesh && s.warm) remeshed = s.try_remesh(V, boundary_normals, bool(folded), why);
+  if (remesh) remeshed = try_remesh(V, boundary_normals, bool(folded), why);
   // Taken where it converged, unless the warm frame converged with as few folds: the cold
   // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
   const bool use_remesh = remeshed && remeshed->converged &&
                           (!folded || remeshed->folds < folded->folds);
-  if (remesh && s.warm)  // a remesh that leaves folds is tried again kRemeshRetry frames on
-    s.remesh_tried = use_remesh && remeshed->folds <= s.input_folds ? -kRemeshRetry : s.frames;
+  if (remesh)  // a remesh that leaves folds is tried again kRemeshRetry frames on
+    remesh_tried = use_remesh && remeshed->folds <= input_folds ? -kRemeshRetry : frames;
   if (use_remesh) {
-    take(*remeshed);
+    take_anew(*remeshed, phases, boundary_normals);
     return std::move(*remeshed);
   }
   if (remeshed) why += "; remeshing did not help (" + remeshed->message + ")";
   if (folded) {  // remeshing did not do better: the folded warm frame stands
     if (const auto note = why.find("; "); note != std::string::npos)
       folded->message += why.substr(note);  // what the remesh did
-    take_warm(*folded);
+    take_warm(*folded, phases);
     return std::move(*folded);
   }
-  FairingResult cold = s.cold_frame(V, W, boundary_normals, why);
-  ++s.cold_frames;  // (take counts the frame)
-  const bool details = bool(s.details);
-  take(cold);
-  if (!cold.converged && details)
-    cold.vertices = s.caller_positions(cold.vertices, gather(cold.vertices / s.scale, s.region.global));
+  FairingResult cold = cold_frame(V, W, boundary_normals, why);
+  ++cold_frames;  // (take_anew counts the frame)
+  const bool with_details = bool(details);
+  take_anew(cold, phases, boundary_normals);
+  if (!cold.converged && with_details)
+    cold.vertices = caller_positions(cold.vertices, gather(cold.vertices / scale, region.global));
   return cold;
 }
 
