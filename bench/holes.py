@@ -48,10 +48,10 @@ Default: the analytic holes, all 12 meshes with holes of 100 and 1,000 vertices,
 and 1, and holes of 10,000 vertices on bear, diplodocus and ChineseDragon-10kv (seed 0).
 --seeds N: seeds 0 .. N-1 for every mesh and size; --all: every mesh with every size of
 --sizes; --quick: the analytic holes at 2,500 vertices and 8 corpus holes. Our solves run
-in their own process (timeout --timeout, default 120 s, also CGAL's), timed from 0.3 s
-after its imports (geofair_dev.child.settle: numpy's BLAS threads asleep, as in Blender);
-when the geofair
-module has no fill_holes the script says so and runs the CGAL side alone.
+in their own process (timeout --timeout, default 120 s, also CGAL's), each timed from 0.3 s
+after its imports and input (geofair_dev.child.settle: numpy's BLAS threads asleep, as in
+Blender); when the geofair module has no fill_holes the script says so and runs the CGAL
+side alone.
 """
 
 import argparse

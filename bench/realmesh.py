@@ -41,7 +41,7 @@ through the ``bpy`` module; skipped with a note without it), the paper's scenes
 
 --quick: 18 cases of at most about 1,000 free vertices. Every solve runs
 ``geofair.fair`` with the defaults (only ``inner_fairness`` set) in its own process
-with a timeout (--timeout, default 60 s), timed from 0.3 s after its imports
+with a timeout (--timeout, default 60 s), timed from 0.3 s after its imports and input
 (geofair_dev.child.settle); the inputs are cached in --cache
 (default /tmp/geofair_realmesh_cases) and reused. A solve whose process cannot import
 geofair (the module being rebuilt) waits and retries; a "#" line marks where the module

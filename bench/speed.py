@@ -37,13 +37,12 @@ takes about 5 minutes and 1 GiB (100k: 11 s), so scenes are cached as .npz files
 
 Each solve (ours and CGAL's) runs in its own process, so its peak memory (VmHWM, which
 includes the Python interpreter, numpy and the scene arrays for ours, about 40 MiB at 2k)
-is its own; "solve MiB" is the part added by fair() itself. Times are
-wall times of the fair() call alone (not the scene I/O), which starts ``--settle`` seconds
-(default 0.3, geofair_dev.child.settle) after the child's imports: numpy's OpenBLAS starts
-its threads at ``import numpy`` and they spin for about 0.1 s on the second core that fair()
+is its own; "solve MiB" is the part added by fair() itself. Times are wall times of the
+fair() call alone (not the scene I/O), which starts ``--settle`` seconds (default 0.3,
+geofair_dev.child.settle) after the child's imports and scene: numpy's OpenBLAS starts its
+threads at ``import numpy`` and they spin for about 0.1 s on the second core that fair()
 uses (in Blender numpy was imported at startup; ``--settle 0`` times a script that fairs at
-once). The machine may be shared: rerun
-when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
+once). The machine may be shared: rerun when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
 "failed" row; one that exceeds --timeout a "timeout" row. With --phases each row is
 followed by the wall time of the solve's phases (FairingResult.phase_seconds: the
 hierarchy, and per level the initial mesh, set-up, inner-fairness relaxations, Newton
@@ -194,7 +193,7 @@ def main():
         "--settle",
         type=float,
         default=child_process.SETTLE_SECONDS,
-        help="seconds between a child's imports and its timed fair()",
+        help="seconds between a child's imports and scene and its timed fair() (>= 0)",
     )
     parser.add_argument("--timeout", type=float, default=900.0, help="per solve, seconds")
     parser.add_argument("--child", type=int, default=None, help=argparse.SUPPRESS)

@@ -20,9 +20,9 @@ SETTLE_SECONDS = 0.3
 
 
 def settle(seconds=SETTLE_SECONDS):
-    """Waits ``seconds`` after a child's imports, before its timed call: numpy's BLAS threads
-    are asleep then, as in Blender (``SETTLE_SECONDS``)."""
-    time.sleep(seconds)
+    """Waits ``seconds`` (negative: none) after a child's imports and input, before its timed
+    call: numpy's BLAS threads are asleep then, as in Blender (``SETTLE_SECONDS``)."""
+    time.sleep(max(0.0, seconds))
 
 
 def scalar(x):

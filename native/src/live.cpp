@@ -240,9 +240,9 @@ struct LiveFairing::State {
   void take_anew(FairingResult& result, Phases& phases, const Positions* boundary_normals);
 
   // The frame whose warm start did not converge or, with `folded`, converged with more folded
-  // edges than the input (remesh IfNeeded): remeshed where that converges with fewer folds
-  // (remesh IfNeeded), else the folded warm frame, else the cold path; `why` the warm
-  // start's end, extended by what the remesh did.
+  // edges than the input: with remesh IfNeeded remeshed where that converges with fewer
+  // folds, else the folded warm frame, else the cold path; `why` the warm start's end,
+  // extended by what the remesh did.
   FairingResult solve_anew(const Positions& V, const Positions& W,
                            const Positions* boundary_normals, std::optional<FairingResult> folded,
                            Phases& phases, std::string& why);
