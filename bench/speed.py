@@ -42,11 +42,11 @@ fair() call alone (not the scene I/O), which starts ``--settle`` seconds (defaul
 geofair_dev.child.settle) after the child's imports and scene: numpy's OpenBLAS starts its
 threads at ``import numpy`` and they spin for about 0.1 s on the second core that fair()
 uses (in Blender numpy was imported at startup; ``--settle 0`` times a script that fairs at
-once). The machine may be shared: rerun when a figure matters. A solve that fails (e.g. geofair.SolverError) prints its error and a
-"failed" row; one that exceeds --timeout a "timeout" row. With --phases each row is
-followed by the wall time of the solve's phases (FairingResult.phase_seconds: the
-hierarchy, and per level the initial mesh, set-up, inner-fairness relaxations, Newton
-steps and polishes, or the paper's iterations).
+once). The machine may be shared: rerun when a figure matters. A solve that fails (e.g.
+geofair.SolverError) prints its error and a "failed" row; one that exceeds --timeout a
+"timeout" row. With --phases each row is followed by the wall time of the solve's phases
+(FairingResult.phase_seconds: the hierarchy, and per level the initial mesh, set-up,
+inner-fairness relaxations, Newton steps and polishes, or the paper's iterations).
 """
 
 import argparse
