@@ -39,7 +39,11 @@ frame, started from the last one, does not fold.
 
     PYTHONPATH=build/python python3 bench/live.py [n_free ...] [--caps irregular,regular,random,icosphere]
         [--handle DEG] [--slide DEG] [--slide-frames N] [--inner uniform|conformal]
-        [--cold-every K] [--remesh off|if_needed] [--frames]
+        [--cold-every K] [--remesh off|if_needed] [--frames] [--time-limit SECONDS|addon]
+
+With --time-limit each update gets that bound (update's time_limit; "addon": the add-on's
+rule, 4 times the constructor's time and at least 1 s): a frame whose warm start leaves no
+time returns unconverged without the cold path (it counts in "fail", not in "cold").
 
 With --remesh if_needed (LiveFairing's remesh option) the "cold" column counts the frames
 that remeshed too, the radial error is over each frame's own free vertices, the comparison
@@ -146,9 +150,14 @@ def run(n, kind, args):
     t = time.perf_counter()
     live = geofair.LiveFairing(v, f, free, boundary_normals=normals, inner_fairness=args.inner, remesh=args.remesh)
     prepare = time.perf_counter() - t
+    limit = args.time_limit
+    if limit == "addon":  # the add-on's bound (addon/geometric_fairing/live.py)
+        limit = max(1.0, 4.0 * prepare)
+    limit = None if limit is None else float(limit)
     print(
         f"# {kind} n={n}: {int(free.sum())} free, {int(handle.sum())} handle vertices; "
-        f"constructor {prepare:.2f} s ({'converged' if live.result.converged else 'NOT converged'})",
+        f"constructor {prepare:.2f} s ({'converged' if live.result.converged else 'NOT converged'})"
+        + ("" if limit is None else f"; each update's time limit {limit:.2f} s"),
         flush=True,
     )
     frames = drag(v, handle, normals, args.slide, args.slide_frames)
@@ -156,7 +165,7 @@ def run(n, kind, args):
     phases = {}
     for i, (phase, w, n_w) in enumerate(frames):
         t, c = time.perf_counter(), time.process_time()
-        r = live.update(w, boundary_normals=n_w)
+        r = live.update(w, boundary_normals=n_w, time_limit=limit)
         dt = time.perf_counter() - t
         times.append(dt)
         cpu.append(time.process_time() - c)
@@ -233,6 +242,11 @@ def main():
     parser.add_argument("--remesh", default="off", choices=["off", "if_needed"], help="LiveFairing's remesh option")
     parser.add_argument("--cold-every", type=int, default=5)
     parser.add_argument("--frames", action="store_true", help="a row per frame")
+    parser.add_argument(
+        "--time-limit",
+        default=None,
+        help="seconds an update may take (update's time_limit), or 'addon': 4 x the constructor's time, >= 1 s",
+    )
     args = parser.parse_args()
     with open("/proc/loadavg") as f:
         load = f.read().split()[0]

@@ -190,6 +190,31 @@ def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
     assert again.converged and "cold path" not in again.message, again.message
 
 
+def test_frame_time_limit_stops_the_warm_start_and_skips_the_cold_path(handle_scene):
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    first = live.update(lifted(v, handle, 0.04), time_limit=60.0)
+    assert first.converged
+    unlimited = geofair.LiveFairing(v, f, free).update(lifted(v, handle, 0.04))
+    assert np.array_equal(first.vertices, unlimited.vertices)  # a limit not reached changes nothing
+    # The failing pull (above): its warm start stops at the frame's time limit, and no cold
+    # path runs.
+    w = lifted(v, handle, 3.0)
+    failed = live.update(w, time_limit=1e-6)
+    assert not failed.converged and failed.stop_reason == "time_limit" and np.isnan(failed.residual)
+    assert "stopped at the time limit" in failed.message and "cold path" not in failed.message, failed.message
+    check_frame(failed, w, free)
+    assert np.array_equal(failed.vertices[free], first.vertices[free])  # the last converged frame's
+    assert live.frames == 2 and live.cold_frames == 0
+    assert np.array_equal(live.result.vertices, first.vertices)
+    for bad in (-1.0, np.nan, "1 s"):
+        with pytest.raises(geofair.InvalidInputError, match="time_limit"):
+            live.update(lifted(v, handle, 0.08), time_limit=bad)
+    assert live.frames == 2
+    again = live.update(lifted(v, handle, 0.08), time_limit=60.0)
+    assert again.converged and "cold path" not in again.message, again.message
+
+
 def nan_in_handle(w, handle):
     w[np.flatnonzero(handle)[0], 1] = np.nan
     return w

@@ -136,6 +136,8 @@ class Frame:
         if self.folds:
             text += f", {self.folds} edge{'s' if self.folds != 1 else ''} folded over"
         if not self.converged:
+            if "time limit" in self.message:
+                text += " (time limit)"
             text += ", NOT converged: last good positions kept"
         elif not self.reached:
             text += ", on the way"
@@ -143,6 +145,10 @@ class Frame:
 
 
 MODES = ("TRANSLATE", "ROTATE", "SCALE")  # Blender's G, R and S
+# Without a Time Limit, an update may take this many times the preparation (a cold fair of the
+# region), and at least FRAME_SECONDS_MIN seconds.
+FRAME_PREPARE_FACTOR = 4.0
+FRAME_SECONDS_MIN = 1.0
 MAX_TURN = math.radians(5.0)  # the largest turn of the handle's tangent planes in one update
 
 
@@ -244,7 +250,9 @@ class LiveDrag:
         boundary_normals: ``(n, 3)`` G1 normals (the handle's turn with its rotation), or None
             (G0).
         polygon_ids: ``(T,)`` polygon of each triangle, or None.
-        options: keyword options of ``geofair.fair`` (remesh off).
+        options: keyword options of ``geofair.fair`` (remesh off); their ``time_limit`` bounds each
+            update (:attr:`frame_time_limit`; None: :data:`FRAME_PREPARE_FACTOR` times the
+            preparation's seconds, at least :data:`FRAME_SECONDS_MIN`).
         details: keep the region's details over its faired base (``LiveFairing(details=True)``).
         step: the longest move of a handle vertex per update (mesh units); None: the mean
             length of the edges at the handle.
@@ -277,6 +285,10 @@ class LiveDrag:
             **options,
         )
         self.prepare_seconds = time.perf_counter() - clock
+        # A frame's bound: past a point where the region's triangles fold the cold path can
+        # take many seconds, which would freeze the viewport; the last good frame stays instead.
+        limit = options.get("time_limit")
+        self.frame_time_limit = limit or max(FRAME_SECONDS_MIN, FRAME_PREPARE_FACTOR * self.prepare_seconds)
         start = self.live.result
         if not start.converged:
             raise RuntimeError(f"the region's fairing at the start did not converge: {start.message}")
@@ -338,7 +350,7 @@ class LiveDrag:
             normals[self.handle] = normals[self.handle] @ move.rotation.T
         clock = time.perf_counter()
         try:
-            result = self.live.update(target, boundary_normals=normals)
+            result = self.live.update(target, boundary_normals=normals, time_limit=self.frame_time_limit)
             message, converged, steps = str(result.message), bool(result.converged), int(result.iterations)
             folds = int(getattr(result, "folds", 0))
             positions = np.asarray(result.vertices, dtype=np.float64)

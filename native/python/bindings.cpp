@@ -469,6 +469,26 @@ std::string fair_doc(std::string doc) {
   return doc;
 }
 
+// A time_limit keyword as FairingOptions::time_limit: None and 0 the automatic limit (or
+// none) as a negative number, so that the add-on's Time Limit property, which cannot hold
+// None, means the same with 0; else seconds > 0.
+double time_limit_seconds(const py::object& time_limit, const char* caller) {
+  if (time_limit.is_none()) return -1.0;
+  const auto bad = [&] {
+    return InvalidInputError(std::string(caller) +
+                             ": time_limit must be None or 0 (automatic) or a number of seconds "
+                             "> 0, got " + std::string(py::str(py::repr(time_limit))));
+  };
+  double seconds = 0.0;
+  try {
+    seconds = time_limit.cast<double>();
+  } catch (const py::cast_error&) {
+    throw bad();
+  }
+  if (!(seconds >= 0.0)) throw bad();  // negative or NaN
+  return seconds > 0.0 ? seconds : -1.0;
+}
+
 // The fairing keywords that fair and fill_holes share, as FairingOptions.
 FairingOptions fairing_options(const std::string& boundary, const std::string& inner_fairness,
                                const std::string& outer_fairness,
@@ -488,23 +508,7 @@ FairingOptions fairing_options(const std::string& boundary, const std::string& i
   options.damping = damping;
   options.cg_iterations = cg_iterations;
   options.levels = levels;
-  // None and 0: the automatic limit (FairingOptions' negative), so that the add-on's Time Limit
-  // property, which cannot hold None, means the same with 0.
-  if (!time_limit.is_none()) {
-    const auto bad = [&] {
-      return InvalidInputError(std::string(caller) +
-                               ": time_limit must be None or 0 (automatic) or a number of seconds "
-                               "> 0, got " + std::string(py::str(py::repr(time_limit))));
-    };
-    double seconds = 0.0;
-    try {
-      seconds = time_limit.cast<double>();
-    } catch (const py::cast_error&) {
-      throw bad();
-    }
-    if (!(seconds >= 0.0)) throw bad();  // negative or NaN
-    if (seconds > 0.0) options.time_limit = seconds;
-  }
+  options.time_limit = time_limit_seconds(time_limit, caller);
   if (!tuning.is_none()) set_tuning(tuning, options.tuning);
   return options;
 }
@@ -1704,14 +1708,17 @@ the input's base (its cold fair) did not converge.)doc");
       py::arg("time_limit") = py::none(), py::arg("tuning") = py::none(), "");
   const CheckedFunction update = checked_function(
       "LiveFairing.update", "update",
-      [](LiveFairing& self, const py::object& vertices, const py::object& boundary_normals) {
+      [](LiveFairing& self, const py::object& vertices, const py::object& boundary_normals,
+         const py::object& time_limit) {
         const Positions V = to_positions(vertices, "vertices");
         std::optional<Positions> normals;
         if (!boundary_normals.is_none()) normals = to_positions(boundary_normals, "boundary_normals");
+        const double limit = time_limit_seconds(time_limit, "LiveFairing.update");
         py::gil_scoped_release release;
-        return self.update(V, normals ? &*normals : nullptr);
+        return self.update(V, normals ? &*normals : nullptr, limit);
       },
       py::arg("self"), py::arg("vertices"), py::arg("boundary_normals") = py::none(),
+      py::arg("time_limit") = py::none(),
       R"doc(Fair the region for new positions of its fixed vertices, starting from the last
 converged frame (see LiveFairing).
 
@@ -1723,6 +1730,12 @@ vertices : (n, 3) float64 array, mesh units, n as at construction or, after a re
     (any values, NaN too).
 boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
     handle's included), or None (default): estimated from vertices as geofair.fair does.
+time_limit : seconds the frame may take (float > 0; an interactive drag's bound), or None
+    or 0 (default): no bound beyond the constructor's time_limit on the cold path. The warm
+    start stops before a Newton step once it is spent; a remesh and the cold path get what
+    is left (and at most the constructor's time_limit); where nothing is, the frame is
+    returned unconverged without them (.stop_reason "time_limit", .residual NaN: not
+    evaluated), its free rows the last converged frame's.
 
 Returns
 -------
@@ -1737,8 +1750,9 @@ Raises
 ------
 geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
 construction (or than the live mesh after a remesh), a fixed vertex of a triangle has a non-finite coordinate (the vertex is
-named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
-the cold path raises. Either leaves the state as it was.)doc");
+named), for boundary_normals as geofair.fair, or for a negative or NaN time_limit;
+geofair.SolverError (a RuntimeError) where the cold path raises. Either leaves the state as
+it was.)doc");
   // The properties and __repr__ first, with the signatures pybind11 writes; then the
   // checked functions, whose docstrings carry their own (self first, as a Python method's).
   // A copy: a reference into the object would change under the caller with the next update.

@@ -327,8 +327,9 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
                      (k > 0 && c.merit <= newton_run.crawl_merit && c.merit > 0.5 * last_merit);
     last_merit = c.merit;
     if (report.converged || report.stalled || k >= newton_run.max_iterations) break;
-    if (options_.progress && !source_ &&
-        !options_.progress(newton_run.iteration_offset + k, residual)) {
+    if ((options_.progress && !source_ &&
+         !options_.progress(newton_run.iteration_offset + k, residual)) ||
+        (newton_run.stop && newton_run.stop())) {
       report.cancelled = true;
       break;
     }

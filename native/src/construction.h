@@ -9,6 +9,7 @@
 #include "region.h"
 #include "geofair/types.h"
 
+#include <functional>
 #include <vector>
 
 namespace geofair {
@@ -46,6 +47,8 @@ struct NewtonRun {
   /// X already near inner fairness (a warm start that repeats the last frame's response):
   /// no tangential relaxation before the steps, only the polish at convergence.
   bool skip_relaxation = false;
+  /// Asked before each step: true ends the run (cancelled; LiveFairing's frame time limit).
+  std::function<bool()> stop;
 };
 
 /// State of the construction on one region: normals, mean curvatures, the Dirichlet matrix

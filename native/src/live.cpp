@@ -14,8 +14,10 @@
 #include "sparse_lu.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -144,6 +146,9 @@ struct LiveFairing::State {
                             // frame), the secant predictor's
   FairingResult last;
   int frames = 0, cold_frames = 0, remeshes = 0;
+  // The end of the frame being solved (update()'s time_limit), if it has one.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  double frame_limit = -1.0;  // its seconds
   mutable std::mutex mutex;  // update() and result() take turns
 
   // Makes (F_new, free_new) the live mesh with V0 = V / scale (V: its rows): the region,
@@ -172,6 +177,23 @@ struct LiveFairing::State {
   void check_input(const Positions& V_in, const Positions* normals_in,
                    std::optional<Positions>& padded,
                    std::optional<Positions>& padded_normals) const;
+
+  // The options of the frame's solve anew: the time limit cut to what is left of the frame's.
+  FairingOptions timed_options() const {
+    FairingOptions timed = options;
+    if (deadline) {
+      const double left = std::max(
+          0.0, std::chrono::duration<double>(*deadline - std::chrono::steady_clock::now()).count());
+      timed.time_limit = timed.time_limit >= 0.0 ? std::min(timed.time_limit, left) : left;
+    }
+    return timed;
+  }
+  bool out_of_time() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }
+
+  // The frame whose warm start spent its time limit (`limit` seconds): unconverged, V's fixed
+  // rows and the last converged frame's free rows (W the frame's input, / scale).
+  FairingResult unsolved_frame(const Positions& V, const Positions& W, double limit,
+                               Phases& phases, const std::string& why);
 
   // The cold path: fair() of the frame's input W (/ scale) on the live mesh, its whole
   // schedule; V's fixed rows, `why` the warm start's end.
@@ -327,6 +349,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     run.patience = options.tuning.newton.patience;
     run.polish_at_convergence = true;
     run.warm = true;
+    run.stop = [this] { return out_of_time(); };
     // The secant start first; where Newton does not converge from it or fails (a drag whose
     // response changes, as triangles squeeze), the harmonic one.
     const bool secant_first =
@@ -350,14 +373,15 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
       phases.emplace_back("warm inner fairness", report.relax_seconds);
       phases.emplace_back("warm Newton steps", report.step_seconds);
       phases.emplace_back("warm polishes", report.polish_seconds);
-      if (report.converged && Y.topRows(region.n_free).allFinite()) break;
+      if ((report.converged && Y.topRows(region.n_free).allFinite()) || report.cancelled) break;
     }
   } catch (const SolverError& error) {
     why = error.what();
     return std::nullopt;
   }
   if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
-    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations);
+    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations) +
+          (report.cancelled ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
@@ -409,7 +433,8 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   Positions U = V;  // the frame's fixed rows (check_input: rows in no face the last frame's)
   for (std::size_t v = 0; v < free.size(); ++v)  // the caller's free rows are not read
     if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
-  FairingResult result = fair_remeshed_from(U, last.vertices, F, free, boundary_normals, options);
+  FairingResult result =
+      fair_remeshed_from(U, last.vertices, F, free, boundary_normals, timed_options());
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());
@@ -490,10 +515,43 @@ int LiveFairing::remeshes() const {
   return state_->remeshes;
 }
 
+FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Positions& W,
+                                                 double limit, Phases& phases,
+                                                 const std::string& why) {
+  FairingResult result;
+  result.vertices = last.vertices;
+  for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
+    if (!free[v]) result.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
+  result.faces = F;
+  result.free = free;
+  result.unreferenced = unreferenced;
+  result.origin_face.assign(free.size(), -1);
+  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+  result.residual = std::numeric_limits<double>::quiet_NaN();
+  result.stop_reason = StopReason::TimeLimit;
+  result.iteration = Iteration::Newton;
+  std::vector<bool> local_free(std::size_t(region.n), false);
+  std::fill(local_free.begin(), local_free.begin() + region.n_free, true);
+  const FoldCount folds = count_folds(gather(W, region.global),
+                                      gather(result.vertices / scale, region.global),
+                                      region.triangles, local_free);
+  result.folds = folds.folds;
+  result.new_folds = folds.new_folds;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3g", limit);
+  result.message = std::string("stopped at the frame's time limit of ") + seconds +
+                   " s before a solve anew (the warm start did not converge: " + why +
+                   "); not solved: the free vertices are the last converged frame's, the "
+                   "residual not evaluated" + fold_note(folds);
+  result.phase_seconds = std::move(phases);
+  ++frames;
+  return result;
+}
+
 FairingResult LiveFairing::State::cold_frame(const Positions& V, const Positions& W,
                                              const Positions* boundary_normals,
                                              const std::string& why) const {
-  FairingOptions kept = options;
+  FairingOptions kept = timed_options();
   kept.remesh = Remesh::Off;
   FairingResult cold =
       fair(scale * W, F, free, boundary_normals, kept, polygon_ids ? &*polygon_ids : nullptr);
@@ -549,9 +607,17 @@ void LiveFairing::State::check_input(const Positions& V_in, const Positions* nor
                               " has a non-finite coordinate");
 }
 
-FairingResult LiveFairing::update(const Positions& V_in, const Positions* normals_in) {
+FairingResult LiveFairing::update(const Positions& V_in, const Positions* normals_in,
+                                  double time_limit) {
   State& s = *state_;
   const std::lock_guard<std::mutex> lock(s.mutex);
+  if (std::isnan(time_limit)) throw InvalidInputError(std::string(kUpdate) + ": time_limit is NaN");
+  s.frame_limit = time_limit;
+  s.deadline.reset();
+  if (time_limit >= 0.0)
+    s.deadline = std::chrono::steady_clock::now() +
+                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                     std::chrono::duration<double>(std::min(time_limit, 1e9)));
   std::optional<Positions> padded, padded_normals;
   s.check_input(V_in, normals_in, padded, padded_normals);
   const Positions& V = padded ? *padded : V_in;  // the live mesh's rows
@@ -607,7 +673,7 @@ FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions
                                              std::optional<FairingResult> folded,
                                              Phases& phases, std::string& why) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
-  const bool remesh = options.remesh == Remesh::IfNeeded && warm;
+  const bool remesh = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
   std::optional<FairingResult> remeshed;
   if (remesh) remeshed = try_remesh(V, boundary_normals, bool(folded), why);
   // Taken where it converged, unless the warm frame converged with as few folds: the cold
@@ -627,6 +693,7 @@ FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions
     take_warm(*folded, phases);
     return std::move(*folded);
   }
+  if (out_of_time()) return unsolved_frame(V, W, frame_limit, phases, why);
   FairingResult cold = cold_frame(V, W, boundary_normals, why);
   ++cold_frames;  // (take_anew counts the frame)
   const bool with_details = bool(details);

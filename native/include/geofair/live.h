@@ -36,7 +36,8 @@ struct LiveOptions {
 /// does not converge in LiveOptions::max_warm_steps Newton steps (or fails) is remeshed
 /// where options.remesh is IfNeeded (see the constructor) and otherwise, or where that did
 /// not converge, runs the cold path, fair() with the whole schedule (bounded by
-/// options.time_limit, as fair); FairingResult::message says which. Design and measurements: docs/LIVE.md.
+/// options.time_limit, as fair, and by update()'s time_limit); FairingResult::message says
+/// which. Design and measurements: docs/LIVE.md.
 ///
 /// Fixed vertices inside the region (a handle) are boundary conditions like the outer ones
 /// (fair does the same): their positions and, with G1, the tangent planes estimated from
@@ -92,9 +93,16 @@ class LiveFairing {
   /// \throw InvalidInputError if V has another number of rows (than the construction's
   ///        or the live mesh's), a
   ///        fixed vertex of a triangle has a non-finite coordinate, or for the normals (as
-  ///        fair); SolverError where the cold path raises (as fair). Either leaves the
-  ///        state unchanged.
-  FairingResult update(const Positions& V, const Positions* boundary_normals = nullptr);
+  ///        fair), or for a NaN time_limit; SolverError where the cold path raises (as
+  ///        fair). Either leaves the state unchanged.
+  /// \param time_limit  seconds the frame may take (an interactive drag's bound), or < 0:
+  ///           none beyond options.time_limit on the cold path. The warm start stops before
+  ///           a Newton step once it is spent; a remesh and the cold path get what is left
+  ///           (and at most options.time_limit); where nothing is, the frame is returned
+  ///           unconverged (StopReason::TimeLimit, residual NaN: not evaluated) without
+  ///           them, its free rows the last converged frame's.
+  FairingResult update(const Positions& V, const Positions* boundary_normals = nullptr,
+                       double time_limit = -1.0);
 
   /// A copy of the last converged frame (the construction's cold fair until then, converged
   /// or not).

@@ -315,7 +315,7 @@ class LiveFairing:
         ...
     def __repr__(self) -> str:
         ...
-    def update(self, vertices: numpy.typing.NDArray[numpy.float64], boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None) -> FairingResult:
+    def update(self, vertices: numpy.typing.NDArray[numpy.float64], boundary_normals: numpy.typing.NDArray[numpy.float64] | None = None, time_limit: typing.SupportsFloat | typing.SupportsIndex | None = None) -> FairingResult:
         """
         Fair the region for new positions of its fixed vertices, starting from the last
         converged frame (see LiveFairing).
@@ -328,6 +328,12 @@ class LiveFairing:
             (any values, NaN too).
         boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
             handle's included), or None (default): estimated from vertices as geofair.fair does.
+        time_limit : seconds the frame may take (float > 0; an interactive drag's bound), or None
+            or 0 (default): no bound beyond the constructor's time_limit on the cold path. The warm
+            start stops before a Newton step once it is spent; a remesh and the cold path get what
+            is left (and at most the constructor's time_limit); where nothing is, the frame is
+            returned unconverged without them (.stop_reason "time_limit", .residual NaN: not
+            evaluated), its free rows the last converged frame's.
         
         Returns
         -------
@@ -342,8 +348,9 @@ class LiveFairing:
         ------
         geofair.InvalidInputError (a ValueError) if vertices has another number of rows than at
         construction (or than the live mesh after a remesh), a fixed vertex of a triangle has a non-finite coordinate (the vertex is
-        named), or for boundary_normals as geofair.fair; geofair.SolverError (a RuntimeError) where
-        the cold path raises. Either leaves the state as it was.
+        named), for boundary_normals as geofair.fair, or for a negative or NaN time_limit;
+        geofair.SolverError (a RuntimeError) where the cold path raises. Either leaves the state as
+        it was.
         """
     @property
     def cold_frames(self) -> int:
