@@ -237,6 +237,11 @@ struct LiveFairing::State {
     last = result;
   }
 
+  // A result on the live mesh (not remeshed) with the caller's `vertices`, which are Y
+  // (region-local, / scale); `folds` Y's against X0.
+  FairingResult live_mesh_result(Positions vertices, const Positions& X0, const Positions& Y,
+                                 FoldCount& folds) const;
+
   // The FairingResult of a converged warm start Y (region-local, / scale) from X0.
   FairingResult warm_result(const Positions& V, const Positions& X0, const Positions& Y,
                             const IterationReport& report) const;
@@ -270,34 +275,40 @@ struct LiveFairing::State {
                            Phases& phases, std::string& why);
 };
 
-FairingResult LiveFairing::State::warm_result(const Positions& V, const Positions& X0,
-                                              const Positions& Y,
-                                              const IterationReport& report) const {
+FairingResult LiveFairing::State::live_mesh_result(Positions vertices, const Positions& X0,
+                                                   const Positions& Y, FoldCount& folds) const {
   FairingResult result;
-  result.vertices = caller_positions(V, Y);
+  result.vertices = std::move(vertices);
   result.faces = F;
   result.free = free;
   result.unreferenced = unreferenced;
   result.origin_face.assign(free.size(), -1);
   result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+  result.iteration = Iteration::Newton;
+  // Folds: only edges with a free vertex count, and both their triangles are the region's.
+  std::vector<bool> local_free(std::size_t(region.n), false);
+  std::fill(local_free.begin(), local_free.begin() + region.n_free, true);
+  folds = count_folds(X0, Y, region.triangles, local_free);
+  result.folds = folds.folds;
+  result.new_folds = folds.new_folds;
+  return result;
+}
+
+FairingResult LiveFairing::State::warm_result(const Positions& V, const Positions& X0,
+                                              const Positions& Y,
+                                              const IterationReport& report) const {
+  FoldCount folds;
+  FairingResult result = live_mesh_result(caller_positions(V, Y), X0, Y, folds);
   result.converged = true;
   result.iterations = report.iterations;
   result.iterations_per_level = {report.iterations};
   result.vertices_per_level = {region.n};
   result.residual = report.residual;
   result.stop_reason = StopReason::Converged;
-  result.iteration = Iteration::Newton;
   result.newton_iterations = report.iterations;
   result.message = "converged (residual " + scientific(report.residual) + ", tolerance " +
                    scientific(options.tolerance) + "); warm start from the last frame (" +
-                   steps(report.iterations) + ")";
-  // Folds: only edges with a free vertex count, and both their triangles are the region's.
-  std::vector<bool> local_free(std::size_t(region.n), false);
-  std::fill(local_free.begin(), local_free.begin() + region.n_free, true);
-  const FoldCount folds = count_folds(X0, Y, region.triangles, local_free);
-  result.folds = folds.folds;
-  result.new_folds = folds.new_folds;
-  result.message += fold_note(folds);
+                   steps(report.iterations) + ")" + fold_note(folds);
   return result;
 }
 
@@ -518,25 +529,14 @@ int LiveFairing::remeshes() const {
 FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Positions& W,
                                                  double limit, Phases& phases,
                                                  const std::string& why) {
-  FairingResult result;
-  result.vertices = last.vertices;
+  Positions vertices = last.vertices;
   for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
-    if (!free[v]) result.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
-  result.faces = F;
-  result.free = free;
-  result.unreferenced = unreferenced;
-  result.origin_face.assign(free.size(), -1);
-  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+    if (!free[v]) vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
+  const Positions Y = gather(vertices / scale, region.global);
+  FoldCount folds;
+  FairingResult result = live_mesh_result(std::move(vertices), gather(W, region.global), Y, folds);
   result.residual = std::numeric_limits<double>::quiet_NaN();
   result.stop_reason = StopReason::TimeLimit;
-  result.iteration = Iteration::Newton;
-  std::vector<bool> local_free(std::size_t(region.n), false);
-  std::fill(local_free.begin(), local_free.begin() + region.n_free, true);
-  const FoldCount folds = count_folds(gather(W, region.global),
-                                      gather(result.vertices / scale, region.global),
-                                      region.triangles, local_free);
-  result.folds = folds.folds;
-  result.new_folds = folds.new_folds;
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.3g", limit);
   result.message = std::string("stopped at the frame's time limit of ") + seconds +
