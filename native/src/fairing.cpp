@@ -309,38 +309,61 @@ void follow_fixed_moves(const Positions& V, RemeshedRegion& mesh, const Position
     if (!mesh.free[std::size_t(v)]) mesh.vertices.row(v) = V.row(v);
 }
 
-// fair() on remesh_region's remesh of the region of `surface` (V where nullptr; the same
-// rows), with V's fixed positions and the G1 normals of the input (the given ones, or the
-// estimate from V's surrounding surface) at the kept rows.
-FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                            const Positions* boundary_normals, const FairingOptions& options,
-                            const std::vector<int>* polygon_ids,
-                            const Positions* surface = nullptr,
-                            const RemeshOptions& remesh = RemeshOptions{},
-                            double* target_edge_length = nullptr) {
-  Laps laps;
-  // The input's region first: fair()'s checks and messages, and the input's G1 normals.
-  const FairingRegion region =
-      extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
-  RemeshedRegion mesh = remesh_region(surface ? *surface : V, F, free, remesh);
-  if (target_edge_length) *target_edge_length = mesh.target_edge_length;
-  std::optional<Positions> normals;  // not read with G0
-  if (options.boundary == BoundaryCondition::G1) {
-    normals = Positions::Zero(mesh.vertices.rows(), 3);
-    for (int b = 0; b < region.n - region.n_free; ++b)
-      normals->row(region.global[region.n_free + b]) = region.g1_normals.row(b);
+// A remesh of the input's region (remesh_region) with the G1 normals of the input at the
+// kept rows (nullopt with G0; the remesh's region needs them, the extension does not read
+// them).
+struct RemeshedInput {
+  RemeshedRegion mesh;
+  std::optional<Positions> normals;
+};
+
+// remesh_region's remesh of the region of `surface` (the input's rows) with the G1 normals of
+// `input` (the input's region: the given normals, or the estimate from the input's
+// surrounding surface); with `follow`, moved to V's fixed positions (follow_fixed_moves).
+RemeshedInput remesh_input(const FairingRegion& input, const Positions& V, const Positions& surface,
+                           const Triangles& F, const std::vector<bool>& free,
+                           BoundaryCondition boundary, bool follow, const RemeshOptions& remesh) {
+  RemeshedInput out{remesh_region(surface, F, free, remesh), std::nullopt};
+  if (boundary == BoundaryCondition::G1) {
+    out.normals = Positions::Zero(out.mesh.vertices.rows(), 3);
+    for (int b = 0; b < input.n - input.n_free; ++b)
+      out.normals->row(input.global[input.n_free + b]) = input.g1_normals.row(b);
   }
-  if (surface) follow_fixed_moves(V, mesh, normals ? &*normals : nullptr, options.boundary);
-  const double seconds = laps.lap();
+  if (follow) follow_fixed_moves(V, out.mesh, out.normals ? &*out.normals : nullptr, boundary);
+  return out;
+}
+
+// fair() of a remeshed input; `seconds` its remesh's, counted against the time limit.
+FairingResult fair_remesh(RemeshedInput input, const FairingOptions& options, double seconds) {
+  RemeshedRegion& mesh = input.mesh;
   // The new triangles come from no polygon: polygon_ids no longer apply.
-  FairingResult result = fair_kept(mesh.vertices, mesh.faces, mesh.free,
-                                   normals ? &*normals : nullptr, options_after(options, seconds), nullptr);
+  FairingResult result =
+      fair_kept(mesh.vertices, mesh.faces, mesh.free, input.normals ? &*input.normals : nullptr,
+                options_after(options, seconds), nullptr);
   result.remeshed = true;
   result.unreferenced = std::move(mesh.unreferenced);
   result.origin_face = std::move(mesh.origin_face);
   result.origin_barycentric = std::move(mesh.origin_barycentric);
   result.phase_seconds.insert(result.phase_seconds.begin(), {"remesh", seconds});
   return result;
+}
+
+// The input's region: fair()'s checks and messages, and the input's G1 normals.
+FairingRegion input_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                           const Positions* boundary_normals, const FairingOptions& options,
+                           const std::vector<int>* polygon_ids) {
+  return extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
+}
+
+// fair() on remesh_region's remesh of the region of V (Remesh::Always and IfNeeded).
+FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                            const Positions* boundary_normals, const FairingOptions& options,
+                            const std::vector<int>* polygon_ids) {
+  Laps laps;
+  const FairingRegion input = input_region(V, F, free, boundary_normals, options, polygon_ids);
+  RemeshedInput remeshed = remesh_input(input, V, V, F, free, options.boundary, false, {});
+  const double seconds = laps.lap();
+  return fair_remesh(std::move(remeshed), options, seconds);
 }
 
 // Why a result of the connectivity kept asks for a remesh ("" where it does not).
@@ -454,10 +477,11 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
   return at_working_scale(V, F, [&](const Positions& X, double scale) {
     const Positions S = surface / scale;
     Laps laps;
-    double L = 0.0;
-    FairingResult result = fair_remeshed(X, F, free, boundary_normals, options, nullptr, &S,
-                                         RemeshOptions{}, &L);
-    const double spent = laps.lap();
+    const FairingRegion input = input_region(X, F, free, boundary_normals, options, nullptr);
+    RemeshedInput first = remesh_input(input, X, S, F, free, options.boundary, true, {});
+    const double L = first.mesh.target_edge_length, remesh_seconds = laps.lap();
+    FairingResult result = fair_remesh(std::move(first), options, remesh_seconds);
+    const double spent = remesh_seconds + laps.lap();
     if ((result.converged && result.folds == 0) || !time_left(result, options, spent))
       return result;
     // Where it did not converge or folded (a free vertex fanned over several short border
@@ -466,8 +490,9 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
     finer.target_edge_length = kFinerRemesh * L;
     FairingResult second;
     try {
-      second = fair_remeshed(X, F, free, boundary_normals, options_after(options, spent), nullptr,
-                             &S, finer);
+      RemeshedInput again = remesh_input(input, X, S, F, free, options.boundary, true, finer);
+      const double again_seconds = laps.lap();
+      second = fair_remesh(std::move(again), options_after(options, spent), again_seconds);
     } catch (const std::exception& error) {  // keep the first
       result.message += std::string("; a remesh at 4/5 of the edge length failed (") +
                         error.what() + ")";
