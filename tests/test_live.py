@@ -201,7 +201,8 @@ def test_frame_time_limit_stops_the_warm_start_and_skips_the_cold_path(handle_sc
     # path runs.
     w = lifted(v, handle, 3.0)
     failed = live.update(w, time_limit=1e-6)
-    assert not failed.converged and failed.stop_reason == "time_limit" and np.isnan(failed.residual)
+    assert not failed.converged and failed.stop_reason == "time_limit"
+    assert np.isfinite(failed.residual) and failed.residual > 1.0  # of the returned positions
     assert "stopped at the time limit" in failed.message and "cold path" not in failed.message, failed.message
     check_frame(failed, w, free)
     assert np.array_equal(failed.vertices[free], first.vertices[free])  # the last converged frame's
@@ -213,6 +214,30 @@ def test_frame_time_limit_stops_the_warm_start_and_skips_the_cold_path(handle_sc
     assert live.frames == 2
     again = live.update(lifted(v, handle, 0.08), time_limit=60.0)
     assert again.converged and "cold path" not in again.message, again.message
+
+
+def test_frame_time_limit_not_reached_leaves_the_cold_path_as_it_was(handle_scene):
+    # One Newton step may not reach the lifted frame: the cold path runs, under a time limit
+    # it does not reach, and gives what it gives without one (fair's automatic limit stays).
+    v, f, free, handle = handle_scene
+    w = lifted(v, handle, 0.3)
+    frames = [geofair.LiveFairing(v, f, free, max_warm_steps=1).update(w, time_limit=t) for t in (None, 600.0)]
+    assert "cold path" in frames[0].message and frames[0].converged, frames[0].message
+    assert np.array_equal(frames[0].vertices, frames[1].vertices) and frames[0].message == frames[1].message
+
+
+def test_frame_time_limit_with_details_keeps_the_last_frame(handle_scene):
+    v, f, free, handle = handle_scene
+    rng = np.random.default_rng(3)
+    bumpy = v + 0.01 * rng.standard_normal(v.shape) * free[:, None]  # details that fold triangles
+    live = geofair.LiveFairing(bumpy, f, free, details=True)
+    first = live.update(lifted(bumpy, handle, 0.04))
+    assert first.converged
+    failed = live.update(lifted(bumpy, handle, 3.0), time_limit=1e-6)
+    assert not failed.converged and failed.stop_reason == "time_limit"
+    assert np.array_equal(failed.vertices[free], first.vertices[free])
+    # Folds of the base, as a warm frame counts them, not of the base with the details.
+    assert failed.folds == first.folds == 0, failed.message
 
 
 def nan_in_handle(w, handle):

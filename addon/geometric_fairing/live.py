@@ -136,9 +136,8 @@ class Frame:
         if self.folds:
             text += f", {self.folds} edge{'s' if self.folds != 1 else ''} folded over"
         if not self.converged:
-            if "time limit" in self.message:
-                text += " (time limit)"
-            text += ", NOT converged: last good positions kept"
+            limit = " (time limit)" if "time limit" in self.message else ""
+            text += f", NOT converged{limit}: last good positions kept"
         elif not self.reached:
             text += ", on the way"
         return text

@@ -34,6 +34,12 @@ std::string scientific(double x) {
   return text;
 }
 
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", seconds);
+  return text;
+}
+
 std::string steps(int n) { return std::to_string(n) + (n == 1 ? " Newton step" : " Newton steps"); }
 
 // The bounding-box diagonal of the region's positions X (the residual's length L, fairing.h).
@@ -178,22 +184,34 @@ struct LiveFairing::State {
                    std::optional<Positions>& padded,
                    std::optional<Positions>& padded_normals) const;
 
-  // The options of the frame's solve anew: the time limit cut to what is left of the frame's.
+  // The options of the frame's solve anew: with a frame time limit, its deadline polled
+  // through progress and stop_requested (fair's own limit, automatic or explicit, stays).
   FairingOptions timed_options() const {
     FairingOptions timed = options;
     if (deadline) {
-      const double left = std::max(
-          0.0, std::chrono::duration<double>(*deadline - std::chrono::steady_clock::now()).count());
-      timed.time_limit = timed.time_limit >= 0.0 ? std::min(timed.time_limit, left) : left;
+      timed.progress = [this](int, double) { return !out_of_time(); };
+      timed.stop_requested = [this, user = options.stop_requested] {
+        return out_of_time() || (user && user());
+      };
     }
     return timed;
   }
+  // A result of timed_options() that the frame's deadline stopped says so (fair calls it
+  // cancelled).
+  void note_deadline(FairingResult& result) const {
+    static const std::string cancelled = "cancelled";
+    if (result.converged || result.stop_reason != StopReason::Cancelled || !out_of_time()) return;
+    result.stop_reason = StopReason::TimeLimit;
+    if (result.message.compare(0, cancelled.size(), cancelled) == 0)
+      result.message.replace(0, cancelled.size(), "stopped at the frame's time limit of " +
+                                                      seconds_text(frame_limit) + " s");
+  }
   bool out_of_time() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }
 
-  // The frame whose warm start spent its time limit (`limit` seconds): unconverged, V's fixed
-  // rows and the last converged frame's free rows (W the frame's input, / scale).
-  FairingResult unsolved_frame(const Positions& V, const Positions& W, double limit,
-                               Phases& phases, const std::string& why);
+  // The frame whose warm start spent its time limit: unconverged, V's fixed rows and the
+  // last converged frame's free rows (W the frame's input, / scale).
+  FairingResult unsolved_frame(const Positions& V, const Positions& W, Phases& phases,
+                               const std::string& why);
 
   // The cold path: fair() of the frame's input W (/ scale) on the live mesh, its whole
   // schedule; V's fixed rows, `why` the warm start's end.
@@ -367,6 +385,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
         last_step.rows() > 0 && last_step.bottomRows(region.n - region.n_free).any();
     for (const bool secant : {true, false}) {
       if (secant && !secant_first) continue;
+      if (!secant && out_of_time()) break;  // the secant start spent the frame's time
       retried = secant_first && !secant;
       Y = warm_start(X0, secant);
       // The secant start carries the last frame's tangential response: the polish at
@@ -392,7 +411,7 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
   }
   if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
     why = "residual " + scientific(report.residual) + " after " + steps(report.iterations) +
-          (report.cancelled ? ", stopped at the time limit" : "");
+          (out_of_time() ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
@@ -446,6 +465,7 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
     if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
   FairingResult result =
       fair_remeshed_from(U, last.vertices, F, free, boundary_normals, timed_options());
+  note_deadline(result);
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());
@@ -527,22 +547,31 @@ int LiveFairing::remeshes() const {
 }
 
 FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Positions& W,
-                                                 double limit, Phases& phases,
-                                                 const std::string& why) {
+                                                 Phases& phases, const std::string& why) {
   Positions vertices = last.vertices;
   for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
     if (!free[v]) vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
-  const Positions Y = gather(vertices / scale, region.global);
+  // Folds and residual of the positions (with details: of the base, as a warm frame's).
+  const Positions X0 = gather(W, region.global);
+  Positions Y;
+  if (warm) {
+    Y = X;
+    Y.bottomRows(region.n - region.n_free) = X0.bottomRows(region.n - region.n_free);
+  } else {
+    Y = gather(vertices / scale, region.global);
+  }
   FoldCount folds;
-  FairingResult result = live_mesh_result(std::move(vertices), gather(W, region.global), Y, folds);
-  result.residual = std::numeric_limits<double>::quiet_NaN();
+  FairingResult result = live_mesh_result(std::move(vertices), X0, Y, folds);
+  construction->set_boundary(finest->g1_normals, diagonal(X0));
+  const double residual = construction->evaluate(Y);
+  result.residual = std::isfinite(residual) ? residual : std::numeric_limits<double>::max();
+  result.iterations_per_level = {0};
+  result.vertices_per_level = {region.n};
   result.stop_reason = StopReason::TimeLimit;
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3g", limit);
-  result.message = std::string("stopped at the frame's time limit of ") + seconds +
-                   " s before a solve anew (the warm start did not converge: " + why +
-                   "); not solved: the free vertices are the last converged frame's, the "
-                   "residual not evaluated" + fold_note(folds);
+  result.message = "stopped at the frame's time limit of " + seconds_text(frame_limit) +
+                   " s before a solve anew (residual " + scientific(result.residual) +
+                   "; the warm start did not converge: " + why +
+                   "): the free vertices are the last converged frame's" + fold_note(folds);
   result.phase_seconds = std::move(phases);
   ++frames;
   return result;
@@ -555,6 +584,7 @@ FairingResult LiveFairing::State::cold_frame(const Positions& V, const Positions
   kept.remesh = Remesh::Off;
   FairingResult cold =
       fair(scale * W, F, free, boundary_normals, kept, polygon_ids ? &*polygon_ids : nullptr);
+  note_deadline(cold);
   for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
     if (!free[v]) cold.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
   cold.unreferenced = unreferenced;
@@ -612,9 +642,13 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   State& s = *state_;
   const std::lock_guard<std::mutex> lock(s.mutex);
   if (std::isnan(time_limit)) throw InvalidInputError(std::string(kUpdate) + ": time_limit is NaN");
+  // This frame's deadline (none for an infinite limit), cleared on the way out.
+  struct FrameDeadline {
+    State& s;
+    ~FrameDeadline() { s.deadline.reset(); }
+  } frame_deadline{s};
   s.frame_limit = time_limit;
-  s.deadline.reset();
-  if (time_limit >= 0.0)
+  if (time_limit >= 0.0 && std::isfinite(time_limit))
     s.deadline = std::chrono::steady_clock::now() +
                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                      std::chrono::duration<double>(std::min(time_limit, 1e9)));
@@ -693,7 +727,7 @@ FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions
     take_warm(*folded, phases);
     return std::move(*folded);
   }
-  if (out_of_time()) return unsolved_frame(V, W, frame_limit, phases, why);
+  if (out_of_time()) return unsolved_frame(V, W, phases, why);
   FairingResult cold = cold_frame(V, W, boundary_normals, why);
   ++cold_frames;  // (take_anew counts the frame)
   const bool with_details = bool(details);

@@ -95,12 +95,13 @@ class LiveFairing {
   ///        fixed vertex of a triangle has a non-finite coordinate, or for the normals (as
   ///        fair), or for a NaN time_limit; SolverError where the cold path raises (as
   ///        fair). Either leaves the state unchanged.
-  /// \param time_limit  seconds the frame may take (an interactive drag's bound), or < 0:
-  ///           none beyond options.time_limit on the cold path. The warm start stops before
-  ///           a Newton step once it is spent; a remesh and the cold path get what is left
-  ///           (and at most options.time_limit); where nothing is, the frame is returned
-  ///           unconverged (StopReason::TimeLimit, residual NaN: not evaluated) without
-  ///           them, its free rows the last converged frame's.
+  /// \param time_limit  seconds the frame may take (an interactive drag's bound), or < 0 or
+  ///           infinite: none beyond options.time_limit on the cold path. The warm start
+  ///           stops before a Newton step once it is spent; a remesh and the cold path stop
+  ///           at it too (their own options.time_limit, automatic or not, still applies);
+  ///           where nothing is left for them, the frame is returned unconverged
+  ///           (StopReason::TimeLimit) without them, its free rows the last converged
+  ///           frame's, its residual and folds evaluated there.
   FairingResult update(const Positions& V, const Positions* boundary_normals = nullptr,
                        double time_limit = -1.0);
 

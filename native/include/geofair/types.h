@@ -135,8 +135,9 @@ struct FairingOptions {
   /// Conjugate-gradient iterations n of a global step (section 7.1).
   int cg_iterations = 10;
   /// Levels of the progressive-mesh multigrid (section 7.4): 1 = single level,
-  /// 0 = picked from the region (Newton: as many as keep 700 free vertices on the base
-  /// level, schedule.cpp; Paper: default_levels, one level up to 1000 free vertices).
+  /// 0 = picked from the region (Newton: as many as keep tuning.schedule.newton_min_base_free
+  /// free vertices on the base level, schedule.cpp; Paper: default_levels, one level up to
+  /// 1000 free vertices).
   int levels = 0;
   /// Wall-clock bound on the whole call, seconds: the solve stops unconverged once it is
   /// spent (FairingResult::message says so). Negative: automatic with Iteration::Auto (the

@@ -328,12 +328,13 @@ class LiveFairing:
             (any values, NaN too).
         boundary_normals : (n, 3) float64 unit normals read at the G1 boundary vertices (the
             handle's included), or None (default): estimated from vertices as geofair.fair does.
-        time_limit : seconds the frame may take (float > 0; an interactive drag's bound), or None
-            or 0 (default): no bound beyond the constructor's time_limit on the cold path. The warm
-            start stops before a Newton step once it is spent; a remesh and the cold path get what
-            is left (and at most the constructor's time_limit); where nothing is, the frame is
-            returned unconverged without them (.stop_reason "time_limit", .residual NaN: not
-            evaluated), its free rows the last converged frame's.
+        time_limit : seconds the frame may take (float > 0; an interactive drag's bound), or None,
+            0 or inf (default None): no bound beyond the constructor's time_limit on the cold path.
+            The warm start stops before a Newton step once it is spent; a remesh and the cold path
+            stop at it too (.stop_reason "time_limit"; the constructor's time_limit, automatic or
+            not, still applies to them); where nothing is left for them, the frame is returned
+            unconverged without them (.stop_reason "time_limit"), its free rows the last converged
+            frame's, its .residual and .folds evaluated there.
         
         Returns
         -------
