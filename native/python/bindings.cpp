@@ -472,12 +472,14 @@ std::string fair_doc(std::string doc) {
 // A time_limit keyword as FairingOptions::time_limit: None and 0 the automatic limit (or
 // none) as a negative number, so that the add-on's Time Limit property, which cannot hold
 // None, means the same with 0; else seconds > 0.
-double time_limit_seconds(const py::object& time_limit, const char* caller) {
+// `none_means`: what None and 0 stand for, in the message for another value.
+double time_limit_seconds(const py::object& time_limit, const char* caller,
+                          const char* none_means = "automatic") {
   if (time_limit.is_none()) return -1.0;
   const auto bad = [&] {
-    return InvalidInputError(std::string(caller) +
-                             ": time_limit must be None or 0 (automatic) or a number of seconds "
-                             "> 0, got " + std::string(py::str(py::repr(time_limit))));
+    return InvalidInputError(std::string(caller) + ": time_limit must be None or 0 (" +
+                             none_means + ") or a number of seconds > 0, got " +
+                             std::string(py::str(py::repr(time_limit))));
   };
   double seconds = 0.0;
   try {
@@ -1713,7 +1715,7 @@ the input's base (its cold fair) did not converge.)doc");
         const Positions V = to_positions(vertices, "vertices");
         std::optional<Positions> normals;
         if (!boundary_normals.is_none()) normals = to_positions(boundary_normals, "boundary_normals");
-        const double limit = time_limit_seconds(time_limit, "LiveFairing.update");
+        const double limit = time_limit_seconds(time_limit, "LiveFairing.update", "no limit");
         py::gil_scoped_release release;
         return self.update(V, normals ? &*normals : nullptr, limit);
       },

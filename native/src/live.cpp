@@ -562,8 +562,12 @@ FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Posit
   }
   FoldCount folds;
   FairingResult result = live_mesh_result(std::move(vertices), X0, Y, folds);
-  construction->set_boundary(finest->g1_normals, diagonal(X0));
-  const double residual = construction->evaluate(Y);
+  double residual = std::numeric_limits<double>::max();  // where it cannot be evaluated
+  try {
+    construction->set_boundary(finest->g1_normals, diagonal(X0));
+    residual = construction->evaluate(Y);
+  } catch (const std::exception&) {
+  }
   result.residual = std::isfinite(residual) ? residual : std::numeric_limits<double>::max();
   result.iterations_per_level = {0};
   result.vertices_per_level = {region.n};
