@@ -7,7 +7,7 @@ namespace geofair {
 namespace {
 
 // Levels of the Newton hierarchy: as many as keep newton_min_base_free free vertices on the
-// base level (one level below twice that).
+// base level (one level below four times that).
 int newton_levels(const FairingRegion& region, const ScheduleTuning& schedule) {
   int levels = 1;
   for (double n = region.n_free / 4.0; n >= schedule.newton_min_base_free; n /= 4.0) ++levels;

@@ -103,9 +103,9 @@ struct TangentialTuning {
   /// preconditioner ...
   int two_grid_sweeps = 2;
   /// ... and the blocks of rows of those sweeps: Gauss–Seidel within a block, the other
-  /// blocks' values from the start of the sweep, one thread per block above kParallelMin
-  /// unknowns. Fixed, so results do not depend on the thread count (docs/DESIGN_NOTES.md,
-  /// "Tangential solves").
+  /// blocks' values from the start of the sweep, one thread per block; systems of at most
+  /// 2,500 rows are swept as one block (inner_fairness.cpp, kBlockedSweepMin). Fixed, so
+  /// results do not depend on the thread count (docs/DESIGN_NOTES.md, "Tangential solves").
   int two_grid_blocks = 2;
   /// GMRES's iteration limit on the two-grid preconditioner; beyond it the system is
   /// factorized.
