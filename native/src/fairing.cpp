@@ -84,7 +84,8 @@ class TimeLimit {
  public:
   using Clock = std::chrono::steady_clock;
 
-  TimeLimit(const FairingOptions& options, long n_free) : user_(options) {
+  TimeLimit(const FairingOptions& options, long n_free)
+      : user_(options), deadline_(options.deadline) {
     const ScheduleTuning& schedule = options.tuning.schedule;
     const bool automatic = options.time_limit < 0.0 && options.iteration == Iteration::Auto;
     const double none = std::numeric_limits<double>::infinity();
@@ -134,7 +135,7 @@ class TimeLimit {
 
   // Why an unconverged solve ended.
   StopReason reason() const {
-    return timed_out_        ? StopReason::TimeLimit
+    return timed_out_ || at_deadline_ ? StopReason::TimeLimit
            : stalled_        ? StopReason::NoProgress
            : user_cancelled_ ? StopReason::Cancelled
                              : StopReason::MaxIterations;
@@ -142,8 +143,9 @@ class TimeLimit {
 
   // Why an unconverged solve ended, with its figures.
   std::string why_not(const std::string& figures) const {
-    if (timed_out_)
-      return "stopped at the time limit of " + scientific(limit_) + " s (" + figures + ")";
+    if (timed_out_ || at_deadline_)
+      return "stopped at the time limit of " +
+             scientific(timed_out_ ? limit_ : deadline_->seconds) + " s (" + figures + ")";
     if (stalled_)
       return "stopped: the residual did not halve in " + scientific(stall_) +
              " s, the automatic time limit (" + figures + ")";
@@ -157,17 +159,19 @@ class TimeLimit {
   }
   bool spent() {
     timed_out_ = timed_out_ || seconds_since(start_) > limit_;
+    at_deadline_ = at_deadline_ || (deadline_ && Clock::now() >= deadline_->at);
     stalled_ = stalled_ || (counting_ && seconds_since(last_fall_) > stall_);
-    return timed_out_ || stalled_;
+    return timed_out_ || at_deadline_ || stalled_;
   }
 
   const FairingOptions& user_;
+  const std::optional<FairingOptions::Deadline> deadline_;
   double stall_ = 0.0, limit_ = 0.0;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_fall_ = start_;  // when the residual last halved
   double fallen_to_ = std::numeric_limits<double>::infinity();
   bool counting_ = false;  // the attempt whose time without progress is limited has started
-  bool timed_out_ = false, stalled_ = false, user_cancelled_ = false;
+  bool timed_out_ = false, at_deadline_ = false, stalled_ = false, user_cancelled_ = false;
 };
 
 // The residual (see fair) of the input positions themselves; the largest finite double where
@@ -348,19 +352,14 @@ FairingResult fair_remesh(RemeshedInput input, const FairingOptions& options, do
   return result;
 }
 
-// The input's region: fair()'s checks and messages, and the input's G1 normals.
-FairingRegion input_region(const Positions& V, const Triangles& F, const std::vector<bool>& free,
-                           const Positions* boundary_normals, const FairingOptions& options,
-                           const std::vector<int>* polygon_ids) {
-  return extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
-}
-
 // fair() on remesh_region's remesh of the region of V (Remesh::Always and IfNeeded).
 FairingResult fair_remeshed(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                             const Positions* boundary_normals, const FairingOptions& options,
                             const std::vector<int>* polygon_ids) {
   Laps laps;
-  const FairingRegion input = input_region(V, F, free, boundary_normals, options, polygon_ids);
+  // The input's region: fair()'s checks and messages, and the input's G1 normals.
+  const FairingRegion input =
+      extract_region(V, F, free, boundary_normals, true, polygon_ids, options.boundary);
   RemeshedInput remeshed = remesh_input(input, V, V, F, free, options.boundary, false, {});
   const double seconds = laps.lap();
   return fair_remesh(std::move(remeshed), options, seconds);
@@ -384,10 +383,11 @@ bool better(const FairingResult& a, const FairingResult& b) {
 }
 
 // Whether a second attempt may follow `first`, which took `spent` seconds: not after a
-// cancel or where the time limit is spent.
+// cancel or where the time limit or the deadline is spent.
 bool time_left(const FairingResult& first, const FairingOptions& options, double spent) {
   return first.stop_reason != StopReason::Cancelled &&
-         !(options.time_limit >= 0.0 && spent >= options.time_limit);
+         !(options.time_limit >= 0.0 && spent >= options.time_limit) &&
+         !(options.deadline && std::chrono::steady_clock::now() >= options.deadline->at);
 }
 
 // `out` (one of two attempts, a and b) with the Newton steps and the phases of both.
@@ -477,7 +477,8 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
   return at_working_scale(V, F, [&](const Positions& X, double scale) {
     const Positions S = surface / scale;
     Laps laps;
-    const FairingRegion input = input_region(X, F, free, boundary_normals, options, nullptr);
+    const FairingRegion input =
+        extract_region(X, F, free, boundary_normals, true, nullptr, options.boundary);
     RemeshedInput first = remesh_input(input, X, S, F, free, options.boundary, true, {});
     const double L = first.mesh.target_edge_length, remesh_seconds = laps.lap();
     FairingResult result = fair_remesh(std::move(first), options, remesh_seconds);

@@ -34,12 +34,6 @@ std::string scientific(double x) {
   return text;
 }
 
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", seconds);
-  return text;
-}
-
 std::string steps(int n) { return std::to_string(n) + (n == 1 ? " Newton step" : " Newton steps"); }
 
 // The bounding-box diagonal of the region's positions X (the residual's length L, fairing.h).
@@ -153,8 +147,7 @@ struct LiveFairing::State {
   FairingResult last;
   int frames = 0, cold_frames = 0, remeshes = 0;
   // The end of the frame being solved (update()'s time_limit), if it has one.
-  std::optional<std::chrono::steady_clock::time_point> deadline;
-  double frame_limit = -1.0;  // its seconds
+  std::optional<FairingOptions::Deadline> deadline;
   mutable std::mutex mutex;  // update() and result() take turns
 
   // Makes (F_new, free_new) the live mesh with V0 = V / scale (V: its rows): the region,
@@ -184,29 +177,16 @@ struct LiveFairing::State {
                    std::optional<Positions>& padded,
                    std::optional<Positions>& padded_normals) const;
 
-  // The options of the frame's solve anew: with a frame time limit, its deadline polled
-  // through progress and stop_requested (fair's own limit, automatic or explicit, stays).
+  // The options of the frame's solve anew: with a frame time limit, its deadline (fair's
+  // own limit, automatic or explicit, stays).
   FairingOptions timed_options() const {
     FairingOptions timed = options;
-    if (deadline) {
-      timed.progress = [this](int, double) { return !out_of_time(); };
-      timed.stop_requested = [this, user = options.stop_requested] {
-        return out_of_time() || (user && user());
-      };
-    }
+    timed.deadline = deadline;
     return timed;
   }
-  // A result of timed_options() that the frame's deadline stopped says so (fair calls it
-  // cancelled).
-  void note_deadline(FairingResult& result) const {
-    static const std::string cancelled = "cancelled";
-    if (result.converged || result.stop_reason != StopReason::Cancelled || !out_of_time()) return;
-    result.stop_reason = StopReason::TimeLimit;
-    if (result.message.compare(0, cancelled.size(), cancelled) == 0)
-      result.message.replace(0, cancelled.size(), "stopped at the frame's time limit of " +
-                                                      seconds_text(frame_limit) + " s");
+  bool out_of_time() const {
+    return deadline && std::chrono::steady_clock::now() >= deadline->at;
   }
-  bool out_of_time() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }
 
   // The frame whose warm start spent its time limit: unconverged, V's fixed rows and the
   // last converged frame's free rows (W the frame's input, / scale).
@@ -270,6 +250,19 @@ struct LiveFairing::State {
   // that frame's free response (a steady drag repeats its response), the rest its harmonic
   // extension; else the harmonic extension of all of it.
   Positions warm_start(const Positions& X0, bool secant) const;
+
+  // A frame's boundary data for its input W (/ scale): the G1 normals (the given ones, or
+  // estimated from W); returns the region's rows of W. InvalidInputError for a region of zero
+  // extent.
+  Positions frame_boundary(const Positions& W, const Positions* boundary_normals);
+
+  // Newton's method from the warm start for the region positions X0 (frame_boundary's):
+  // from the secant start, and where Newton does not converge from it or fails, from the
+  // harmonic one (`retried`); Y its solution, `phases` its phases from `laps`. The
+  // construction takes the frame's boundary and, for conformal inner fairness, the weights
+  // of X0. SolverError where the harmonic start fails.
+  IterationReport warm_newton(const Positions& X0, Positions& Y, Phases& phases, Laps& laps,
+                              bool& retried);
 
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).
@@ -346,65 +339,77 @@ Positions LiveFairing::State::warm_start(const Positions& X0, bool secant) const
   return Y;
 }
 
+Positions LiveFairing::State::frame_boundary(const Positions& W,
+                                             const Positions* boundary_normals) {
+  std::optional<Positions> normals;
+  if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
+  set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
+  finest->g1_normals = region.g1_normals;
+  Positions X0 = gather(W, region.global);
+  if (!(diagonal(X0) > 0.0))
+    throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
+  return X0;
+}
+
+IterationReport LiveFairing::State::warm_newton(const Positions& X0, Positions& Y,
+                                                Phases& phases, Laps& laps, bool& retried) {
+  const double L = diagonal(X0);
+  if (options.inner_fairness != InnerFairness::Uniform) {
+    InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
+    if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
+      construction = std::make_unique<Construction>(*finest, std::move(lambda), options, L);
+  }
+  construction->set_boundary(finest->g1_normals, L);
+  NewtonRun run;
+  run.max_iterations = live.max_warm_steps;
+  run.tolerance = options.tolerance;
+  run.patience = options.tuning.newton.patience;
+  run.polish_at_convergence = true;
+  run.warm = true;
+  run.stop = [this] { return out_of_time(); };
+  IterationReport report;
+  // The secant start first; where Newton does not converge from it or fails (a drag whose
+  // response changes, as triangles squeeze), the harmonic one.
+  const bool secant_first =
+      last_step.rows() > 0 && last_step.bottomRows(region.n - region.n_free).any();
+  for (const bool secant : {true, false}) {
+    if (secant && !secant_first) continue;
+    if (!secant && out_of_time()) break;  // the secant start spent the frame's time
+    retried = secant_first && !secant;
+    Y = warm_start(X0, secant);
+    // The secant start carries the last frame's tangential response: the polish at
+    // convergence is enough (the harmonic one squeezes vertices against a moving handle).
+    run.skip_relaxation = secant;
+    phases.emplace_back("boundary data and predictor", laps.lap());
+    try {
+      report = construction->run_newton(Y, run);
+    } catch (const SolverError&) {
+      if (!secant) throw;
+      report = IterationReport();
+      continue;
+    }
+    laps.lap();  // run_newton's own seconds, below
+    phases.emplace_back("warm inner fairness", report.relax_seconds);
+    phases.emplace_back("warm Newton steps", report.step_seconds);
+    phases.emplace_back("warm polishes", report.polish_seconds);
+    if ((report.converged && Y.topRows(region.n_free).allFinite()) || report.cancelled) break;
+  }
+  return report;
+}
+
 std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
                                                             const Positions& W,
                                                             const Positions* boundary_normals,
                                                             Phases& phases, std::string& why) {
   Laps laps;
-  // The boundary data of the frame: normals (the given ones, or estimated from W), the
-  // residual's length, and for conformal inner fairness the weights of the frame's input.
-  std::optional<Positions> normals;
-  if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
-  set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
-  finest->g1_normals = region.g1_normals;
-  const Positions X0 = gather(W, region.global);
-  const double L = diagonal(X0);
-  if (!(L > 0.0)) throw InvalidInputError(std::string(kUpdate) + ": the region has zero extent");
+  const Positions X0 = frame_boundary(W, boundary_normals);
   Positions Y;
   IterationReport report;
-  bool retried = false;  // from the harmonic start after the secant one failed
+  bool retried = false;
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
   try {
-    if (options.inner_fairness != InnerFairness::Uniform) {
-      InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
-      if (!construction->set_lambda(lambda))  // other intrinsic edges: another pattern
-        construction = std::make_unique<Construction>(*finest, std::move(lambda), options, L);
-    }
-    construction->set_boundary(finest->g1_normals, L);
-    NewtonRun run;
-    run.max_iterations = live.max_warm_steps;
-    run.tolerance = options.tolerance;
-    run.patience = options.tuning.newton.patience;
-    run.polish_at_convergence = true;
-    run.warm = true;
-    run.stop = [this] { return out_of_time(); };
-    // The secant start first; where Newton does not converge from it or fails (a drag whose
-    // response changes, as triangles squeeze), the harmonic one.
-    const bool secant_first =
-        last_step.rows() > 0 && last_step.bottomRows(region.n - region.n_free).any();
-    for (const bool secant : {true, false}) {
-      if (secant && !secant_first) continue;
-      if (!secant && out_of_time()) break;  // the secant start spent the frame's time
-      retried = secant_first && !secant;
-      Y = warm_start(X0, secant);
-      // The secant start carries the last frame's tangential response: the polish at
-      // convergence is enough (the harmonic one squeezes vertices against a moving handle).
-      run.skip_relaxation = secant;
-      phases.emplace_back("boundary data and predictor", laps.lap());
-      try {
-        report = construction->run_newton(Y, run);
-      } catch (const SolverError&) {
-        if (!secant) throw;
-        report = IterationReport();
-        continue;
-      }
-      laps.lap();  // run_newton's own seconds, below
-      phases.emplace_back("warm inner fairness", report.relax_seconds);
-      phases.emplace_back("warm Newton steps", report.step_seconds);
-      phases.emplace_back("warm polishes", report.polish_seconds);
-      if ((report.converged && Y.topRows(region.n_free).allFinite()) || report.cancelled) break;
-    }
+    report = warm_newton(X0, Y, phases, laps, retried);
   } catch (const SolverError& error) {
     why = error.what();
     return std::nullopt;
@@ -465,7 +470,6 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
     if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
   FairingResult result =
       fair_remeshed_from(U, last.vertices, F, free, boundary_normals, timed_options());
-  note_deadline(result);
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
   result.unreferenced.insert(result.unreferenced.end(), unreferenced.begin(), unreferenced.end());
   std::sort(result.unreferenced.begin(), result.unreferenced.end());
@@ -572,7 +576,7 @@ FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Posit
   result.iterations_per_level = {0};
   result.vertices_per_level = {region.n};
   result.stop_reason = StopReason::TimeLimit;
-  result.message = "stopped at the frame's time limit of " + seconds_text(frame_limit) +
+  result.message = "stopped at the frame's time limit of " + scientific(deadline->seconds) +
                    " s before a solve anew (residual " + scientific(result.residual) +
                    "; the warm start did not converge: " + why +
                    "): the free vertices are the last converged frame's" + fold_note(folds);
@@ -588,7 +592,6 @@ FairingResult LiveFairing::State::cold_frame(const Positions& V, const Positions
   kept.remesh = Remesh::Off;
   FairingResult cold =
       fair(scale * W, F, free, boundary_normals, kept, polygon_ids ? &*polygon_ids : nullptr);
-  note_deadline(cold);
   for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
     if (!free[v]) cold.vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
   cold.unreferenced = unreferenced;
@@ -651,11 +654,12 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
     State& s;
     ~FrameDeadline() { s.deadline.reset(); }
   } frame_deadline{s};
-  s.frame_limit = time_limit;
   if (time_limit >= 0.0 && std::isfinite(time_limit))
-    s.deadline = std::chrono::steady_clock::now() +
-                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                     std::chrono::duration<double>(std::min(time_limit, 1e9)));
+    s.deadline = FairingOptions::Deadline{
+        std::chrono::steady_clock::now() +
+            std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                std::chrono::duration<double>(std::min(time_limit, 1e9))),
+        time_limit};
   std::optional<Positions> padded, padded_normals;
   s.check_input(V_in, normals_in, padded, padded_normals);
   const Positions& V = padded ? *padded : V_in;  // the live mesh's rows

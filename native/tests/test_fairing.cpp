@@ -1,11 +1,12 @@
-// geofair::fair's stop requests (FairingOptions::stop_requested): the polls between the
-// steps that report no progress, through which fair() keeps its time limit.
+// geofair::fair's stop requests (FairingOptions::stop_requested, deadline): the polls
+// between the steps that report no progress, through which fair() keeps its time limit.
 #include "geofair/fairing.h"
 #include "region.h"
 #include "meshes.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -89,6 +90,29 @@ TEST_P(StopRequested, AtEveryPollEndsTheRunThere) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Levels, StopRequested, ::testing::Values(1, 2));
+
+// FairingOptions::deadline: one already passed stops the solve at its first poll as a time
+// limit (its seconds in the message), whatever time_limit is; one far ahead changes nothing.
+TEST(Deadline, StopsAsATimeLimitAndOneNotReachedChangesNothing) {
+  const DisturbedCap cap;
+  FairingOptions options;  // the automatic time limit
+  const FairingResult free_run = fair(cap.V, cap.mesh.F, cap.free, &cap.normals, options);
+  ASSERT_TRUE(free_run.converged) << free_run.message;
+  const auto now = std::chrono::steady_clock::now();
+  options.deadline = FairingOptions::Deadline{now + std::chrono::hours(1), 3600.0};
+  const FairingResult ahead = fair(cap.V, cap.mesh.F, cap.free, &cap.normals, options);
+  EXPECT_TRUE(ahead.vertices == free_run.vertices);
+  options.deadline = FairingOptions::Deadline{now, 0.25};
+  for (const double time_limit : {-1.0, std::numeric_limits<double>::infinity()}) {
+    options.time_limit = time_limit;
+    const FairingResult stopped = fair(cap.V, cap.mesh.F, cap.free, &cap.normals, options);
+    EXPECT_FALSE(stopped.converged);
+    EXPECT_EQ(stopped.stop_reason, StopReason::TimeLimit);
+    EXPECT_EQ(stopped.message.rfind("stopped at the time limit of 2.5e-01 s", 0), 0u)
+        << stopped.message;
+    EXPECT_TRUE(stopped.vertices == cap.V);
+  }
+}
 
 // The hexagon's centre moved outside it, across vertex 1: the two triangles at vertex 1 flip
 // over, so the two edges between a flipped and an unflipped triangle are folds.

@@ -16,7 +16,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
+#include <chrono>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -146,6 +148,15 @@ struct FairingOptions {
   /// tuning.schedule, fairing.h), none with an iteration chosen explicitly (the reference
   /// iterations run to max_iterations); infinity: none.
   double time_limit = -1.0;
+  /// A point in time at which the call stops unconverged as at an explicit time_limit,
+  /// whatever time_limit is (the automatic limit still applies), and `seconds`, the bound it
+  /// stands for, which the message names. LiveFairing::update gives the solves of a frame
+  /// its time limit so. Empty: none.
+  struct Deadline {
+    std::chrono::steady_clock::time_point at;
+    double seconds = 0.0;
+  };
+  std::optional<Deadline> deadline;
   /// Called once per iteration; may be empty.
   ProgressCallback progress;
   /// Polled between the long steps that report no progress (a level's linear initial mesh,
