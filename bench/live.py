@@ -199,7 +199,9 @@ def run(n, kind, args):
         if phase == "slide":
             linear_radial = max(linear_radial, float(np.abs(np.linalg.norm(x[free], axis=1) - 1.0).max()))
     cold_times, distance, cold_bad = [], 0.0, 0
-    picks = sorted(set(range(args.cold_every - 1, len(frames), args.cold_every)) | {len(frames) - 1})
+    # Every --cold-every-th frame and the last (0: the last alone).
+    every = set(range(args.cold_every - 1, len(frames), args.cold_every)) if args.cold_every > 0 else set()
+    picks = sorted(every | {len(frames) - 1})
     for i in picks:
         _, w, n_w = frames[i]
         t = time.perf_counter()
@@ -240,7 +242,9 @@ def main():
     parser.add_argument("--slide-frames", type=int, default=20)
     parser.add_argument("--inner", default="uniform")
     parser.add_argument("--remesh", default="off", choices=["off", "if_needed"], help="LiveFairing's remesh option")
-    parser.add_argument("--cold-every", type=int, default=5)
+    parser.add_argument(
+        "--cold-every", type=int, default=5, help="a cold fair of every K-th frame's input and the last (0: the last)"
+    )
     parser.add_argument("--frames", action="store_true", help="a row per frame")
     parser.add_argument(
         "--time-limit",
@@ -248,6 +252,8 @@ def main():
         help="seconds an update may take (update's time_limit), or 'addon': 4 x the constructor's time, >= 1 s",
     )
     args = parser.parse_args()
+    if args.cold_every < 0:
+        parser.error("--cold-every must be >= 0")
     with open("/proc/loadavg") as f:
         load = f.read().split()[0]
     print(f"# load average {load} on {os.cpu_count()} cores")

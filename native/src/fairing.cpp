@@ -507,4 +507,14 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
   });
 }
 
+RemeshedRegion remesh_followed(const Positions& V, const Positions& surface, const Triangles& F,
+                               const std::vector<bool>& free, const Positions* boundary_normals,
+                               BoundaryCondition boundary) {
+  if (surface.rows() != V.rows() || !surface.allFinite())
+    throw InvalidInputError("fair: the surface to remesh needs the rows of vertices, finite");
+  const FairingRegion input =
+      extract_region(V, F, free, boundary_normals, true, nullptr, boundary);
+  return remesh_input(input, V, surface, F, free, boundary, true, {}).mesh;
+}
+
 }  // namespace geofair

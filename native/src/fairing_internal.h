@@ -20,4 +20,11 @@ FairingResult fair_remeshed_from(const Positions& V, const Positions& surface, c
                                  const std::vector<bool>& free, const Positions* boundary_normals,
                                  const FairingOptions& options);
 
+/// fair_remeshed_from's first remesh without its fair, in the units of V (no working scale):
+/// the remesh of `surface`'s region, its new free vertices moved with the fixed ones from
+/// `surface` to V. Throws InvalidInputError as fair_remeshed_from.
+RemeshedRegion remesh_followed(const Positions& V, const Positions& surface, const Triangles& F,
+                               const std::vector<bool>& free, const Positions* boundary_normals,
+                               BoundaryCondition boundary);
+
 }  // namespace geofair

@@ -170,6 +170,30 @@ struct LiveFairing::State {
   // frame's surface remeshed, then faired with the frame's fixed positions.
   FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
 
+  // The live mesh's parts that prepare() replaces, with the warm start on them.
+  struct LiveMesh {
+    Triangles F;
+    std::vector<bool> free;
+    std::optional<std::vector<int>> polygon_ids;
+    Positions V0;
+    FairingRegion region;
+    std::unique_ptr<FairingRegion> finest;
+    std::unique_ptr<Construction> construction;  // after finest: it refers to it
+    std::unique_ptr<DisplacementPredictor> predictor;
+    std::vector<int> used_fixed, unreferenced;
+    Positions X, pending, last_step;
+  };
+  // Exchanges the live mesh with `other` (a warm remesh keeps the old one to go back to).
+  void swap_mesh(LiveMesh& other) noexcept;
+
+  // The remesh of remesh_frame, its new free vertices moved with the fixed ones, made the
+  // live mesh and solved by a warm frame from there (Newton's method from the remesh, no
+  // hierarchy); nullopt, the live mesh as it was, where that does not converge without more
+  // folds than the input, or the remesh fails (remesh_frame, the cold fair of a remesh,
+  // follows). `why`: the warm start's end on the old mesh.
+  std::optional<FairingResult> warm_remesh(const Positions& V, const Positions* boundary_normals,
+                                           bool folded, const std::string& why, Phases& phases);
+
   // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
   // the live mesh more (a remesh), or rows are in no face, `padded` (`padded_normals`) gets
   // the live mesh's rows (those in no face their last positions).
@@ -476,6 +500,76 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   return result;
 }
 
+void LiveFairing::State::swap_mesh(LiveMesh& other) noexcept {
+  std::swap(F, other.F);
+  std::swap(free, other.free);
+  std::swap(polygon_ids, other.polygon_ids);
+  std::swap(V0, other.V0);
+  std::swap(region, other.region);
+  std::swap(finest, other.finest);
+  std::swap(construction, other.construction);
+  std::swap(predictor, other.predictor);
+  std::swap(used_fixed, other.used_fixed);
+  std::swap(unreferenced, other.unreferenced);
+  std::swap(X, other.X);
+  std::swap(pending, other.pending);  // a folded warm frame of the old mesh is taken from it
+  std::swap(last_step, other.last_step);
+}
+
+std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
+                                                            const Positions* boundary_normals,
+                                                            bool folded, const std::string& why,
+                                                            Phases& phases) {
+  Laps laps;
+  Positions U = V;  // as remesh_frame: the last converged frame's free rows
+  for (std::size_t v = 0; v < free.size(); ++v)
+    if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
+  RemeshedRegion mesh;
+  try {
+    mesh = remesh_followed(U / scale, last.vertices / scale, F, free, boundary_normals,
+                           options.boundary);
+  } catch (const std::exception&) {
+    return std::nullopt;  // remesh_frame tries it again and says why
+  }
+  // The new mesh's rows in the caller's units: V's fixed rows, the remesh's free ones, and
+  // rows in no face their last positions (as the cold remesh's result).
+  Positions V_new = mesh.vertices * scale;
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (!mesh.free[std::size_t(v)]) V_new.row(v) = V.row(v);
+  for (int v : mesh.unreferenced)
+    if (v < last.vertices.rows()) V_new.row(v) = last.vertices.row(v);
+  std::optional<Positions> normals;
+  if (boundary_normals) normals = live_rows(*boundary_normals, Positions::Zero(V_new.rows(), 3));
+  const Positions* normals_new = normals ? &*normals : nullptr;
+  LiveMesh old;
+  swap_mesh(old);
+  try {
+    prepare(mesh.faces, mesh.free, std::nullopt, V_new, normals_new);
+  } catch (const std::exception&) {
+    swap_mesh(old);
+    return std::nullopt;
+  }
+  unreferenced = mesh.unreferenced;  // with those of earlier remeshes (never free)
+  unreferenced.insert(unreferenced.end(), old.unreferenced.begin(), old.unreferenced.end());
+  std::sort(unreferenced.begin(), unreferenced.end());
+  X = gather(V0, region.global);
+  phases.emplace_back("remesh", laps.lap());
+  std::string warm_why;
+  std::optional<FairingResult> result = warm_frame(V_new, frame_input(V_new), normals_new,
+                                                   phases, warm_why);
+  if (!result || result->folds > input_folds) {
+    swap_mesh(old);
+    return std::nullopt;
+  }
+  result->remeshed = true;
+  result->origin_face = std::move(mesh.origin_face);
+  result->origin_barycentric = std::move(mesh.origin_barycentric);
+  result->message += "; remeshed from the last frame, solved warm on the new mesh (the warm "
+                     "start " + std::string(folded ? "folded: " : "did not converge: ") + why +
+                     ")";
+  return result;
+}
+
 void LiveFairing::State::switch_mesh(const FairingResult& result,
                                      const Positions* boundary_normals) {
   std::optional<Positions> normals;  // the new rows (free) are not read
@@ -716,8 +810,18 @@ FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions
                                              Phases& phases, std::string& why) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   const bool remesh = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
+  if (remesh) {  // warm on the remesh first; where that fails, its cold fair
+    if (auto result = warm_remesh(V, boundary_normals, bool(folded), why, phases)) {
+      remesh_tried = -kRemeshRetry;
+      take_warm(*result, phases);
+      V0 = result->vertices / scale;  // the reference of later frames (switch_mesh)
+      last_step.resize(0, 3);          // a remesh is no drag response
+      ++remeshes;
+      return std::move(*result);
+    }
+  }
   std::optional<FairingResult> remeshed;
-  if (remesh) remeshed = try_remesh(V, boundary_normals, bool(folded), why);
+  if (remesh && !out_of_time()) remeshed = try_remesh(V, boundary_normals, bool(folded), why);
   // Taken where it converged, unless the warm frame converged with as few folds: the cold
   // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
   const bool use_remesh = remeshed && remeshed->converged &&

@@ -61,10 +61,13 @@ class LiveFairing {
   ///        options.remesh Off or IfNeeded (connectivity that follows the drag: a frame whose
   ///        warm start does not converge, or converges with more folded edges than the
   ///        input, is remeshed, remesh_region of the last converged frame's surface with the
-  ///        frame's fixed positions, and faired cold; taken where it converged, with fewer
-  ///        folds than a converged warm start; a remesh that leaves folds is tried again
-  ///        three frames later at the earliest; later frames start warm on that mesh
-  ///        (its result their input's reference), whose rows are remesh_region's layout:
+  ///        frame's fixed positions, and solved warm from there (Newton's method on the new
+  ///        mesh, taken where it converges with no more folds than the input), else faired
+  ///        cold (at a second edge length of 4/5 where the first fails); taken where it
+  ///        converged, with fewer folds than a converged warm start; a remesh that leaves
+  ///        folds is tried again three frames later at the earliest; later frames start
+  ///        warm on that mesh (its result their input's reference), whose rows are
+  ///        remesh_region's layout:
   ///        fixed rows kept, #V' >= #V, rows in no face keep their last positions; the
   ///        constructor fairs the input's own triangles);
   ///        options.progress is not called.

@@ -281,9 +281,11 @@ class LiveFairing:
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
         converge, or converges with more folded edges than the input had, is remeshed:
         geofair.remesh_region's remesh of the last converged frame's surface, its new free
-        vertices moved with the fixed ones to the frame (their harmonic extension), faired cold
-        with the frame's fixed positions (where that folds or does not converge, remeshed once
-        more at 4/5 of the edge length). It is taken where it converged (with fewer folds than
+        vertices moved with the fixed ones to the frame (their harmonic extension), and solved
+        warm from there (Newton's method on the new mesh; taken where it converges with no more
+        folds than the input had); where that fails, faired cold with the frame's fixed positions
+        (where that folds or does not converge, remeshed once more at 4/5 of the edge length).
+        It is taken where it converged (with fewer folds than
         the warm start's, where that converged); a remesh that leaves folds is tried again three
         frames later at the earliest. The result's .remeshed, .faces, .free, .unreferenced and
         .origin_face (into the last frame's faces) say so, and later frames start warm on the
