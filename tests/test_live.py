@@ -104,12 +104,13 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
 def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
     # 30° along the sphere, 2° a frame: the triangles between the handle and the region's
     # border squeeze until the warm start folds or fails (about 20°); with remesh="if_needed"
-    # such a frame remeshes the region from the last frame's surface and the drag goes on,
-    # every frame on the sphere without a folded edge. The fixed vertices keep their rows.
+    # the region is remeshed from the last frame's surface once its smallest angle has
+    # halved (or a frame folds or fails) and the drag goes on, every frame on the sphere
+    # without a folded edge. The fixed vertices keep their rows.
     v, f, free, handle = handle_scene
     live = geofair.LiveFairing(v, f, free, remesh="if_needed")
     fixed = ~free
-    warm_remeshes = 0
+    warm_remeshes = degenerated = 0
     for k in range(1, 16):
         w = v.copy()
         w[handle] = v[handle] @ rotation_x(2.0 * k).T
@@ -122,9 +123,10 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
             # Solved warm on the remesh (or by the cold fair of a remesh where that fails):
             # the surface of a cold fair of the same mesh and fixed positions.
             warm_remeshes += "solved warm on the new mesh" in r.message
+            degenerated += "triangles degenerated" in r.message
             cold = geofair.fair(r.vertices, r.faces, r.free)
             assert cold.converged and np.abs(cold.vertices - r.vertices).max() < 1e-5, (k, r.message)
-    assert live.remeshes >= 1 and live.frames == 15 and warm_remeshes >= 1
+    assert live.remeshes >= 1 and live.frames == 15 and warm_remeshes >= 1 and degenerated >= 1
     assert not (r.faces.shape == f.shape and np.array_equal(r.faces, f))
     # The remeshed mesh: its free vertices are the region's (none of the fixed rows), every
     # face of the input without a free vertex is kept, and the rows in no face are listed.

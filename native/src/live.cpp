@@ -47,6 +47,24 @@ constexpr int kRemeshRetry = 3;
 // The secant predictor's largest multiple of the last frame's response (warm_frame).
 constexpr double kSecantLimit = 2.0;
 
+// With remesh IfNeeded, a converged frame whose smallest triangle angle falls below this
+// fraction of the live mesh's own remeshes at the next frame: a handle dragged towards the
+// border squeezes the triangles between them, and their angles collapse a few frames before
+// they fold (docs/LIVE.md, "Remeshing frames").
+constexpr double kDegenerateAngle = 1.0 / 3.0;
+
+// The smallest angle of triangles T (rows into X), radians.
+double smallest_angle(const Positions& X, const Triangles& T) {
+  double smallest = M_PI;
+  for (Eigen::Index t = 0; t < T.rows(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::RowVector3d a = X.row(T(t, (c + 1) % 3)) - X.row(T(t, c));
+      const Eigen::RowVector3d b = X.row(T(t, (c + 2) % 3)) - X.row(T(t, c));
+      smallest = std::min(smallest, std::atan2(a.cross(b).norm(), a.dot(b)));
+    }
+  return smallest;
+}
+
 // Detail coding (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the offsets x_i − b_i of a
 // region x from its base b, per free vertex in the base's local frame (n_i, t_i, n_i × t_i),
 // so that a new base b' gets them back in its own frames: x'_i = b'_i + α n'_i + β t'_i +
@@ -117,6 +135,8 @@ struct LiveFairing::State {
   int input_rows = 0;       // the constructor's vertex count (update accepts it or the live mesh's)
   int input_folds = 0;      // folded edges of the constructor's frame (the input's own)
   int remesh_tried = -kRemeshRetry;  // the frame (count) of the last remesh that left folds
+  double mesh_angle = 0.0;  // the smallest angle of the last frame solved anew, radians
+  bool remesh_next = false;  // the last frame's triangles degenerated (kDegenerateAngle)
   std::vector<int> unreferenced;  // rows in no face since a remesh (their last positions kept)
 
   // Whether a converged warm frame with `folds` folded edges is remeshed (remesh
@@ -182,6 +202,7 @@ struct LiveFairing::State {
     std::unique_ptr<DisplacementPredictor> predictor;
     std::vector<int> used_fixed, unreferenced;
     Positions X, pending, last_step;
+    double mesh_angle = 0.0;
   };
   // Exchanges the live mesh with `other` (a warm remesh keeps the old one to go back to).
   void swap_mesh(LiveMesh& other) noexcept;
@@ -189,10 +210,18 @@ struct LiveFairing::State {
   // The remesh of remesh_frame, its new free vertices moved with the fixed ones, made the
   // live mesh and solved by a warm frame from there (Newton's method from the remesh, no
   // hierarchy); nullopt, the live mesh as it was, where that does not converge without more
-  // folds than the input, or the remesh fails (remesh_frame, the cold fair of a remesh,
-  // follows). `why`: the warm start's end on the old mesh.
+  // folds than the input, or the remesh fails. `reason`: why the frame remeshes.
   std::optional<FairingResult> warm_remesh(const Positions& V, const Positions* boundary_normals,
-                                           bool folded, const std::string& why, Phases& phases);
+                                           const std::string& reason, Phases& phases);
+
+  // A warm_remesh result taken: as take_warm, on the new mesh, whose result is the
+  // reference of later frames (switch_mesh).
+  void take_warm_remesh(FairingResult& result, Phases& phases);
+
+  // After a warm frame taken (remesh IfNeeded): whether its triangles degenerated
+  // (kDegenerateAngle), so that the next frame remeshes first; `reason` says how.
+  void check_degenerate();
+  std::string degenerate_reason;
 
   // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
   // the live mesh more (a remesh), or rows are in no face, `padded` (`padded_normals`) gets
@@ -253,6 +282,7 @@ struct LiveFairing::State {
   // which gets them here).
   void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
+    mesh_angle = smallest_angle(X, region.triangles);
     warm = true;
     last_step.resize(0, 3);
     if (details) result.vertices = caller_positions(result.vertices, X);
@@ -514,11 +544,12 @@ void LiveFairing::State::swap_mesh(LiveMesh& other) noexcept {
   std::swap(X, other.X);
   std::swap(pending, other.pending);  // a folded warm frame of the old mesh is taken from it
   std::swap(last_step, other.last_step);
+  std::swap(mesh_angle, other.mesh_angle);
 }
 
 std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
                                                             const Positions* boundary_normals,
-                                                            bool folded, const std::string& why,
+                                                            const std::string& reason,
                                                             Phases& phases) {
   Laps laps;
   Positions U = V;  // as remesh_frame: the last converged frame's free rows
@@ -564,10 +595,30 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
   result->remeshed = true;
   result->origin_face = std::move(mesh.origin_face);
   result->origin_barycentric = std::move(mesh.origin_barycentric);
-  result->message += "; remeshed from the last frame, solved warm on the new mesh (the warm "
-                     "start " + std::string(folded ? "folded: " : "did not converge: ") + why +
-                     ")";
+  result->message += "; remeshed from the last frame, solved warm on the new mesh (" + reason + ")";
   return result;
+}
+
+void LiveFairing::State::take_warm_remesh(FairingResult& result, Phases& phases) {
+  remesh_tried = -kRemeshRetry;
+  take_warm(result, phases);
+  V0 = result.vertices / scale;
+  mesh_angle = smallest_angle(X, region.triangles);
+  last_step.resize(0, 3);  // a remesh is no drag response
+  ++remeshes;
+}
+
+void LiveFairing::State::check_degenerate() {
+  if (options.remesh != Remesh::IfNeeded || frames - remesh_tried < kRemeshRetry) return;
+  const double angle = smallest_angle(X, region.triangles);
+  if (!(angle < kDegenerateAngle * mesh_angle)) return;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the last frame's triangles degenerated: smallest angle %.1f°, the live mesh's "
+                "%.1f°",
+                angle * 180.0 / M_PI, mesh_angle * 180.0 / M_PI);
+  degenerate_reason = text;
+  remesh_next = true;
 }
 
 void LiveFairing::State::switch_mesh(const FairingResult& result,
@@ -768,10 +819,19 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
   if (s.warm) {
+    if (s.remesh_next) {  // remeshed before the triangles fold
+      s.remesh_next = false;
+      if (auto result = s.warm_remesh(V, boundary_normals, s.degenerate_reason, phases)) {
+        s.take_warm_remesh(*result, phases);
+        return std::move(*result);
+      }
+      s.remesh_tried = s.frames;  // not again for kRemeshRetry frames
+    }
     // The boundary data are the frame's own.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
       if (s.options.remesh != Remesh::IfNeeded || !s.wants_remesh(result->folds)) {
         s.take_warm(*result, phases);
+        s.check_degenerate();
         return std::move(*result);
       }
       why = std::to_string(result->folds) + " folded edges, the input " +
@@ -811,12 +871,10 @@ FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   const bool remesh = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
   if (remesh) {  // warm on the remesh first; where that fails, its cold fair
-    if (auto result = warm_remesh(V, boundary_normals, bool(folded), why, phases)) {
-      remesh_tried = -kRemeshRetry;
-      take_warm(*result, phases);
-      V0 = result->vertices / scale;  // the reference of later frames (switch_mesh)
-      last_step.resize(0, 3);          // a remesh is no drag response
-      ++remeshes;
+    const std::string reason =
+        std::string(folded ? "the warm start folded: " : "the warm start did not converge: ") + why;
+    if (auto result = warm_remesh(V, boundary_normals, reason, phases)) {
+      take_warm_remesh(*result, phases);
       return std::move(*result);
     }
   }

@@ -60,7 +60,9 @@ class LiveFairing {
   /// \param V, F, free, boundary_normals, options, polygon_ids  as for fair (fairing.h);
   ///        options.remesh Off or IfNeeded (connectivity that follows the drag: a frame whose
   ///        warm start does not converge, or converges with more folded edges than the
-  ///        input, is remeshed, remesh_region of the last converged frame's surface with the
+  ///        input, is remeshed, and so is the frame after one whose smallest triangle angle
+  ///        fell below half of the last frame solved anew (constructor or remesh):
+  ///        remesh_region of the last converged frame's surface with the
   ///        frame's fixed positions, and solved warm from there (Newton's method on the new
   ///        mesh, taken where it converges with no more folds than the input), else faired
   ///        cold (at a second edge length of 4/5 where the first fails); taken where it

@@ -279,7 +279,10 @@ class LiveFairing:
         the frame runs the cold path.
     remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
-        converge, or converges with more folded edges than the input had, is remeshed:
+        converge, or converges with more folded edges than the input had, is remeshed, and so
+        is the frame after one whose smallest triangle angle fell below half of that of the last
+        frame solved anew (the constructor's or a remesh's; squeezed triangles fold a few frames
+        later):
         geofair.remesh_region's remesh of the last converged frame's surface, its new free
         vertices moved with the fixed ones to the frame (their harmonic extension), and solved
         warm from there (Newton's method on the new mesh; taken where it converges with no more
