@@ -562,6 +562,7 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
   } catch (const std::exception&) {
     return std::nullopt;  // remesh_frame tries it again and says why
   }
+  phases.emplace_back("remesh", laps.lap());
   // The new mesh's rows in the caller's units: V's fixed rows, the remesh's free ones, and
   // rows in no face their last positions (as the cold remesh's result).
   Positions V_new = mesh.vertices * scale;
@@ -584,7 +585,7 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
   unreferenced.insert(unreferenced.end(), old.unreferenced.begin(), old.unreferenced.end());
   std::sort(unreferenced.begin(), unreferenced.end());
   X = gather(V0, region.global);
-  phases.emplace_back("remesh", laps.lap());
+  phases.emplace_back("remesh's preparation", laps.lap());
   std::string warm_why;
   std::optional<FairingResult> result = warm_frame(V_new, frame_input(V_new), normals_new,
                                                    phases, warm_why);
