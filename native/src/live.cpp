@@ -137,6 +137,7 @@ struct LiveFairing::State {
   int remesh_tried = -kRemeshRetry;  // the frame (count) of the last remesh that left folds
   double mesh_angle = 0.0;  // the smallest angle of the last frame solved anew, radians
   bool remesh_next = false;  // the last frame's triangles degenerated (kDegenerateAngle)
+  int degenerate_tried = -kRemeshRetry;  // the frame of the last such remesh that failed
   std::vector<int> unreferenced;  // rows in no face since a remesh (their last positions kept)
 
   // Whether a converged warm frame with `folds` folded edges is remeshed (remesh
@@ -575,20 +576,19 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
   const Positions* normals_new = normals ? &*normals : nullptr;
   LiveMesh old;
   swap_mesh(old);
-  try {
+  std::optional<FairingResult> result;
+  try {  // anything that throws on the new mesh brings the old one back
     prepare(mesh.faces, mesh.free, std::nullopt, V_new, normals_new);
+    unreferenced = mesh.unreferenced;  // with those of earlier remeshes (never free)
+    unreferenced.insert(unreferenced.end(), old.unreferenced.begin(), old.unreferenced.end());
+    std::sort(unreferenced.begin(), unreferenced.end());
+    X = gather(V0, region.global);
+    phases.emplace_back("remesh's preparation", laps.lap());
+    std::string warm_why;
+    result = warm_frame(V_new, frame_input(V_new), normals_new, phases, warm_why);
   } catch (const std::exception&) {
-    swap_mesh(old);
-    return std::nullopt;
+    result.reset();
   }
-  unreferenced = mesh.unreferenced;  // with those of earlier remeshes (never free)
-  unreferenced.insert(unreferenced.end(), old.unreferenced.begin(), old.unreferenced.end());
-  std::sort(unreferenced.begin(), unreferenced.end());
-  X = gather(V0, region.global);
-  phases.emplace_back("remesh's preparation", laps.lap());
-  std::string warm_why;
-  std::optional<FairingResult> result = warm_frame(V_new, frame_input(V_new), normals_new,
-                                                   phases, warm_why);
   if (!result || result->folds > input_folds) {
     swap_mesh(old);
     return std::nullopt;
@@ -596,7 +596,8 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
   result->remeshed = true;
   result->origin_face = std::move(mesh.origin_face);
   result->origin_barycentric = std::move(mesh.origin_barycentric);
-  result->message += "; remeshed from the last frame, solved warm on the new mesh (" + reason + ")";
+  result->message += "; remeshed from the last frame, solved warm on the new mesh (" + reason +
+                     ")";
   return result;
 }
 
@@ -610,13 +611,15 @@ void LiveFairing::State::take_warm_remesh(FairingResult& result, Phases& phases)
 }
 
 void LiveFairing::State::check_degenerate() {
-  if (options.remesh != Remesh::IfNeeded || frames - remesh_tried < kRemeshRetry) return;
+  if (options.remesh != Remesh::IfNeeded || frames - remesh_tried < kRemeshRetry ||
+      frames - degenerate_tried < kRemeshRetry)
+    return;
   const double angle = smallest_angle(X, region.triangles);
   if (!(angle < kDegenerateAngle * mesh_angle)) return;
   char text[160];
   std::snprintf(text, sizeof text,
-                "the last frame's triangles degenerated: smallest angle %.1f°, the live mesh's "
-                "%.1f°",
+                "the last frame's triangles degenerated: smallest angle %.1f°, %.1f° where the "
+                "live mesh was last solved anew",
                 angle * 180.0 / M_PI, mesh_angle * 180.0 / M_PI);
   degenerate_reason = text;
   remesh_next = true;
@@ -826,7 +829,7 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
         s.take_warm_remesh(*result, phases);
         return std::move(*result);
       }
-      s.remesh_tried = s.frames;  // not again for kRemeshRetry frames
+      s.degenerate_tried = s.frames;  // not again for kRemeshRetry frames
     }
     // The boundary data are the frame's own.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
