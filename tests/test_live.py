@@ -105,7 +105,7 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
     # 30° along the sphere, 2° a frame: the triangles between the handle and the region's
     # border squeeze until the warm start folds or fails (about 20°); with remesh="if_needed"
     # the region is remeshed from the last frame's surface once its smallest angle has
-    # halved (or a frame folds or fails) and the drag goes on, every frame on the sphere
+    # fallen to a third (or a frame folds or fails) and the drag goes on, every frame on the sphere
     # without a folded edge. The fixed vertices keep their rows.
     v, f, free, handle = handle_scene
     live = geofair.LiveFairing(v, f, free, remesh="if_needed")

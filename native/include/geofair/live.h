@@ -61,7 +61,7 @@ class LiveFairing {
   ///        options.remesh Off or IfNeeded (connectivity that follows the drag: a frame whose
   ///        warm start does not converge, or converges with more folded edges than the
   ///        input, is remeshed, and so is the frame after one whose smallest triangle angle
-  ///        fell below half of the last frame solved anew (constructor or remesh):
+  ///        fell below 1/3 of that of the last frame solved anew (constructor or remesh):
   ///        remesh_region of the last converged frame's surface with the
   ///        frame's fixed positions, and solved warm from there (Newton's method on the new
   ///        mesh, taken where it converges with no more folds than the input), else faired

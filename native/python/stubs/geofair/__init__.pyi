@@ -280,7 +280,7 @@ class LiveFairing:
     remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
         converge, or converges with more folded edges than the input had, is remeshed, and so
-        is the frame after one whose smallest triangle angle fell below half of that of the last
+        is the frame after one whose smallest triangle angle fell below 1/3 of that of the last
         frame solved anew (the constructor's or a remesh's; squeezed triangles fold a few frames
         later):
         geofair.remesh_region's remesh of the last converged frame's surface, its new free
