@@ -187,6 +187,15 @@ struct LiveFairing::State {
     return out;
   }
 
+  // What a frame's remesh starts from: V's fixed rows (check_input: rows in no face the last
+  // frame's) and the last converged frame's free rows (the caller's are not read).
+  Positions remesh_source(const Positions& V) const {
+    Positions U = V;
+    for (std::size_t v = 0; v < free.size(); ++v)
+      if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
+    return U;
+  }
+
   // The remesh of a frame (Remesh::IfNeeded): fair_remeshed_from, the last converged
   // frame's surface remeshed, then faired with the frame's fixed positions.
   FairingResult remesh_frame(const Positions& V, const Positions* boundary_normals) const;
@@ -283,7 +292,7 @@ struct LiveFairing::State {
   // which gets them here).
   void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
-    mesh_angle = smallest_angle(X, region.triangles);
+    if (options.remesh == Remesh::IfNeeded) mesh_angle = smallest_angle(X, region.triangles);
     warm = true;
     last_step.resize(0, 3);
     if (details) result.vertices = caller_positions(result.vertices, X);
@@ -520,9 +529,7 @@ FairingResult LiveFairing::State::remesh_frame(const Positions& V,
   // strip that a handle dragged towards the border squeezes) of the last converged frame,
   // whose free vertices fit its fixed ones (with the frame's, those the handle has moved
   // over would fan over it), then its fair with the frame's fixed positions.
-  Positions U = V;  // the frame's fixed rows (check_input: rows in no face the last frame's)
-  for (std::size_t v = 0; v < free.size(); ++v)  // the caller's free rows are not read
-    if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
+  const Positions U = remesh_source(V);
   FairingResult result =
       fair_remeshed_from(U, last.vertices, F, free, boundary_normals, timed_options());
   // Rows in no face: the remesh's spare rows and those of earlier remeshes (never free).
@@ -553,9 +560,7 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
                                                             const std::string& reason,
                                                             Phases& phases) {
   Laps laps;
-  Positions U = V;  // as remesh_frame: the last converged frame's free rows
-  for (std::size_t v = 0; v < free.size(); ++v)
-    if (free[v]) U.row(Eigen::Index(v)) = last.vertices.row(Eigen::Index(v));
+  const Positions U = remesh_source(V);
   RemeshedRegion mesh;
   try {
     mesh = remesh_followed(U / scale, last.vertices / scale, F, free, boundary_normals,
