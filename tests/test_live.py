@@ -154,6 +154,57 @@ def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
         live.update(w[:-1])
 
 
+def test_failed_warm_remesh_goes_back_to_the_old_mesh_and_remeshes_cold(handle_scene):
+    # With one Newton step a frame, the warm start of each frame of the drag fails, and so
+    # does the warm start on its remesh: the live mesh goes back to the old one, and the
+    # remesh's cold fair gives the frame, the surface of a cold fair of its own mesh.
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free, remesh="if_needed", max_warm_steps=1)
+    for k in range(1, 4):
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(3.0 * k).T
+        r = live.update(w)
+        assert r.converged and r.remeshed and r.folds == 0, (k, r.message)
+        assert "solved warm on a remesh, its warm start did not converge" in r.message, r.message
+        assert np.array_equal(r.vertices[: len(v)][~free], w[~free])
+        cold = geofair.fair(r.vertices, r.faces, r.free)
+        assert cold.converged and np.abs(cold.vertices - r.vertices).max() < 1e-5, (k, r.message)
+        radial = np.abs(np.linalg.norm(r.vertices[r.free], axis=1) - 1.0).max()
+        assert radial < 1e-4, (k, radial)
+    assert live.frames == 3 and live.remeshes == 3 and live.cold_frames == 0
+
+
+def test_remesh_before_the_fold_waits_for_a_frame_with_time(handle_scene):
+    # The drag of the test above, 2° a frame: the first frame that remeshes because the
+    # last one's triangles degenerated, given no time, is returned unsolved (the last
+    # converged frame) and keeps its remesh for the next frame, which is then the frame of
+    # a drag without that pause, bit for bit.
+    v, f, free, handle = handle_scene
+
+    def frame(k):
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(2.0 * k).T
+        return w
+
+    live = geofair.LiveFairing(v, f, free, remesh="if_needed")
+    for k in range(1, 16):
+        r = live.update(frame(k))
+        if "triangles degenerated" in r.message:
+            break
+    assert r.converged and r.remeshed, (k, r.message)
+    paused = geofair.LiveFairing(v, f, free, remesh="if_needed")
+    for j in range(1, k):
+        last = paused.update(frame(j))
+    stopped = paused.update(frame(k), time_limit=1e-6)
+    assert not stopped.converged and stopped.stop_reason == "time_limit", stopped.message
+    assert "before its first Newton step" in stopped.message, stopped.message
+    assert paused.remeshes == live.remeshes - 1
+    assert np.array_equal(stopped.vertices[free], last.vertices[free])
+    again = paused.update(frame(k))
+    assert again.message == r.message and np.array_equal(again.vertices, r.vertices)
+    assert np.array_equal(again.faces, r.faces) and paused.remeshes == live.remeshes
+
+
 def test_remesh_of_a_small_handle_with_given_normals():
     # A 4-vertex handle: its vertices have no triangle without a free vertex, so their
     # normals must come from boundary_normals, in the remesh's steps too (a remesh that

@@ -36,6 +36,8 @@ void check_fairing_options(const FairingOptions& o) {
   if (o.cg_iterations < 1) throw InvalidInputError("fair: cg_iterations must be >= 1");
   if (o.levels < 0) throw InvalidInputError("fair: levels must be >= 0");
   if (std::isnan(o.time_limit)) throw InvalidInputError("fair: time_limit must not be NaN");
+  if (o.deadline && !(o.deadline->seconds >= 0.0))
+    throw InvalidInputError("fair: deadline.seconds must be >= 0");
   validate_tuning(o.tuning);
 }
 
@@ -131,7 +133,10 @@ class TimeLimit {
     return timed;
   }
 
-  bool user_cancelled() const { return user_cancelled_; }
+  // Stopped where the caller asked: cancelled, or at an explicit time limit or the deadline.
+  bool stopped_by_caller() const {
+    return user_cancelled_ || at_deadline_ || (timed_out_ && user_.time_limit >= 0.0);
+  }
 
   // Why an unconverged solve ended.
   StopReason reason() const {
@@ -279,7 +284,7 @@ FairingResult fair_kept(const Positions& V, const Triangles& F, const std::vecto
   count_result_folds(result, V, F, free);
   // Where uniform inner fairness fails, its vertex distribution is often what breaks (it can
   // fold or flatten triangles of an irregular region, docs/REAL_MESHES.md): say so.
-  if (!result.converged && !limit.user_cancelled() &&
+  if (!result.converged && !limit.stopped_by_caller() &&
       options.inner_fairness == InnerFairness::Uniform &&
       options.outer_fairness == OuterFairness::Intrinsic)
     result.message += "; uniform inner fairness can degenerate the triangles of an irregular "

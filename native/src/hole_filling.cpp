@@ -775,13 +775,19 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   Chain chain;
   chain.record.loop = loop;
   Laps watch;
-  auto time_left = [&] { return !(options.time_limit >= 0.0) || spent < options.time_limit; };
+  auto time_left = [&] {
+    return (!(options.time_limit >= 0.0) || spent < options.time_limit) &&
+           !(options.deadline && std::chrono::steady_clock::now() >= options.deadline->at);
+  };
   // Tries one fill; true once the chain is done (a fill without folds, or cancelled).
   auto attempt = [&](const std::vector<int>& hole, const std::vector<int>& removed, double L,
                      FillMethod method) {
     FairingOptions now = options_after(options, spent);
     // Out of time, the linear fill (one linear solve) is still made: every hole is closed.
-    if (method == FillMethod::Linear && !time_left()) now.time_limit = -1.0;
+    if (method == FillMethod::Linear && !time_left()) {
+      now.time_limit = -1.0;
+      now.deadline.reset();
+    }
     Tried tried = try_fill(V, F, edges, hole, removed, L, method, now, unit);
     spent += watch.lap();
     chain.record.attempts.push_back(tried.attempt);

@@ -220,9 +220,11 @@ struct LiveFairing::State {
   // The remesh of remesh_frame, its new free vertices moved with the fixed ones, made the
   // live mesh and solved by a warm frame from there (Newton's method from the remesh, no
   // hierarchy); nullopt, the live mesh as it was, where that does not converge without more
-  // folds than the input, or the remesh fails. `reason`: why the frame remeshes.
+  // folds than the input, or the remesh fails (`failure` says which). `reason`: why the
+  // frame remeshes.
   std::optional<FairingResult> warm_remesh(const Positions& V, const Positions* boundary_normals,
-                                           const std::string& reason, Phases& phases);
+                                           const std::string& reason, Phases& phases,
+                                           std::string& failure);
 
   // A warm_remesh result taken: as take_warm, on the new mesh, whose result is the
   // reference of later frames (switch_mesh).
@@ -232,6 +234,8 @@ struct LiveFairing::State {
   // (kDegenerateAngle), so that the next frame remeshes first; `reason` says how.
   void check_degenerate();
   std::string degenerate_reason;
+  // What the frame being solved tried before (a failed remesh): appended to its message.
+  std::string frame_note;
 
   // update()'s checks of its input. Where V_in (and normals_in) has the input's rows and
   // the live mesh more (a remesh), or rows are in no face, `padded` (`padded_normals`) gets
@@ -344,10 +348,11 @@ struct LiveFairing::State {
   // The frame whose warm start did not converge or, with `folded`, converged with more folded
   // edges than the input: with remesh IfNeeded remeshed where that converges with fewer
   // folds, else the folded warm frame, else the cold path; `why` the warm start's end,
-  // extended by what the remesh did.
+  // extended by what the remesh did. `warm_remeshed`: this frame's warm remesh has failed
+  // already (update's remesh before the triangles fold), so only its cold fair is tried.
   FairingResult solve_anew(const Positions& V, const Positions& W,
                            const Positions* boundary_normals, std::optional<FairingResult> folded,
-                           Phases& phases, std::string& why);
+                           Phases& phases, std::string& why, bool warm_remeshed);
 };
 
 FairingResult LiveFairing::State::live_mesh_result(Positions vertices, const Positions& X0,
@@ -479,8 +484,11 @@ std::optional<FairingResult> LiveFairing::State::warm_frame(const Positions& V,
     return std::nullopt;
   }
   if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
-    why = "residual " + scientific(report.residual) + " after " + steps(report.iterations) +
-          (out_of_time() ? ", stopped at the time limit" : "");
+    if (report.iterations == 0 && out_of_time())  // its residual was not evaluated
+      why = "stopped at the time limit before its first Newton step";
+    else
+      why = "residual " + scientific(report.residual) + " after " + steps(report.iterations) +
+            (out_of_time() ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
@@ -558,15 +566,17 @@ void LiveFairing::State::swap_mesh(LiveMesh& other) noexcept {
 std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
                                                             const Positions* boundary_normals,
                                                             const std::string& reason,
-                                                            Phases& phases) {
+                                                            Phases& phases,
+                                                            std::string& failure) {
   Laps laps;
   const Positions U = remesh_source(V);
   RemeshedRegion mesh;
   try {
     mesh = remesh_followed(U / scale, last.vertices / scale, F, free, boundary_normals,
                            options.boundary);
-  } catch (const std::exception&) {
-    return std::nullopt;  // remesh_frame tries it again and says why
+  } catch (const std::exception& error) {
+    failure = std::string("remeshing failed: ") + error.what();
+    return std::nullopt;
   }
   phases.emplace_back("remesh", laps.lap());
   // The new mesh's rows in the caller's units: V's fixed rows, the remesh's free ones, and
@@ -591,9 +601,14 @@ std::optional<FairingResult> LiveFairing::State::warm_remesh(const Positions& V,
     phases.emplace_back("remesh's preparation", laps.lap());
     std::string warm_why;
     result = warm_frame(V_new, frame_input(V_new), normals_new, phases, warm_why);
-  } catch (const std::exception&) {
+    if (!result) failure = "its warm start did not converge: " + warm_why;
+  } catch (const std::exception& error) {
     result.reset();
+    failure = std::string("its warm start failed: ") + error.what();
   }
+  if (result && result->folds > input_folds)
+    failure = "its warm start converged with " + std::to_string(result->folds) +
+              " folded edges, the input " + std::to_string(input_folds);
   if (!result || result->folds > input_folds) {
     swap_mesh(old);
     return std::nullopt;
@@ -662,6 +677,7 @@ LiveFairing::LiveFairing(const Positions& V, const Triangles& F, const std::vect
   FairingOptions kept = s.options;
   kept.remesh = Remesh::Off;
   FairingResult first = fair(V, F, free, boundary_normals, kept, polygon_ids);
+  s.options.deadline.reset();  // a point in time: the constructor's solve alone
   s.scale = working_scale(V, F, "LiveFairing");
   s.prepare(F, free, s.polygon_ids, V, boundary_normals);
   if (live.details) {
@@ -730,10 +746,11 @@ FairingResult LiveFairing::State::unsolved_frame(const Positions& V, const Posit
   result.iterations_per_level = {0};
   result.vertices_per_level = {region.n};
   result.stop_reason = StopReason::TimeLimit;
-  result.message = "stopped at the frame's time limit of " + scientific(deadline->seconds) +
+  result.message = "stopped at the time limit of " + scientific(deadline->seconds) +
                    " s before a solve anew (residual " + scientific(result.residual) +
                    "; the warm start did not converge: " + why +
-                   "): the free vertices are the last converged frame's" + fold_note(folds);
+                   "): the free vertices are the last converged frame's" + fold_note(folds) +
+                   frame_note;
   result.phase_seconds = std::move(phases);
   ++frames;
   return result;
@@ -827,14 +844,19 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   // With remesh="if_needed", a converged warm frame with folds (State::wants_remesh) is
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
+  bool warm_remeshed = false;  // remeshed before the triangles fold, and that failed
+  s.frame_note.clear();
   if (s.warm) {
-    if (s.remesh_next) {  // remeshed before the triangles fold
+    if (s.remesh_next && !s.out_of_time()) {
       s.remesh_next = false;
-      if (auto result = s.warm_remesh(V, boundary_normals, s.degenerate_reason, phases)) {
+      std::string failure;
+      if (auto result = s.warm_remesh(V, boundary_normals, s.degenerate_reason, phases, failure)) {
         s.take_warm_remesh(*result, phases);
         return std::move(*result);
       }
       s.degenerate_tried = s.frames;  // not again for kRemeshRetry frames
+      warm_remeshed = true;
+      s.frame_note = "; a remesh first (" + s.degenerate_reason + ") was not taken: " + failure;
     }
     // The boundary data are the frame's own.
     if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
@@ -850,10 +872,11 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   }
   const double warm_seconds = laps.lap();
   if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
-  return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why);
+  return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why, warm_remeshed);
 }
 
 void LiveFairing::State::take_warm(FairingResult& result, Phases& phases) {
+  result.message += frame_note;
   result.phase_seconds = std::move(phases);
   last_step = pending - X;
   X = std::move(pending);
@@ -863,6 +886,7 @@ void LiveFairing::State::take_warm(FairingResult& result, Phases& phases) {
 
 void LiveFairing::State::take_anew(FairingResult& result, Phases& phases,
                                    const Positions* boundary_normals) {
+  result.message += frame_note;
   phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
   result.phase_seconds = std::move(phases);
   if (result.converged && result.remeshed) {
@@ -876,16 +900,19 @@ void LiveFairing::State::take_anew(FairingResult& result, Phases& phases,
 FairingResult LiveFairing::State::solve_anew(const Positions& V, const Positions& W,
                                              const Positions* boundary_normals,
                                              std::optional<FairingResult> folded,
-                                             Phases& phases, std::string& why) {
+                                             Phases& phases, std::string& why,
+                                             bool warm_remeshed) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   const bool remesh = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
-  if (remesh) {  // warm on the remesh first; where that fails, its cold fair
+  if (remesh && !warm_remeshed) {  // warm on the remesh first; where that fails, its cold fair
     const std::string reason =
         std::string(folded ? "the warm start folded: " : "the warm start did not converge: ") + why;
-    if (auto result = warm_remesh(V, boundary_normals, reason, phases)) {
+    std::string failure;
+    if (auto result = warm_remesh(V, boundary_normals, reason, phases, failure)) {
       take_warm_remesh(*result, phases);
       return std::move(*result);
     }
+    why += "; solved warm on a remesh, " + failure;
   }
   std::optional<FairingResult> remeshed;
   if (remesh && !out_of_time()) remeshed = try_remesh(V, boundary_normals, bool(folded), why);

@@ -111,6 +111,12 @@ TEST(Deadline, StopsAsATimeLimitAndOneNotReachedChangesNothing) {
     EXPECT_EQ(stopped.message.rfind("stopped at the time limit of 2.5e-01 s", 0), 0u)
         << stopped.message;
     EXPECT_TRUE(stopped.vertices == cap.V);
+    // The caller's limit, not a failure of the method: no hint at another inner fairness.
+    EXPECT_EQ(stopped.message.find("inner fairness"), std::string::npos) << stopped.message;
+  }
+  for (const double seconds : {-1.0, std::nan("")}) {
+    options.deadline = FairingOptions::Deadline{now, seconds};
+    EXPECT_THROW(fair(cap.V, cap.mesh.F, cap.free, &cap.normals, options), InvalidInputError);
   }
 }
 

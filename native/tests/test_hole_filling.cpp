@@ -232,6 +232,23 @@ TEST(WorkingScale, IsOneInTheBandAndAPowerOfTwoNearTheEdgeLengthOutside) {
   }
 }
 
+// A deadline already passed, as an explicit time limit spent: the hole still gets the
+// linear fill (one linear solve, not stopped by the deadline), no other attempt.
+TEST(FillHoles, ADeadlinePassedGivesTheLinearFill) {
+  const testing::Mesh m = grid_with_hole(10, 0.45);
+  FairingOptions options;
+  const FillResult in_time = fill_holes(m.V, m.F, {}, options);
+  ASSERT_EQ(in_time.holes.size(), 2u);  // the hole, then the sheet's border left open
+  EXPECT_EQ(in_time.holes[0].method, FillMethod::Intrinsic);
+  options.deadline = FairingOptions::Deadline{std::chrono::steady_clock::now(), 0.0};
+  const FillResult r = fill_holes(m.V, m.F, {}, options);
+  ASSERT_EQ(r.holes.size(), 2u);
+  EXPECT_EQ(r.holes[0].method, FillMethod::Linear);
+  EXPECT_TRUE(r.holes[0].converged) << r.message;
+  EXPECT_EQ(r.holes[0].attempts.size(), 1u);
+  EXPECT_EQ(r.holes[1].method, FillMethod::None);
+}
+
 TEST(WorkingScale, NamesTheScaleWhereSquaredLengthsLeaveTheDoubles) {
   const testing::Mesh m = grid_with_hole(10, 0.45);
   auto message = [&](double scale) {
