@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 namespace geofair {
@@ -16,6 +18,13 @@ inline void tangent_basis(const Vec3& n, Vec3& bx, Vec3& by) {
   const Vec3 helper = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   bx = n.cross(helper).normalized();
   by = n.cross(bx);
+}
+
+/// x in a message: one decimal of scientific notation ("1.2e-05").
+inline std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1e", x);
+  return text;
 }
 
 /// Rows `ids` of X (#ids×3), e.g. a region's positions from the caller's by region.global.

@@ -72,12 +72,6 @@ int solve_threads() {
 
 namespace {
 
-std::string scientific(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1e", x);
-  return text;
-}
-
 // fair()'s time limit (FairingOptions::time_limit; the automatic rule in fairing.h): it
 // stops the iterations through the progress callback, which every iteration of the user's
 // problem calls (the user's callback still sees each call), and the long steps in between

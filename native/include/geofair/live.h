@@ -10,19 +10,7 @@
 
 namespace geofair {
 
-/// Options of LiveFairing beyond fair's (FairingOptions).
-struct LiveOptions {
-  /// Newton steps a frame's warm start may take (after its tangential relaxation) before
-  /// the frame falls back to the cold path; >= 1.
-  int max_warm_steps = 8;
-  /// Detail preservation (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the region is split
-  /// into its own faired base (Δ_B H = 0 with the input's boundary and handle: the
-  /// constructor's cold fair) and the details, the input's offsets from that base per free
-  /// vertex in the base's local frame (n_i the area-weighted normal, t_i the direction to a
-  /// ring neighbour projected into the tangent plane, n_i × t_i); every frame adds them
-  /// back onto the new base in its frames. False: the region is the fair surface itself.
-  bool details = false;
-};
+struct LiveState;  // the prepared region and the warm start between frames (native/src)
 
 /// A fairing region prepared once and faired again for new positions of its fixed vertices
 /// (beyond the paper; its section 8 asks for interactive modelling with interior
@@ -91,10 +79,12 @@ class LiveFairing {
   ///           included), or nullptr: estimated from V as fair does
   /// \return the frame's FairingResult as fair's (the live mesh's #V' rows, faces and free;
   ///         remeshed where this frame replaced the triangles, origin_face then into the
-  ///         last frame's faces; rows of fixed vertices bit-identical to V; with details the base's fair surface plus the details, the residual and
-  ///         folds the base's); a frame that did not converge (the cold path failed too) is returned
-  ///         unconverged, with the reason in message, and leaves result() and the next
-  ///         warm start at the last converged frame
+  ///         last frame's faces; rows of fixed vertices bit-identical to V; with details
+  ///         the base's fair surface plus the details, the residual and folds the base's);
+  ///         a frame that did not converge (the cold path failed too) is returned
+  ///         unconverged, with the reason in message (and what the frame tried before,
+  ///         such as a remesh that failed), and leaves result() and the next warm start at
+  ///         the last converged frame
   /// \throw InvalidInputError if V has another number of rows (than the construction's
   ///        or the live mesh's), a
   ///        fixed vertex of a triangle has a non-finite coordinate, or for the normals (as
@@ -121,8 +111,7 @@ class LiveFairing {
   int remeshes() const;
 
  private:
-  struct State;
-  std::unique_ptr<State> state_;
+  std::unique_ptr<LiveState> state_;
 };
 
 }  // namespace geofair

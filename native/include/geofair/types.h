@@ -324,4 +324,18 @@ struct HoleChoice {
   std::vector<OpenLoop> left_open;      ///< the others, in the same order
 };
 
+/// Options of LiveFairing beyond fair's (FairingOptions).
+struct LiveOptions {
+  /// Newton steps a frame's warm start may take (after its tangential relaxation) before
+  /// the frame falls back to the cold path; >= 1.
+  int max_warm_steps = 8;
+  /// Detail preservation (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the region is split
+  /// into its own faired base (Δ_B H = 0 with the input's boundary and handle: the
+  /// constructor's cold fair) and the details, the input's offsets from that base per free
+  /// vertex in the base's local frame (n_i the area-weighted normal, t_i the direction to a
+  /// ring neighbour projected into the tangent plane, n_i × t_i); every frame adds them
+  /// back onto the new base in its frames. False: the region is the fair surface itself.
+  bool details = false;
+};
+
 }  // namespace geofair
