@@ -524,33 +524,43 @@ void set_boundary_normals(FairingRegion& region, const Positions& V, const Trian
 
 FoldCount count_folds(const Positions& before, const Positions& after, const Triangles& F,
                       const std::vector<bool>& free) {
-  // (edge key, triangle) of every edge with a free endpoint, sorted so that an edge's
-  // triangles are adjacent.
-  const long long n = before.rows();
-  std::vector<std::pair<long long, int>> edges;
-  edges.reserve(3 * std::size_t(F.rows()));  // no doubling: at 1M vertices, 100 MiB each
-  for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      if (free[a] || free[b]) edges.emplace_back(std::min(a, b) * n + std::max(a, b), f);
-    }
-  std::sort(edges.begin(), edges.end());
+  // The edges with a free endpoint, bucketed by their smaller vertex (a counting sort, linear
+  // in #F): entries (larger vertex, triangle), so that an edge's triangles share a bucket.
+  const int n = int(before.rows());
+  std::vector<int> start(std::size_t(n) + 1, 0);
+  auto for_each_edge = [&](auto&& visit) {
+    for (int f = 0; f < F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(f, k), b = F(f, (k + 1) % 3);
+        if (free[a] || free[b]) visit(std::min(a, b), std::max(a, b), f);
+      }
+  };
+  for_each_edge([&](int a, int, int) { ++start[std::size_t(a) + 1]; });
+  for (int v = 0; v < n; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  std::vector<std::pair<int, int>> slots(static_cast<std::size_t>(start.back()));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for_each_edge([&](int a, int b, int f) { slots[std::size_t(fill[std::size_t(a)]++)] = {b, f}; });
   auto normal = [&](const Positions& X, int f) -> Vec3 {
     const Vec3 p = X.row(F(f, 0)).transpose();
     return (Vec3(X.row(F(f, 1)).transpose()) - p).cross(Vec3(X.row(F(f, 2)).transpose()) - p);
   };
   FoldCount count;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (j - i == 2) {
-      const int f = edges[i].second, g = edges[i + 1].second;
-      if (normal(after, f).dot(normal(after, g)) < 0.0) {
-        ++count.folds;
-        count.new_folds += !(normal(before, f).dot(normal(before, g)) < 0.0);
+  for (int v = 0; v < n; ++v) {
+    const auto first = slots.begin() + start[std::size_t(v)];
+    const auto last = slots.begin() + start[std::size_t(v) + 1];
+    std::sort(first, last);  // a vertex's few edges: an edge's triangles become adjacent
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && j->first == i->first) ++j;
+      if (j - i == 2) {  // an edge of two triangles (a border edge has one; others are skipped)
+        const int f = i->second, g = (i + 1)->second;
+        if (normal(after, f).dot(normal(after, g)) < 0.0) {
+          ++count.folds;
+          count.new_folds += !(normal(before, f).dot(normal(before, g)) < 0.0);
+        }
       }
+      i = j;
     }
-    i = j;
   }
   return count;
 }
