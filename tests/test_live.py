@@ -165,7 +165,7 @@ def test_failed_warm_remesh_goes_back_to_the_old_mesh_and_remeshes_cold(handle_s
         w[handle] = v[handle] @ rotation_x(3.0 * k).T
         r = live.update(w)
         assert r.converged and r.remeshed and r.folds == 0, (k, r.message)
-        assert "solved warm on a remesh, its warm start did not converge" in r.message, r.message
+        assert "the warm solve on the remesh did not converge" in r.message, r.message
         assert np.array_equal(r.vertices[: len(v)][~free], w[~free])
         cold = geofair.fair(r.vertices, r.faces, r.free)
         assert cold.converged and np.abs(cold.vertices - r.vertices).max() < 1e-5, (k, r.message)
@@ -177,8 +177,9 @@ def test_failed_warm_remesh_goes_back_to_the_old_mesh_and_remeshes_cold(handle_s
 def test_remesh_before_the_fold_waits_for_a_frame_with_time(handle_scene):
     # The drag of the test above, 2° a frame: the first frame that remeshes because the
     # last one's triangles degenerated, given no time, is returned unsolved (the last
-    # converged frame) and keeps its remesh for the next frame, which is then the frame of
-    # a drag without that pause, bit for bit.
+    # converged frame) and keeps its remesh for the next frame; so does a frame that raises
+    # (bad normals). The frame after is then the frame of a drag without the pause, bit for
+    # bit.
     v, f, free, handle = handle_scene
 
     def frame(k):
@@ -195,11 +196,13 @@ def test_remesh_before_the_fold_waits_for_a_frame_with_time(handle_scene):
     paused = geofair.LiveFairing(v, f, free, remesh="if_needed")
     for j in range(1, k):
         last = paused.update(frame(j))
-    stopped = paused.update(frame(k), time_limit=1e-6)
+    stopped = paused.update(frame(k), time_limit=1e-300)  # a deadline already passed
     assert not stopped.converged and stopped.stop_reason == "time_limit", stopped.message
-    assert "before its first Newton step" in stopped.message, stopped.message
+    assert "waits for a frame with time" in stopped.message, stopped.message
     assert paused.remeshes == live.remeshes - 1
     assert np.array_equal(stopped.vertices[free], last.vertices[free])
+    with pytest.raises(geofair.InvalidInputError, match="normal"):
+        paused.update(frame(k), boundary_normals=np.zeros_like(v))
     again = paused.update(frame(k))
     assert again.message == r.message and np.array_equal(again.vertices, r.vertices)
     assert np.array_equal(again.faces, r.faces) and paused.remeshes == live.remeshes

@@ -20,8 +20,10 @@
 
 namespace geofair {
 
+using namespace live_detail;
+
 FairingResult LiveState::live_mesh_result(Positions vertices, const Positions& X0,
-                                                   const Positions& Y, FoldCount& folds) const {
+                                          const Positions& Y, FoldCount& folds) const {
   FairingResult result;
   result.vertices = std::move(vertices);
   result.faces = F;
@@ -40,8 +42,8 @@ FairingResult LiveState::live_mesh_result(Positions vertices, const Positions& X
 }
 
 FairingResult LiveState::warm_result(const Positions& V, const Positions& X0,
-                                              const Positions& Y,
-                                              const IterationReport& report) const {
+                                     const Positions& Y,
+                                     const IterationReport& report) const {
   FoldCount folds;
   FairingResult result = live_mesh_result(caller_positions(V, Y), X0, Y, folds);
   result.converged = true;
@@ -74,7 +76,7 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
 }
 
 Positions LiveState::frame_boundary(const Positions& W,
-                                             const Positions* boundary_normals) {
+                                    const Positions* boundary_normals) {
   std::optional<Positions> normals;
   if (boundary_normals) normals = *boundary_normals;  // unit vectors: no scaling
   set_boundary_normals(region, W, F, free, normals ? &*normals : nullptr, kUpdate);
@@ -85,8 +87,8 @@ Positions LiveState::frame_boundary(const Positions& W,
   return X0;
 }
 
-IterationReport LiveState::warm_newton(const Positions& X0, Positions& Y,
-                                                Phases& phases, Laps& laps, bool& retried) {
+std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Positions& Y,
+                                                      Phases& phases, Laps& laps, bool& retried) {
   const double L = diagonal(X0);
   if (options.inner_fairness != InnerFairness::Uniform) {
     InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
@@ -101,7 +103,7 @@ IterationReport LiveState::warm_newton(const Positions& X0, Positions& Y,
   run.polish_at_convergence = true;
   run.warm = true;
   run.stop = [this] { return out_of_time(); };
-  IterationReport report;
+  std::optional<IterationReport> report;  // of the last start that ran
   // The secant start first; where Newton does not converge from it or fails (a drag whose
   // response changes, as triangles squeeze), the harmonic one.
   const bool secant_first =
@@ -119,26 +121,26 @@ IterationReport LiveState::warm_newton(const Positions& X0, Positions& Y,
       report = construction->run_newton(Y, run);
     } catch (const SolverError&) {
       if (!secant) throw;
-      report = IterationReport();
+      report.reset();
       continue;
     }
     laps.lap();  // run_newton's own seconds, below
-    phases.emplace_back("warm inner fairness", report.relax_seconds);
-    phases.emplace_back("warm Newton steps", report.step_seconds);
-    phases.emplace_back("warm polishes", report.polish_seconds);
-    if ((report.converged && Y.topRows(region.n_free).allFinite()) || report.cancelled) break;
+    phases.emplace_back("warm inner fairness", report->relax_seconds);
+    phases.emplace_back("warm Newton steps", report->step_seconds);
+    phases.emplace_back("warm polishes", report->polish_seconds);
+    if ((report->converged && Y.topRows(region.n_free).allFinite()) || report->cancelled) break;
   }
   return report;
 }
 
 std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
-                                                            const Positions& W,
-                                                            const Positions* boundary_normals,
-                                                            Phases& phases, std::string& why) {
+                                                   const Positions& W,
+                                                   const Positions* boundary_normals,
+                                                   Phases& phases, std::string& why) {
   Laps laps;
   const Positions X0 = frame_boundary(W, boundary_normals);
   Positions Y;
-  IterationReport report;
+  std::optional<IterationReport> report;
   bool retried = false;
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
@@ -148,16 +150,17 @@ std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
     why = error.what();
     return std::nullopt;
   }
-  if (!report.converged || !Y.topRows(region.n_free).allFinite()) {
-    if (report.iterations == 0 && out_of_time())  // its residual was not evaluated
-      why = "stopped at the time limit before its first Newton step";
-    else
-      why = "residual " + scientific(report.residual) + " after " +
-            newton_steps(report.iterations) + (out_of_time() ? ", stopped at the time limit" : "");
+  if (!report) {
+    why = "stopped at the time limit before it started";
+    return std::nullopt;
+  }
+  if (!report->converged || !Y.topRows(region.n_free).allFinite()) {
+    why = "residual " + scientific(report->residual) + " after " +
+          newton_steps(report->iterations) + (out_of_time() ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
-  FairingResult result = warm_result(V, X0, Y, report);
+  FairingResult result = warm_result(V, X0, Y, *report);
   if (retried)
     result.message += "; from the harmonic predictor (Newton did not converge from the secant one)";
   phases.emplace_back("result", laps.lap());
@@ -165,8 +168,8 @@ std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
 }
 
 void LiveState::prepare(Triangles F_new, std::vector<bool> free_new,
-                                 std::optional<std::vector<int>> polygons, const Positions& V,
-                                 const Positions* boundary_normals) {
+                        std::optional<std::vector<int>> polygons, const Positions& V,
+                        const Positions* boundary_normals) {
   // Everything is built first; the state then changes by moves alone, which do not throw.
   Positions V0_new = V / scale;
   FairingRegion region_new = extract_region(V0_new, F_new, free_new, boundary_normals, true,
@@ -261,7 +264,7 @@ int LiveFairing::remeshes() const {
 }
 
 FairingResult LiveState::unsolved_frame(const Positions& V, const Positions& W,
-                                                 Phases& phases, const std::string& why) {
+                                        Phases& phases, const std::string& why) {
   Positions vertices = last.vertices;
   for (std::size_t v = 0; v < free.size(); ++v)  // fixed rows bit-identical to V's
     if (!free[v]) vertices.row(Eigen::Index(v)) = V.row(Eigen::Index(v));
@@ -297,8 +300,8 @@ FairingResult LiveState::unsolved_frame(const Positions& V, const Positions& W,
 }
 
 FairingResult LiveState::cold_frame(const Positions& V, const Positions& W,
-                                             const Positions* boundary_normals,
-                                             const std::string& why) const {
+                                    const Positions* boundary_normals,
+                                    const std::string& why) const {
   FairingOptions kept = timed_options();
   kept.remesh = Remesh::Off;
   FairingResult cold =
@@ -311,8 +314,8 @@ FairingResult LiveState::cold_frame(const Positions& V, const Positions& W,
 }
 
 void LiveState::check_input(const Positions& V_in, const Positions* normals_in,
-                                     std::optional<Positions>& padded,
-                                     std::optional<Positions>& padded_normals) const {
+                            std::optional<Positions>& padded,
+                            std::optional<Positions>& padded_normals) const {
   const Eigen::Index n = Eigen::Index(free.size());
   if (V_in.rows() != n && V_in.rows() != input_rows)
     throw InvalidInputError(std::string(kUpdate) + ": vertices has " +
@@ -369,36 +372,33 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   // With remesh="if_needed", a converged warm frame with folds (RemeshTrigger::wants) is
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
-  bool warm_remeshed = false;  // remeshed before the triangles fold, and that failed
+  RemeshFirst first = RemeshFirst::NotTried;
   s.frame_note.clear();
-  if (s.warm) {
-    if (s.trigger.next && !s.out_of_time()) {
-      s.trigger.next = false;
-      std::string failure;
-      if (auto result = s.warm_remesh(V, boundary_normals, s.trigger.reason, phases, failure)) {
-        s.take_warm_remesh(*result, phases);
+  const RemeshTrigger trigger = s.trigger;  // a frame that raises leaves it as it was
+  try {
+    if (s.warm) {
+      if (auto result = s.remesh_first(V, boundary_normals, phases, first))
         return std::move(*result);
+      // The boundary data are the frame's own.
+      if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
+        if (s.options.remesh != Remesh::IfNeeded ||
+            !s.trigger.wants(result->folds, s.input_folds, s.frames)) {
+          s.take_warm(*result, phases);
+          s.check_degenerate();
+          return std::move(*result);
+        }
+        why = std::to_string(result->folds) + " folded edges, the input " +
+              std::to_string(s.input_folds);
+        folded = std::move(result);
       }
-      s.trigger.degenerate_tried = s.frames;  // not again for kRemeshRetry frames
-      warm_remeshed = true;
-      s.frame_note = "; a remesh first (" + s.trigger.reason + ") was not taken: " + failure;
     }
-    // The boundary data are the frame's own.
-    if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
-      if (s.options.remesh != Remesh::IfNeeded ||
-          !s.trigger.wants(result->folds, s.input_folds, s.frames)) {
-        s.take_warm(*result, phases);
-        s.check_degenerate();
-        return std::move(*result);
-      }
-      why = std::to_string(result->folds) + " folded edges, the input " +
-            std::to_string(s.input_folds);
-      folded = std::move(result);
-    }
+    const double warm_seconds = laps.lap();
+    if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
+    return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why, first);
+  } catch (...) {
+    s.trigger = trigger;
+    throw;
   }
-  const double warm_seconds = laps.lap();
-  if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
-  return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why, warm_remeshed);
 }
 
 void LiveState::take_warm(FairingResult& result, Phases& phases) {
@@ -411,7 +411,7 @@ void LiveState::take_warm(FairingResult& result, Phases& phases) {
 }
 
 void LiveState::take_anew(FairingResult& result, Phases& phases,
-                                   const Positions* boundary_normals) {
+                          const Positions* boundary_normals) {
   result.message += frame_note;
   phases.insert(phases.end(), result.phase_seconds.begin(), result.phase_seconds.end());
   result.phase_seconds = std::move(phases);
@@ -424,21 +424,23 @@ void LiveState::take_anew(FairingResult& result, Phases& phases,
 }
 
 FairingResult LiveState::solve_anew(const Positions& V, const Positions& W,
-                                             const Positions* boundary_normals,
-                                             std::optional<FairingResult> folded,
-                                             Phases& phases, std::string& why,
-                                             bool warm_remeshed) {
+                                    const Positions* boundary_normals,
+                                    std::optional<FairingResult> folded,
+                                    Phases& phases, std::string& why,
+                                    RemeshFirst first) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
-  const bool remesh = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
-  if (remesh && !warm_remeshed) {  // warm on the remesh first; where that fails, its cold fair
+  const bool wanted = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
+  bool remesh = wanted && first != RemeshFirst::RemeshThrew;  // the same remesh would fail
+  if (remesh && first == RemeshFirst::NotTried) {  // warm on the remesh; else its cold fair
     const std::string reason =
         std::string(folded ? "the warm start folded: " : "the warm start did not converge: ") + why;
-    std::string failure;
+    RemeshFailure failure;
     if (auto result = warm_remesh(V, boundary_normals, reason, phases, failure)) {
       take_warm_remesh(*result, phases);
       return std::move(*result);
     }
-    why += "; solved warm on a remesh, " + failure;
+    why += "; " + failure.why;
+    remesh = !failure.remesh_threw;
   }
   std::optional<FairingResult> remeshed;
   if (remesh && !out_of_time()) remeshed = try_remesh(V, boundary_normals, bool(folded), why);
@@ -446,7 +448,7 @@ FairingResult LiveState::solve_anew(const Positions& V, const Positions& W,
   // path on the live mesh, whose triangles no longer fit, folds as the warm start did.
   const bool use_remesh = remeshed && remeshed->converged &&
                           (!folded || remeshed->folds < folded->folds);
-  if (remesh)  // a remesh that leaves folds is tried again kRemeshRetry frames on
+  if (wanted)  // a remesh that leaves folds or fails is tried again kRemeshRetry frames on
     trigger.folds_tried = use_remesh && remeshed->folds <= input_folds ? -kRemeshRetry : frames;
   if (use_remesh) {
     take_anew(*remeshed, phases, boundary_normals);

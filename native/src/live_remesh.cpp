@@ -11,8 +11,10 @@
 
 namespace geofair {
 
+using namespace live_detail;
+
 // The smallest angle of triangles T (rows into X), radians.
-double smallest_angle(const Positions& X, const Triangles& T) {
+double live_detail::smallest_angle(const Positions& X, const Triangles& T) {
   double smallest = M_PI;
   for (Eigen::Index t = 0; t < T.rows(); ++t)
     for (int c = 0; c < 3; ++c) {
@@ -24,7 +26,7 @@ double smallest_angle(const Positions& X, const Triangles& T) {
 }
 
 FairingResult LiveState::remesh_frame(const Positions& V,
-                                               const Positions* boundary_normals) const {
+                                      const Positions* boundary_normals) const {
   // fair()'s remesh (at the length of the region's border edges, which also resolves the
   // strip that a handle dragged towards the border squeezes) of the last converged frame,
   // whose free vertices fit its fixed ones (with the frame's, those the handle has moved
@@ -56,10 +58,10 @@ void LiveState::swap_mesh(LiveMesh& other) noexcept {
 }
 
 std::optional<FairingResult> LiveState::warm_remesh(const Positions& V,
-                                                            const Positions* boundary_normals,
-                                                            const std::string& reason,
-                                                            Phases& phases,
-                                                            std::string& failure) {
+                                                    const Positions* boundary_normals,
+                                                    const std::string& reason,
+                                                    Phases& phases,
+                                                    RemeshFailure& failure) {
   Laps laps;
   const Positions U = remesh_source(V);
   RemeshedRegion mesh;
@@ -67,7 +69,8 @@ std::optional<FairingResult> LiveState::warm_remesh(const Positions& V,
     mesh = remesh_followed(U / scale, last.vertices / scale, F, free, boundary_normals,
                            options.boundary);
   } catch (const std::exception& error) {
-    failure = std::string("remeshing failed: ") + error.what();
+    failure.remesh_threw = true;
+    failure.why = std::string("remeshing failed: ") + error.what();
     return std::nullopt;
   }
   phases.emplace_back("remesh", laps.lap());
@@ -93,14 +96,15 @@ std::optional<FairingResult> LiveState::warm_remesh(const Positions& V,
     phases.emplace_back("remesh's preparation", laps.lap());
     std::string warm_why;
     result = warm_frame(V_new, frame_input(V_new), normals_new, phases, warm_why);
-    if (!result) failure = "its warm start did not converge: " + warm_why;
+    if (!result) failure.why = "the warm solve on the remesh did not converge: " + warm_why;
   } catch (const std::exception& error) {
     result.reset();
-    failure = std::string("its warm start failed: ") + error.what();
+    failure.why = std::string("the warm solve on the remesh failed: ") + error.what();
   }
   if (result && result->folds > input_folds)
-    failure = "its warm start converged with " + std::to_string(result->folds) +
-              " folded edges, the input " + std::to_string(input_folds);
+    failure.why = "the warm solve on the remesh converged with " +
+                  std::to_string(result->folds) + " folded edges, the input " +
+                  std::to_string(input_folds);
   if (!result || result->folds > input_folds) {
     swap_mesh(old);
     return std::nullopt;
@@ -113,8 +117,36 @@ std::optional<FairingResult> LiveState::warm_remesh(const Positions& V,
   return result;
 }
 
+std::optional<FairingResult> LiveState::remesh_first(const Positions& V,
+                                                     const Positions* boundary_normals,
+                                                     Phases& phases, RemeshFirst& first) {
+  if (!trigger.next) return std::nullopt;
+  if (out_of_time()) {
+    frame_note = "; the remesh first (" + trigger.reason + ") waits for a frame with time";
+    return std::nullopt;
+  }
+  trigger.next = false;
+  RemeshFailure failure;
+  if (auto result = warm_remesh(V, boundary_normals, trigger.reason, phases, failure)) {
+    take_warm_remesh(*result, phases);
+    return result;
+  }
+  first = failure.remesh_threw ? RemeshFirst::RemeshThrew : RemeshFirst::WarmFailed;
+  if (out_of_time() && !failure.remesh_threw && !trigger.deferred) {  // cut short: once more
+    trigger.next = true;
+    trigger.deferred = true;
+    frame_note = "; the remesh first (" + trigger.reason +
+                 ") ran out of the frame's time and waits for the next frame";
+    return std::nullopt;
+  }
+  trigger.degenerate_tried = frames;  // not again for kRemeshRetry frames
+  frame_note = "; remeshing first (" + trigger.reason + "): " + failure.why;
+  return std::nullopt;
+}
+
 void LiveState::take_warm_remesh(FairingResult& result, Phases& phases) {
   trigger.folds_tried = -kRemeshRetry;
+  trigger.deferred = false;
   take_warm(result, phases);
   V0 = result.vertices / scale;
   trigger.mesh_angle = smallest_angle(X, region.triangles);
@@ -131,6 +163,7 @@ void RemeshTrigger::check_angle(double angle) {
                 angle * 180.0 / M_PI, mesh_angle * 180.0 / M_PI);
   reason = text;
   next = true;
+  deferred = false;
 }
 
 void LiveState::check_degenerate() {
@@ -139,7 +172,7 @@ void LiveState::check_degenerate() {
 }
 
 void LiveState::switch_mesh(const FairingResult& result,
-                                     const Positions* boundary_normals) {
+                            const Positions* boundary_normals) {
   std::optional<Positions> normals;  // the new rows (free) are not read
   if (boundary_normals)
     normals = live_rows(*boundary_normals, Positions::Zero(result.vertices.rows(), 3));
@@ -150,9 +183,9 @@ void LiveState::switch_mesh(const FairingResult& result,
 }
 
 std::optional<FairingResult> LiveState::try_remesh(const Positions& V,
-                                                           const Positions* boundary_normals,
-                                                           bool folded,
-                                                           std::string& why) const {
+                                                   const Positions* boundary_normals,
+                                                   bool folded,
+                                                   std::string& why) const {
   try {
     FairingResult result = remesh_frame(V, boundary_normals);
     result.message += "; remeshed from the last frame (the warm start " +

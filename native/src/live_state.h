@@ -21,7 +21,9 @@
 
 namespace geofair {
 
-// Names used by live.cpp and live_remesh.cpp alone.
+// Names of live.cpp and live_remesh.cpp alone (each opens the namespace).
+namespace live_detail {
+
 constexpr const char* kUpdate = "LiveFairing.update";
 
 // "1 Newton step", "3 Newton steps".
@@ -49,29 +51,45 @@ constexpr double kDegenerateAngle = 1.0 / 3.0;
 // The smallest angle of triangles T (rows into X), radians (live_remesh.cpp).
 double smallest_angle(const Positions& X, const Triangles& T);
 
-// When a frame remeshes (remesh IfNeeded): after a converged warm frame with more folded
-// edges than the input, unless a remesh left folds within kRemeshRetry frames; and first,
-// before its warm start, after a frame whose smallest triangle angle fell below
-// kDegenerateAngle of the live mesh's own, unless such a remesh failed within kRemeshRetry
-// frames. Frames are counted as LiveFairing::frames().
+}  // namespace live_detail
+
+// When a frame remeshes (remesh IfNeeded): after a warm start that did not converge; after
+// one that converged with more folded edges than the input, unless a remesh after a warm
+// start left folds or failed within kRemeshRetry frames (folds_tried); and first, before
+// its warm start, after a frame whose smallest triangle angle fell below kDegenerateAngle of
+// the live mesh's own, while no remesh of either kind failed within kRemeshRetry frames.
+// Frames are counted as LiveFairing::frames().
 struct RemeshTrigger {
-  int folds_tried = -kRemeshRetry;       // the frame of the last remesh that left folds
-  int degenerate_tried = -kRemeshRetry;  // the frame of the last remesh-first that failed
+  // The frame of the last remesh after a warm frame that left folds, failed, or was cut
+  // short by the time limit.
+  int folds_tried = -live_detail::kRemeshRetry;
+  int degenerate_tried = -live_detail::kRemeshRetry;  // the last remesh-first that failed
   double mesh_angle = 0.0;  // the smallest angle of the last frame solved anew, radians
   bool next = false;        // the next frame remeshes first
+  bool deferred = false;    // `next` was kept once already: a remesh-first out of time
   std::string reason;       // why, for that frame's message
 
   // A converged warm frame with `folds` folded edges, the input `input_folds`.
   bool wants(int folds, int input_folds, int frame) const {
-    return folds > input_folds && frame - folds_tried >= kRemeshRetry;
+    return folds > input_folds && frame - folds_tried >= live_detail::kRemeshRetry;
   }
   // Whether a frame's angles are watched: no remesh failed in the last kRemeshRetry frames.
   bool watching(int frame) const {
-    return frame - folds_tried >= kRemeshRetry && frame - degenerate_tried >= kRemeshRetry;
+    return frame - folds_tried >= live_detail::kRemeshRetry &&
+           frame - degenerate_tried >= live_detail::kRemeshRetry;
   }
   // A frame taken with smallest angle `angle`: `next` where it degenerated.
   void check_angle(double angle);
 };
+
+// How a warm remesh that was not taken ended (LiveState::warm_remesh).
+struct RemeshFailure {
+  bool remesh_threw = false;  // remesh_region failed: a cold fair of the same remesh would too
+  std::string why;            // one clause for the frame's message
+};
+
+// What the frame's remesh-first (update) left for solve_anew.
+enum class RemeshFirst { NotTried, WarmFailed, RemeshThrew };
 
 // LiveFairing's state (live.h): the live mesh, its prepared region and construction, the
 // warm start, and the counts and deadline of the frames.
@@ -160,7 +178,13 @@ struct LiveState {
   // frame remeshes.
   std::optional<FairingResult> warm_remesh(const Positions& V, const Positions* boundary_normals,
                                            const std::string& reason, Phases& phases,
-                                           std::string& failure);
+                                           RemeshFailure& failure);
+
+  // The frame's remesh first (RemeshTrigger::next): the frame taken where the warm solve on
+  // the remesh converged; else nullopt, `first` and frame_note saying how it ended. A
+  // remesh cut short by the frame's time limit is kept for the next frame, once.
+  std::optional<FairingResult> remesh_first(const Positions& V, const Positions* boundary_normals,
+                                            Phases& phases, RemeshFirst& first);
 
   // A warm_remesh result taken: as take_warm, on the new mesh, whose result is the
   // reference of later frames (switch_mesh).
@@ -232,7 +256,7 @@ struct LiveState {
   void adopt(FairingResult& result) {
     X = gather(result.vertices / scale, region.global);
     if (options.remesh == Remesh::IfNeeded)
-      trigger.mesh_angle = smallest_angle(X, region.triangles);
+      trigger.mesh_angle = live_detail::smallest_angle(X, region.triangles);
     warm = true;
     last_step.resize(0, 3);
     if (details) result.vertices = caller_positions(result.vertices, X);
@@ -264,9 +288,10 @@ struct LiveState {
   // from the secant start, and where Newton does not converge from it or fails, from the
   // harmonic one (`retried`); Y its solution, `phases` its phases from `laps`. The
   // construction takes the frame's boundary and, for conformal inner fairness, the weights
-  // of X0. SolverError where the harmonic start fails.
-  IterationReport warm_newton(const Positions& X0, Positions& Y, Phases& phases, Laps& laps,
-                              bool& retried);
+  // of X0. SolverError where the harmonic start fails; nullopt where the frame's time was
+  // spent before any start ran.
+  std::optional<IterationReport> warm_newton(const Positions& X0, Positions& Y, Phases& phases,
+                                             Laps& laps, bool& retried);
 
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).
@@ -284,11 +309,11 @@ struct LiveState {
   // The frame whose warm start did not converge or, with `folded`, converged with more folded
   // edges than the input: with remesh IfNeeded remeshed where that converges with fewer
   // folds, else the folded warm frame, else the cold path; `why` the warm start's end,
-  // extended by what the remesh did. `warm_remeshed`: this frame's warm remesh has failed
-  // already (update's remesh before the triangles fold), so only its cold fair is tried.
+  // extended by what the remesh did. `first`: how update's remesh-first ended (after a
+  // failed warm solve on it only its cold fair is tried; after a failed remesh none).
   FairingResult solve_anew(const Positions& V, const Positions& W,
                            const Positions* boundary_normals, std::optional<FairingResult> folded,
-                           Phases& phases, std::string& why, bool warm_remeshed);
+                           Phases& phases, std::string& why, RemeshFirst first);
 };
 
 }  // namespace geofair

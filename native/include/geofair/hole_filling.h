@@ -132,8 +132,9 @@ struct FillResult : FairingResult {
 /// records which; result.message sums it up. A hole is left open only where no fill can be
 /// made: one over kMaxFillVertices (its reason says so; if no hole can be filled at all,
 /// InvalidInputError). The time spent counts against an explicit options.time_limit (and
-/// options.deadline); once it is spent, the holes not yet filled get the linear fill alone. phase_seconds starts
-/// with "fill" (triangulations and remeshes), then fair()'s phases summed over the holes.
+/// options.deadline); once it is spent, the holes not yet filled get the linear fill alone.
+/// phase_seconds starts with "fill" (triangulations and remeshes), then fair()'s phases
+/// summed over the holes.
 ///
 /// Positions are worked on in units of the mesh's own size (divided by a power of two where
 /// the mean edge length lies outside [2^-32, 2^32], exactly), so a mesh scaled by any factor

@@ -60,7 +60,8 @@ class LiveFairing {
   ///        remesh_region's layout:
   ///        fixed rows kept, #V' >= #V, rows in no face keep their last positions; the
   ///        constructor fairs the input's own triangles);
-  ///        options.progress is not called.
+  ///        options.progress is not called; options.deadline bounds the constructor's own
+  ///        fair alone (update's time_limit bounds a frame).
   /// \throw InvalidInputError as fair, or for options.remesh Always, IfNeeded with
   ///        live.details (details are coded per input vertex) or live.max_warm_steps out of
   ///        range; SolverError as fair, or with live.details where the base did not converge.
