@@ -57,4 +57,11 @@ inline FairingOptions options_after(const FairingOptions& options, double spent)
   return rest;
 }
 
+/// Whether a call with `options` has time left after `spent` seconds: neither its explicit
+/// time limit nor its deadline (FairingOptions::deadline) is reached.
+inline bool has_time_left(const FairingOptions& options, double spent) {
+  return (!(options.time_limit >= 0.0) || spent < options.time_limit) &&
+         !(options.deadline && std::chrono::steady_clock::now() >= options.deadline->at);
+}
+
 }  // namespace geofair

@@ -775,10 +775,7 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   Chain chain;
   chain.record.loop = loop;
   Laps watch;
-  auto time_left = [&] {
-    return (!(options.time_limit >= 0.0) || spent < options.time_limit) &&
-           !(options.deadline && std::chrono::steady_clock::now() >= options.deadline->at);
-  };
+  auto time_left = [&] { return has_time_left(options, spent); };
   // Tries one fill; true once the chain is done (a fill without folds, or cancelled).
   auto attempt = [&](const std::vector<int>& hole, const std::vector<int>& removed, double L,
                      FillMethod method) {
