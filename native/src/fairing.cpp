@@ -384,9 +384,7 @@ bool better(const FairingResult& a, const FairingResult& b) {
 // Whether a second attempt may follow `first`, which took `spent` seconds: not after a
 // cancel or where the time limit or the deadline is spent.
 bool time_left(const FairingResult& first, const FairingOptions& options, double spent) {
-  return first.stop_reason != StopReason::Cancelled &&
-         !(options.time_limit >= 0.0 && spent >= options.time_limit) &&
-         !(options.deadline && std::chrono::steady_clock::now() >= options.deadline->at);
+  return first.stop_reason != StopReason::Cancelled && has_time_left(options, spent);
 }
 
 // `out` (one of two attempts, a and b) with the Newton steps and the phases of both.

@@ -372,12 +372,12 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
   // With remesh="if_needed", a converged warm frame with folds (RemeshTrigger::wants) is
   // kept only where remeshing does not do better.
   std::optional<FairingResult> folded;
-  RemeshFirst first = RemeshFirst::NotTried;
+  std::optional<RemeshFailure> first_failed;
   s.frame_note.clear();
   const RemeshTrigger trigger = s.trigger;  // a frame that raises leaves it as it was
   try {
     if (s.warm) {
-      if (auto result = s.remesh_first(V, boundary_normals, phases, first))
+      if (auto result = s.remesh_first(V, boundary_normals, phases, first_failed))
         return std::move(*result);
       // The boundary data are the frame's own.
       if (auto result = s.warm_frame(V, W, boundary_normals, phases, why)) {
@@ -394,7 +394,7 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
     }
     const double warm_seconds = laps.lap();
     if (warm_seconds > 0.0) phases.emplace_back("warm start", warm_seconds);
-    return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why, first);
+    return s.solve_anew(V, W, boundary_normals, std::move(folded), phases, why, first_failed);
   } catch (...) {
     s.trigger = trigger;
     throw;
@@ -427,11 +427,12 @@ FairingResult LiveState::solve_anew(const Positions& V, const Positions& W,
                                     const Positions* boundary_normals,
                                     std::optional<FairingResult> folded,
                                     Phases& phases, std::string& why,
-                                    RemeshFirst first) {
+                                    const std::optional<RemeshFailure>& first_failed) {
   // Remeshed from the last converged frame's surface: triangles that fit the dragged shape.
   const bool wanted = options.remesh == Remesh::IfNeeded && warm && !out_of_time();
-  bool remesh = wanted && first != RemeshFirst::RemeshThrew;  // the same remesh would fail
-  if (remesh && first == RemeshFirst::NotTried) {  // warm on the remesh; else its cold fair
+  // After a remesh that threw, the same remesh would throw again.
+  bool remesh = wanted && !(first_failed && first_failed->remesh_threw);
+  if (remesh && !first_failed) {  // warm on the remesh; where that fails, its cold fair
     const std::string reason =
         std::string(folded ? "the warm start folded: " : "the warm start did not converge: ") + why;
     RemeshFailure failure;

@@ -119,7 +119,8 @@ std::optional<FairingResult> LiveState::warm_remesh(const Positions& V,
 
 std::optional<FairingResult> LiveState::remesh_first(const Positions& V,
                                                      const Positions* boundary_normals,
-                                                     Phases& phases, RemeshFirst& first) {
+                                                     Phases& phases,
+                                                     std::optional<RemeshFailure>& failed) {
   if (!trigger.next) return std::nullopt;
   if (out_of_time()) {
     frame_note = "; the remesh first (" + trigger.reason + ") waits for a frame with time";
@@ -131,7 +132,7 @@ std::optional<FairingResult> LiveState::remesh_first(const Positions& V,
     take_warm_remesh(*result, phases);
     return result;
   }
-  first = failure.remesh_threw ? RemeshFirst::RemeshThrew : RemeshFirst::WarmFailed;
+  failed = failure;
   if (out_of_time() && !failure.remesh_threw && !trigger.deferred) {  // cut short: once more
     trigger.next = true;
     trigger.deferred = true;

@@ -88,9 +88,6 @@ struct RemeshFailure {
   std::string why;            // one clause for the frame's message
 };
 
-// What the frame's remesh-first (update) left for solve_anew.
-enum class RemeshFirst { NotTried, WarmFailed, RemeshThrew };
-
 // LiveFairing's state (live.h): the live mesh, its prepared region and construction, the
 // warm start, and the counts and deadline of the frames.
 struct LiveState {
@@ -181,10 +178,11 @@ struct LiveState {
                                            RemeshFailure& failure);
 
   // The frame's remesh first (RemeshTrigger::next): the frame taken where the warm solve on
-  // the remesh converged; else nullopt, `first` and frame_note saying how it ended. A
-  // remesh cut short by the frame's time limit is kept for the next frame, once.
+  // the remesh converged; else nullopt, `failed` (where it was tried) and frame_note saying
+  // how it ended. A remesh cut short by the frame's time limit is kept for the next frame,
+  // once.
   std::optional<FairingResult> remesh_first(const Positions& V, const Positions* boundary_normals,
-                                            Phases& phases, RemeshFirst& first);
+                                            Phases& phases, std::optional<RemeshFailure>& failed);
 
   // A warm_remesh result taken: as take_warm, on the new mesh, whose result is the
   // reference of later frames (switch_mesh).
@@ -309,11 +307,13 @@ struct LiveState {
   // The frame whose warm start did not converge or, with `folded`, converged with more folded
   // edges than the input: with remesh IfNeeded remeshed where that converges with fewer
   // folds, else the folded warm frame, else the cold path; `why` the warm start's end,
-  // extended by what the remesh did. `first`: how update's remesh-first ended (after a
-  // failed warm solve on it only its cold fair is tried; after a failed remesh none).
+  // extended by what the remesh did. `first_failed`: how update's remesh-first failed, if
+  // it did (after a failed warm solve on it only its cold fair is tried; after a failed
+  // remesh none).
   FairingResult solve_anew(const Positions& V, const Positions& W,
                            const Positions* boundary_normals, std::optional<FairingResult> folded,
-                           Phases& phases, std::string& why, RemeshFirst first);
+                           Phases& phases, std::string& why,
+                           const std::optional<RemeshFailure>& first_failed);
 };
 
 }  // namespace geofair

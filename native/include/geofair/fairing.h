@@ -103,7 +103,7 @@ namespace geofair {
 ///        size; a mesh whose squared bounding-box diagonal overflows, above about 1.3e154,
 ///        or whose squared mean edge length is not a normal double, below about 1.5e-154:
 ///        the message names the size) or options (a tuning field outside its range,
-///        validate_tuning); SolverError
+///        validate_tuning; a NaN time_limit; a negative or NaN deadline.seconds); SolverError
 ///        (not with Auto's iteration, see above) if a linear solve fails or the iteration
 ///        diverges (non-finite or exploding residual).
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,

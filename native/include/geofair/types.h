@@ -150,8 +150,8 @@ struct FairingOptions {
   double time_limit = -1.0;
   /// A point in time at which the call stops unconverged as at an explicit time_limit,
   /// whatever time_limit is (the automatic limit still applies), and `seconds`, the bound it
-  /// stands for, which the message names. LiveFairing::update gives the solves of a frame
-  /// its time limit so. Empty: none.
+  /// stands for, which the message names (>= 0; fair raises InvalidInputError otherwise).
+  /// LiveFairing::update gives the solves of a frame its time limit so. Empty: none.
   struct Deadline {
     std::chrono::steady_clock::time_point at;
     double seconds = 0.0;
