@@ -261,16 +261,32 @@ CONFORMAL_HINT = "Conformal inner fairness converges on more meshes."
 KEEP_UNCONVERGED_HINT = "Pass keep_unconverged=True to apply it anyway."
 REMESH_HINT = "Remesh 'If Needed' may help (it changes the triangles)."
 REMESH_SCRIPT_HINT = "Passing remesh='if_needed' may help (it changes the triangles)."
+TIME_LIMIT_HINT = "A longer Time Limit (0: automatic) lets it go on."
+TIME_LIMIT_SCRIPT_HINT = "A longer time_limit (None: automatic) lets it go on."
 
 
-def unconverged_hint(inner_fairness, keep_hint=KEEP_UNCONVERGED_HINT, remesh="off", remesh_hint=REMESH_SCRIPT_HINT):
-    """What to try after an unconverged run that was not kept: Conformal after Uniform (uniform inner
-    fairness can degenerate the triangles of an irregular region, docs/REAL_MESHES.md), remeshing if it was
-    off, then ``keep_hint``."""
+def unconverged_hint(
+    inner_fairness,
+    keep_hint=KEEP_UNCONVERGED_HINT,
+    remesh="off",
+    remesh_hint=REMESH_SCRIPT_HINT,
+    given_time_limit_spent=False,
+    time_limit_hint=TIME_LIMIT_SCRIPT_HINT,
+):
+    """What to try after an unconverged run that was not kept: where it stopped at the time limit the user gave
+    (``given_time_limit_spent``), a longer one; else Conformal after Uniform (uniform inner fairness can degenerate
+    the triangles of an irregular region, docs/REAL_MESHES.md) and remeshing if it was off; then ``keep_hint``."""
+    if given_time_limit_spent:
+        return f"{time_limit_hint} {keep_hint}"
     hints = [CONFORMAL_HINT] if inner_fairness == "uniform" else []
     if remesh == "off":
         hints.append(remesh_hint)
     return " ".join([*hints, keep_hint])
+
+
+def given_time_limit_spent(report, options):
+    """Whether the unconverged run of ``report`` stopped at ``options.time_limit`` (set, not automatic)."""
+    return not report.converged and report.stop_reason == "time_limit" and bool(options.time_limit)
 
 
 class SolverFailedError(RuntimeError):
@@ -784,7 +800,12 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run.solve()
         report = run.finish()
         if report.discarded:
-            raise NotConvergedError(report, unconverged_hint(run_options.inner_fairness, remesh=run_options.remesh))
+            hint = unconverged_hint(
+                run_options.inner_fairness,
+                remesh=run_options.remesh,
+                given_time_limit_spent=given_time_limit_spent(report, run_options),
+            )
+            raise NotConvergedError(report, hint)
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise

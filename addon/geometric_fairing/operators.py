@@ -221,8 +221,10 @@ class _SolvingOperator:
         reports, errors = batch.finish()
         options = batch.runs[0].options
         # An unconverged result that was not kept: that object is not faired, like one that failed.
-        hint = self.unconverged_hint(options)
-        not_kept = [(report.object_name, fairing.NotConvergedError(report, hint)) for report in reports]
+        not_kept = [
+            (report.object_name, fairing.NotConvergedError(report, self.unconverged_hint(options, report)))
+            for report in reports
+        ]
         not_kept = [(name, error) for name, error in not_kept if error.report.discarded]
         reports = [report for report in reports if not report.discarded]
         errors = [*self._failed, *errors, *not_kept]
@@ -290,8 +292,15 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
     def status_text(self, run):
         return f"{int(run.region.free.sum())} vertices"
 
-    def unconverged_hint(self, options):
-        return fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT, options.remesh, fairing.REMESH_HINT)
+    def unconverged_hint(self, options, report):
+        return fairing.unconverged_hint(
+            options.inner_fairness,
+            UNCONVERGED_HINT,
+            options.remesh,
+            fairing.REMESH_HINT,
+            fairing.given_time_limit_spent(report, options),
+            fairing.TIME_LIMIT_HINT,
+        )
 
 
 class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, bpy.types.Operator):
@@ -353,8 +362,14 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
     def status_text(self, run):
         return f"{run.holes} hole{'s' if run.holes > 1 else ''}"
 
-    def unconverged_hint(self, options):
-        return fairing.unconverged_hint(options.inner_fairness, UNCONVERGED_HINT, remesh="always")
+    def unconverged_hint(self, options, report):
+        return fairing.unconverged_hint(
+            options.inner_fairness,
+            UNCONVERGED_HINT,
+            remesh="always",
+            given_time_limit_spent=fairing.given_time_limit_spent(report, options),
+            time_limit_hint=fairing.TIME_LIMIT_HINT,
+        )
 
 
 class VIEW3D_OT_geometric_fairing_zebra(bpy.types.Operator):

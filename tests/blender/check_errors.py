@@ -263,6 +263,15 @@ def check_unconverged(addon, obj):
         "changes the triangles). Tick 'Keep Unconverged Result' to apply it anyway."
     ), report
 
+    # Stopped at the Time Limit the user gave: the report points to a longer one, not to another setting.
+    result, report = run_fairing(inner_fairness="uniform", time_limit=1e-6)
+    assert result == {"CANCELLED"} and edit_state(obj) == before, (result, report)
+    assert bpy.context.window_manager.geometric_fairing.last_run.status == "NOT_CONVERGED"
+    assert report.endswith(
+        "the mesh is unchanged. A longer Time Limit (0: automatic) lets it go on. Tick 'Keep Unconverged Result' to "
+        "apply it anyway."
+    ), report
+
     # Keep Unconverged Result: written, with a warning that gives the residual.
     with printed() as output:
         result, report = run_fairing(inner_fairness="conformal", max_iterations=1, keep_unconverged=True)
@@ -359,6 +368,16 @@ def check_fair_object_unconverged(addon, obj):
         assert str(error).endswith(
             "the mesh is unchanged. Conformal inner fairness converges on more meshes. Passing remesh='if_needed' may "
             "help (it changes the triangles). Pass keep_unconverged=True to apply it anyway."
+        ), error
+    else:
+        raise AssertionError("fair_object did not raise NotConvergedError")
+    try:
+        addon.fair_object(obj, inner_fairness="uniform", time_limit=1e-6)
+    except addon.NotConvergedError as error:
+        assert error.report.stop_reason == "time_limit", error.report.stop_reason
+        assert str(error).endswith(
+            "the mesh is unchanged. A longer time_limit (None: automatic) lets it go on. Pass keep_unconverged=True "
+            "to apply it anyway."
         ), error
     else:
         raise AssertionError("fair_object did not raise NotConvergedError")
