@@ -3,6 +3,8 @@
 the surface of a cold geofair.fair of the same input; a handle dragged along a sphere keeps
 the sphere; a failed frame or bad input leaves the last converged frame."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -251,6 +253,24 @@ def test_failed_frame_leaves_the_last_converged_frame(handle_scene):
     # The next frame starts from the last converged one, warm.
     again = live.update(lifted(v, handle, 0.08))
     assert again.converged and "cold path" not in again.message, again.message
+
+
+def test_warm_start_failing_from_both_predictors_counts_the_steps_of_each(handle_scene):
+    """A jump against the drag: Newton converges within max_warm_steps neither from the secant
+    predictor (the last frame's step continued) nor from the harmonic one; the cold path's
+    message counts the steps of both starts."""
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free, max_warm_steps=3)
+    for degrees in (6.0, -18.0):
+        w = v.copy()
+        w[handle] = v[handle] @ rotation_x(degrees).T
+        result = live.update(w)
+    assert result.converged and live.cold_frames == 1, result.message
+    steps = re.search(
+        r"after (\d+) Newton steps? from the secant predictor and (\d+) Newton steps? from the harmonic one",
+        result.message,
+    )
+    assert steps and 1 <= int(steps[1]) <= 3 and 1 <= int(steps[2]) <= 3, result.message
 
 
 def test_frame_time_limit_stops_the_warm_start_and_skips_the_cold_path(handle_scene):

@@ -88,7 +88,8 @@ Positions LiveState::frame_boundary(const Positions& W,
 }
 
 std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Positions& Y,
-                                                      Phases& phases, Laps& laps, bool& retried) {
+                                                      Phases& phases, Laps& laps,
+                                                      std::optional<int>& secant_steps) {
   const double L = diagonal(X0);
   if (options.inner_fairness != InnerFairness::Uniform) {
     InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
@@ -111,7 +112,7 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
   for (const bool secant : {true, false}) {
     if (secant && !secant_first) continue;
     if (!secant && out_of_time()) break;  // the secant start spent the frame's time
-    retried = secant_first && !secant;
+    if (secant_first && !secant) secant_steps = report ? report->iterations : 0;
     Y = warm_start(X0, secant);
     // The secant start carries the last frame's tangential response: the polish at
     // convergence is enough (the harmonic one squeezes vertices against a moving handle).
@@ -130,6 +131,7 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
     phases.emplace_back("warm polishes", report->polish_seconds);
     if ((report->converged && Y.topRows(region.n_free).allFinite()) || report->cancelled) break;
   }
+  if (report && secant_steps) report->iterations += *secant_steps;  // both starts' steps
   return report;
 }
 
@@ -141,11 +143,11 @@ std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
   const Positions X0 = frame_boundary(W, boundary_normals);
   Positions Y;
   std::optional<IterationReport> report;
-  bool retried = false;
+  std::optional<int> secant_steps;  // set where the harmonic start followed the secant one
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
   try {
-    report = warm_newton(X0, Y, phases, laps, retried);
+    report = warm_newton(X0, Y, phases, laps, secant_steps);
   } catch (const SolverError& error) {
     why = error.what();
     return std::nullopt;
@@ -155,14 +157,19 @@ std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
     return std::nullopt;
   }
   if (!report->converged || !Y.topRows(region.n_free).allFinite()) {
-    why = "residual " + scientific(report->residual) + " after " +
-          newton_steps(report->iterations) + (out_of_time() ? ", stopped at the time limit" : "");
+    const std::string steps =
+        secant_steps ? newton_steps(*secant_steps) + " from the secant predictor and " +
+                           newton_steps(report->iterations - *secant_steps) + " from the harmonic one"
+                     : newton_steps(report->iterations);
+    why = "residual " + scientific(report->residual) + " after " + steps +
+          (out_of_time() ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
   FairingResult result = warm_result(V, X0, Y, *report);
-  if (retried)
-    result.message += "; from the harmonic predictor (Newton did not converge from the secant one)";
+  if (secant_steps)
+    result.message += "; from the harmonic predictor (Newton did not converge from the secant one: " +
+                      newton_steps(*secant_steps) + ")";
   phases.emplace_back("result", laps.lap());
   return result;
 }

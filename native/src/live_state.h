@@ -284,12 +284,13 @@ struct LiveState {
 
   // Newton's method from the warm start for the region positions X0 (frame_boundary's):
   // from the secant start, and where Newton does not converge from it or fails, from the
-  // harmonic one (`retried`); Y its solution, `phases` its phases from `laps`. The
-  // construction takes the frame's boundary and, for conformal inner fairness, the weights
-  // of X0. SolverError where the harmonic start fails; nullopt where the frame's time was
-  // spent before any start ran.
+  // harmonic one (then `secant_steps` holds the secant start's steps, 0 where it failed);
+  // Y its solution, `phases` its phases from `laps`; the report's iterations count both
+  // starts' steps. The construction takes the frame's boundary and, for conformal inner
+  // fairness, the weights of X0. SolverError where the harmonic start fails; nullopt where
+  // the frame's time was spent before any start ran.
   std::optional<IterationReport> warm_newton(const Positions& X0, Positions& Y, Phases& phases,
-                                             Laps& laps, bool& retried);
+                                             Laps& laps, std::optional<int>& secant_steps);
 
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).
