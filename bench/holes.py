@@ -35,10 +35,11 @@ no folded edge, a manifold result that closes the hole and keeps the input's ver
 faces first and unchanged), the method's flag (conv), folded edges among and next to the
 new triangles, new vertices, the smallest angle of the new triangles, the wall time of the
 fill call alone, mean and max distance as above (vertices and triangles sampled), the max
-at the new vertices alone; then any problem. The summary: holes
-filled (ok) by each method, the analytic holes within 1e-3, on what fraction of the corpus
-holes filled by both ours is closer (mean distance; also max), the median time of each
-and the median ratio ours/CGAL.
+at the new vertices alone; then any problem. The summary: holes filled (ok) by each method,
+the analytic holes within 1e-3, the corpus fills without a folded edge (also counted among
+the holes whose cut-away surface, put back, has no folded edge itself), on what fraction of
+the corpus holes filled by both ours is closer (mean distance; also max), the median time of
+each and the median ratio ours/CGAL.
 
     PYTHONPATH=build/python python3 bench/holes.py [--quick] [--only SUBSTRING[,SUBSTRING...]]
         [--seeds N] [--sizes 100,1000,10000] [--all] [--rings N] [--timeout SECONDS]
@@ -312,6 +313,14 @@ def summary(rows, methods):
                 t = f", median {np.median(ts):.3f} s" if ts else ""
                 parts.append(f"{size}: {sum(bool(r.get('ok')) for r in ks)} of {len(ks)}{t}")
             lines.append(f"    {method}: corpus holes ok by size (vertices removed, about): " + "; ".join(parts))
+        filled = [r for r in rs if r["kind"] == "corpus" and r.get("folds") is not None]
+        if filled:
+            unfolded = [r for r in filled if r.get("cut_folds") == 0]
+            lines.append(
+                f"    {method}: corpus fills without a folded edge: {sum(r['folds'] == 0 for r in filled)} of "
+                f"{len(filled)}; where the cut-away surface itself has none: "
+                f"{sum(r['folds'] == 0 for r in unfolded)} of {len(unfolded)}"
+            )
         fills = [r["fill_method"] for r in rs if r.get("fill_method")]
         if fills:
             counts = {m: fills.count(m) for m in dict.fromkeys(fills)}
@@ -412,11 +421,13 @@ def main():
         own = None  # an analytic surface: the surroundings' own distance (their triangles' chords)
         if callable(reference):
             own = holes.fill_distance(hole.vertices, hole.faces, 0, reference)[1] / scale
+        cut_folds = None if callable(reference) else holes.cut_surface_folds(hole)
         for method in methods:
             out, v, f = (run_ours if method == "geofair" else run_cgal)(hole, args)
             row = {"case": name, "kind": desc["kind"], "method": method, "removed": hole.removed,
                    "loop": len(hole.loop), "diameter": hole.diameter, "scale": scale, "redraw": meta["redraw"],
-                   "surroundings": [len(hole.vertices), len(hole.faces)], "surroundings_max": own}  # fmt: skip
+                   "surroundings": [len(hole.vertices), len(hole.faces)], "surroundings_max": own,
+                   "cut_folds": cut_folds}  # fmt: skip
             row.update(out)
             if v is not None:
                 measure(row, hole, reference, scale, v, f)

@@ -165,17 +165,14 @@ def test_point_triangle_distance_by_hand(point, expected):
 def test_fill_distance_and_check_of_the_cut_triangles_put_back():
     v, f = grid(21, jitter=0.3)
     hole, _ = holes.cut_disc(v, f, centre_vertex(v), radius=0.2)
-    # Put the cut-away triangles back on the cut mesh's vertices (matched by position):
-    # the original surface, at distance 0, closed, manifold, nothing folded.
-    index = {tuple(p): i for i, p in enumerate(hole.vertices.tolist())}
-    extra = [p for p in hole.cut_vertices.tolist() if tuple(p) not in index]
-    vo = np.concatenate([hole.vertices, np.array(extra).reshape(-1, 3)])
-    index.update({tuple(p): len(hole.vertices) + k for k, p in enumerate(extra)})
-    back = np.array([[index[tuple(hole.cut_vertices[i].tolist())] for i in t] for t in hole.cut_faces])
-    fo = np.concatenate([hole.faces, back])
+    # The cut-away triangles put back on the cut mesh's vertices (matched by position): the
+    # original surface, at distance 0, closed, manifold, nothing folded.
+    vo, fo = holes.cut_surface_put_back(hole)
     check = holes.check_fill(hole.vertices, hole.faces, hole.loop, vo, fo)
     assert check["input_kept"] and check["closed"] and check["manifold"] is None and check["folds"] == 0
-    assert check["new_vertices"] == len(extra) and check["new_faces"] == len(back)
+    assert holes.cut_surface_folds(hole) == 0
+    inner = len(np.unique(hole.cut_faces)) - len(hole.loop)  # the cut-away vertices off the loop
+    assert check["new_vertices"] == inner and check["new_faces"] == len(hole.cut_faces)
     ref = (hole.cut_vertices, hole.cut_faces)
     assert max(holes.fill_distance(vo, fo, len(hole.faces), ref)) < 1e-15  # rounding of the samples alone
     lifted = vo.copy()
@@ -194,6 +191,16 @@ def test_fill_distance_and_check_of_the_cut_triangles_put_back():
     moved = vo.copy()
     moved[0, 2] = 1e-300
     assert not holes.check_fill(hole.vertices, hole.faces, hole.loop, moved, fo)["input_kept"]
+
+
+def test_cut_surface_folds_counts_the_folds_of_the_surface_cut_away():
+    v, f = grid(21)
+    centre = centre_vertex(v)
+    folded = v.copy()
+    folded[centre, :2] += 0.12  # beyond its neighbours: its fan overlaps itself
+    for surface, expected_folds in ((v, False), (folded, True)):
+        hole, _ = holes.cut_disc(surface, f, centre, count=40)
+        assert (holes.cut_surface_folds(hole) > 0) == expected_folds
 
 
 def test_folded_edges_counts_a_fold():
@@ -259,6 +266,15 @@ def test_holes_summary_counts_closer_fills_and_the_time_ratio():
     assert "corpus holes filled by both: 3; geofair closer than cgal: mean distance 2 (67 %)" in text
     assert "of those filled ok by both (2): geofair closer (mean) on 2" in text
     assert "time ratio geofair/cgal over 3 holes: median 3.0, max 8.0" in text
+    assert "folded edge" not in text  # no fold counts given
+    # Fold counts: a hole whose cut-away surface folds is counted apart.
+    for r, folds, cut_folds in zip(rows[:6:2], (0, 2, 0), (0, 0, 5), strict=True):
+        r.update(folds=folds, cut_folds=cut_folds)
+    text = "\n".join(bench.summary(rows, ["geofair", "cgal"]))
+    assert (
+        "geofair: corpus fills without a folded edge: 2 of 3; where the cut-away surface itself has none: 1 of 2"
+        in text
+    ), text
     for r in rows:  # the same holes named as the benchmark names them: counted by size
         r["case"] = {"a": "cgal/elk/100/s0", "b": "cgal/elk/100/s1", "c": "cgal/bull/1000/s0"}.get(
             r["case"], "cgal/bull~1/10000/s0"

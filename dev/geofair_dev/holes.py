@@ -433,6 +433,24 @@ def check_fill(vertices_in, faces_in, loop, vertices_out, faces_out, removed=())
     }
 
 
+def cut_surface_put_back(hole: Hole):
+    """The cut-away triangles put back into the cut mesh: (vertices, faces) as a fill would
+    give them (the cut mesh's rows and faces first, then the cut-away surface's inner vertices
+    and triangles; its loop vertices matched to the cut mesh's by position)."""
+    index = {tuple(p): i for i, p in enumerate(hole.vertices.tolist())}
+    extra = [p for p in hole.cut_vertices.tolist() if tuple(p) not in index]
+    index.update({tuple(p): len(hole.vertices) + k for k, p in enumerate(extra)})
+    back = np.array([[index[tuple(hole.cut_vertices[i].tolist())] for i in t] for t in hole.cut_faces])
+    return np.concatenate([hole.vertices, np.array(extra).reshape(-1, 3)]), np.concatenate([hole.faces, back])
+
+
+def cut_surface_folds(hole: Hole):
+    """Folded edges (check_fill's count) of the cut-away surface itself, put back: what a fill
+    that reproduced the original surface exactly would count."""
+    vo, fo = cut_surface_put_back(hole)
+    return check_fill(hole.vertices, hole.faces, hole.loop, vo, fo)["folds"]
+
+
 def fill_distance(vertices_out, faces_out, n_faces_in, reference, per_edge=4):
     """(mean, max) distance of the new triangles (rows n_faces_in: of faces_out) from a
     reference: ``reference`` is a callable (k, 3) points -> (k,) distances (an analytic
