@@ -266,27 +266,23 @@ TIME_LIMIT_SCRIPT_HINT = "A longer time_limit (None: automatic) lets it go on."
 
 
 def unconverged_hint(
-    inner_fairness,
+    options,
+    report,
     keep_hint=KEEP_UNCONVERGED_HINT,
-    remesh="off",
+    remesh=None,
     remesh_hint=REMESH_SCRIPT_HINT,
-    given_time_limit_spent=False,
     time_limit_hint=TIME_LIMIT_SCRIPT_HINT,
 ):
-    """What to try after an unconverged run that was not kept: where it stopped at the time limit the user gave
-    (``given_time_limit_spent``), a longer one; else Conformal after Uniform (uniform inner fairness can degenerate
-    the triangles of an irregular region, docs/REAL_MESHES.md) and remeshing if it was off; then ``keep_hint``."""
-    if given_time_limit_spent:
+    """What to try after the unconverged run ``report`` of ``options`` that was not kept: where it stopped at the
+    time limit the user gave, a longer one; else Conformal after Uniform (uniform inner fairness can degenerate the
+    triangles of an irregular region, docs/REAL_MESHES.md) and remeshing if it was off (``remesh``, by default
+    ``options.remesh``); then ``keep_hint``."""
+    if report.stop_reason == "time_limit" and options.time_limit:
         return f"{time_limit_hint} {keep_hint}"
-    hints = [CONFORMAL_HINT] if inner_fairness == "uniform" else []
-    if remesh == "off":
+    hints = [CONFORMAL_HINT] if options.inner_fairness == "uniform" else []
+    if (options.remesh if remesh is None else remesh) == "off":
         hints.append(remesh_hint)
     return " ".join([*hints, keep_hint])
-
-
-def given_time_limit_spent(report, options):
-    """Whether the unconverged run of ``report`` stopped at ``options.time_limit`` (set, not automatic)."""
-    return not report.converged and report.stop_reason == "time_limit" and bool(options.time_limit)
 
 
 class SolverFailedError(RuntimeError):
@@ -800,12 +796,7 @@ def fair_object(obj, region=None, *, progress=None, context=None, **options):
         run.solve()
         report = run.finish()
         if report.discarded:
-            hint = unconverged_hint(
-                run_options.inner_fairness,
-                remesh=run_options.remesh,
-                given_time_limit_spent=given_time_limit_spent(report, run_options),
-            )
-            raise NotConvergedError(report, hint)
+            raise NotConvergedError(report, unconverged_hint(run_options, report))
     except (ValueError, RuntimeError) as error:
         store_last_run(context.window_manager, run_options, error=error, object_name=getattr(obj, "name", ""))
         raise

@@ -294,12 +294,7 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
 
     def unconverged_hint(self, options, report):
         return fairing.unconverged_hint(
-            options.inner_fairness,
-            UNCONVERGED_HINT,
-            options.remesh,
-            fairing.REMESH_HINT,
-            fairing.given_time_limit_spent(report, options),
-            fairing.TIME_LIMIT_HINT,
+            options, report, UNCONVERGED_HINT, remesh_hint=fairing.REMESH_HINT, time_limit_hint=fairing.TIME_LIMIT_HINT
         )
 
 
@@ -364,11 +359,7 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
 
     def unconverged_hint(self, options, report):
         return fairing.unconverged_hint(
-            options.inner_fairness,
-            UNCONVERGED_HINT,
-            remesh="always",
-            given_time_limit_spent=fairing.given_time_limit_spent(report, options),
-            time_limit_hint=fairing.TIME_LIMIT_HINT,
+            options, report, UNCONVERGED_HINT, remesh="always", time_limit_hint=fairing.TIME_LIMIT_HINT
         )
 
 
