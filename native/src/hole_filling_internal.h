@@ -9,6 +9,15 @@
 
 namespace geofair::hole_filling {
 
+/// Validates the triangles (indices, manifold, orientation) and the coordinates they use.
+/// \throw InvalidInputError naming `caller`.
+void check_mesh(const Positions& V, const Triangles& F, const char* caller);
+
+/// The (unnormalized) normal of triangle (a, b, c): twice its vector area.
+inline Vec3 triangle_normal(const Positions& V, int a, int b, int c) {
+  return (V.row(b) - V.row(a)).cross(V.row(c) - V.row(a)).transpose();
+}
+
 /// The directed edges (a, b) of a mesh's triangles, each with its triangle, grouped by
 /// their first vertex (compressed rows: one pass over the triangles, no hashing, so that a
 /// small hole in a mesh of millions of triangles costs little). F must be valid
