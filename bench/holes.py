@@ -314,11 +314,12 @@ def summary(rows, methods):
                 parts.append(f"{size}: {sum(bool(r.get('ok')) for r in ks)} of {len(ks)}{t}")
             lines.append(f"    {method}: corpus holes ok by size (vertices removed, about): " + "; ".join(parts))
         filled = [r for r in rs if r["kind"] == "corpus" and r.get("folds") is not None]
+        filled = [r for r in filled if r.get("closed") and r.get("input_kept") and r.get("manifold") is None]
         if filled:
             unfolded = [r for r in filled if r.get("cut_folds") == 0]
             lines.append(
-                f"    {method}: corpus fills without a folded edge: {sum(r['folds'] == 0 for r in filled)} of "
-                f"{len(filled)}; where the cut-away surface itself has none: "
+                f"    {method}: corpus fills (closed, manifold, input kept) without a folded edge: "
+                f"{sum(r['folds'] == 0 for r in filled)} of {len(filled)}; where the cut-away surface itself has none: "
                 f"{sum(r['folds'] == 0 for r in unfolded)} of {len(unfolded)}"
             )
         fills = [r["fill_method"] for r in rs if r.get("fill_method")]

@@ -170,7 +170,6 @@ def test_fill_distance_and_check_of_the_cut_triangles_put_back():
     vo, fo = holes.cut_surface_put_back(hole)
     check = holes.check_fill(hole.vertices, hole.faces, hole.loop, vo, fo)
     assert check["input_kept"] and check["closed"] and check["manifold"] is None and check["folds"] == 0
-    assert holes.cut_surface_folds(hole) == 0
     inner = len(np.unique(hole.cut_faces)) - len(hole.loop)  # the cut-away vertices off the loop
     assert check["new_vertices"] == inner and check["new_faces"] == len(hole.cut_faces)
     ref = (hole.cut_vertices, hole.cut_faces)
@@ -267,14 +266,16 @@ def test_holes_summary_counts_closer_fills_and_the_time_ratio():
     assert "of those filled ok by both (2): geofair closer (mean) on 2" in text
     assert "time ratio geofair/cgal over 3 holes: median 3.0, max 8.0" in text
     assert "folded edge" not in text  # no fold counts given
-    # Fold counts: a hole whose cut-away surface folds is counted apart.
+    # Fold counts: a hole whose cut-away surface folds is counted apart, a fill that is not
+    # closed (or not manifold, or changed the input) not at all.
     for r, folds, cut_folds in zip(rows[:6:2], (0, 2, 0), (0, 0, 5), strict=True):
-        r.update(folds=folds, cut_folds=cut_folds)
+        r.update(folds=folds, cut_folds=cut_folds, closed=True, input_kept=True, manifold=None)
+    line = "geofair: corpus fills (closed, manifold, input kept) without a folded edge: {}; where the cut-away "
     text = "\n".join(bench.summary(rows, ["geofair", "cgal"]))
-    assert (
-        "geofair: corpus fills without a folded edge: 2 of 3; where the cut-away surface itself has none: 1 of 2"
-        in text
-    ), text
+    assert line.format("2 of 3") + "surface itself has none: 1 of 2" in text, text
+    rows[4]["closed"] = False
+    text = "\n".join(bench.summary(rows, ["geofair", "cgal"]))
+    assert line.format("1 of 2") + "surface itself has none: 1 of 2" in text, text
     for r in rows:  # the same holes named as the benchmark names them: counted by size
         r["case"] = {"a": "cgal/elk/100/s0", "b": "cgal/elk/100/s1", "c": "cgal/bull/1000/s0"}.get(
             r["case"], "cgal/bull~1/10000/s0"

@@ -446,9 +446,13 @@ def cut_surface_put_back(hole: Hole):
 
 def cut_surface_folds(hole: Hole):
     """Folded edges (check_fill's count) of the cut-away surface itself, put back: what a fill
-    that reproduced the original surface exactly would count."""
+    that reproduced the original surface exactly would count; None where the put-back mesh is
+    not closed and manifold (a loop vertex matched to a coincident twin)."""
     vo, fo = cut_surface_put_back(hole)
-    return check_fill(hole.vertices, hole.faces, hole.loop, vo, fo)["folds"]
+    check = check_fill(hole.vertices, hole.faces, hole.loop, vo, fo)
+    if not (check["input_kept"] and check["closed"] and check["manifold"] is None):
+        return None
+    return check["folds"]
 
 
 def fill_distance(vertices_out, faces_out, n_faces_in, reference, per_edge=4):

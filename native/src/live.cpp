@@ -89,7 +89,7 @@ Positions LiveState::frame_boundary(const Positions& W,
 
 std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Positions& Y,
                                                       Phases& phases, Laps& laps,
-                                                      std::optional<int>& secant_steps) {
+                                                      WarmStarts& starts) {
   const double L = diagonal(X0);
   if (options.inner_fairness != InnerFairness::Uniform) {
     InnerFairnessWeights lambda = inner_fairness_weights(*finest, X0, options.inner_fairness);
@@ -112,7 +112,10 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
   for (const bool secant : {true, false}) {
     if (secant && !secant_first) continue;
     if (!secant && out_of_time()) break;  // the secant start spent the frame's time
-    if (secant_first && !secant) secant_steps = report ? report->iterations : 0;
+    if (secant_first && !secant) {
+      starts.harmonic_after_secant = true;
+      starts.secant_steps = report ? report->iterations : 0;
+    }
     Y = warm_start(X0, secant);
     // The secant start carries the last frame's tangential response: the polish at
     // convergence is enough (the harmonic one squeezes vertices against a moving handle).
@@ -120,8 +123,9 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
     phases.emplace_back("boundary data and predictor", laps.lap());
     try {
       report = construction->run_newton(Y, run);
-    } catch (const SolverError&) {
+    } catch (const SolverError& error) {
       if (!secant) throw;
+      starts.secant_failure = error.what();
       report.reset();
       continue;
     }
@@ -131,7 +135,7 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
     phases.emplace_back("warm polishes", report->polish_seconds);
     if ((report->converged && Y.topRows(region.n_free).allFinite()) || report->cancelled) break;
   }
-  if (report && secant_steps) report->iterations += *secant_steps;  // both starts' steps
+  if (report && starts.harmonic_after_secant) report->iterations += starts.secant_steps;
   return report;
 }
 
@@ -143,33 +147,31 @@ std::optional<FairingResult> LiveState::warm_frame(const Positions& V,
   const Positions X0 = frame_boundary(W, boundary_normals);
   Positions Y;
   std::optional<IterationReport> report;
-  std::optional<int> secant_steps;  // set where the harmonic start followed the secant one
+  WarmStarts starts;
   // A numerical failure anywhere in the warm start (the weights, a new construction, Newton's
   // steps) leaves the frame to the cold path.
   try {
-    report = warm_newton(X0, Y, phases, laps, secant_steps);
+    report = warm_newton(X0, Y, phases, laps, starts);
   } catch (const SolverError& error) {
     why = error.what();
     return std::nullopt;
   }
   if (!report) {
-    why = "stopped at the time limit before it started";
+    why = starts.secant_failure.empty()
+              ? "stopped at the time limit before it started"
+              : "the secant start failed (" + starts.secant_failure +
+                    "), and the time limit came before the harmonic one";
     return std::nullopt;
   }
   if (!report->converged || !Y.topRows(region.n_free).allFinite()) {
-    const std::string steps =
-        secant_steps ? newton_steps(*secant_steps) + " from the secant predictor and " +
-                           newton_steps(report->iterations - *secant_steps) + " from the harmonic one"
-                     : newton_steps(report->iterations);
-    why = "residual " + scientific(report->residual) + " after " + steps +
+    why = "residual " + scientific(report->residual) + " after " +
+          starts.steps_text(report->iterations) +
           (out_of_time() ? ", stopped at the time limit" : "");
     return std::nullopt;
   }
   pending = Y;  // X becomes Y where update() returns this frame (take_warm)
   FairingResult result = warm_result(V, X0, Y, *report);
-  if (secant_steps)
-    result.message += "; from the harmonic predictor (Newton did not converge from the secant one: " +
-                      newton_steps(*secant_steps) + ")";
+  if (starts.harmonic_after_secant) result.message += "; " + starts.steps_text(report->iterations);
   phases.emplace_back("result", laps.lap());
   return result;
 }

@@ -88,6 +88,23 @@ struct RemeshFailure {
   std::string why;            // one clause for the frame's message
 };
 
+// Which predictors a frame's warm start ran Newton from (LiveState::warm_newton): the secant
+// one, and where Newton did not converge from it or failed, the harmonic one.
+struct WarmStarts {
+  bool harmonic_after_secant = false;
+  int secant_steps = 0;        // of a secant start that ran unconverged
+  std::string secant_failure;  // the secant start's SolverError, else empty
+  // The frame's `steps` Newton steps (both starts') by start, for its message.
+  std::string steps_text(int steps) const {
+    if (!harmonic_after_secant) return live_detail::newton_steps(steps);
+    if (!secant_failure.empty())
+      return live_detail::newton_steps(steps) +
+             " from the harmonic predictor (the secant one failed: " + secant_failure + ")";
+    return live_detail::newton_steps(secant_steps) + " from the secant predictor and " +
+           live_detail::newton_steps(steps - secant_steps) + " from the harmonic one";
+  }
+};
+
 // LiveFairing's state (live.h): the live mesh, its prepared region and construction, the
 // warm start, and the counts and deadline of the frames.
 struct LiveState {
@@ -284,13 +301,13 @@ struct LiveState {
 
   // Newton's method from the warm start for the region positions X0 (frame_boundary's):
   // from the secant start, and where Newton does not converge from it or fails, from the
-  // harmonic one (then `secant_steps` holds the secant start's steps, 0 where it failed);
-  // Y its solution, `phases` its phases from `laps`; the report's iterations count both
-  // starts' steps. The construction takes the frame's boundary and, for conformal inner
-  // fairness, the weights of X0. SolverError where the harmonic start fails; nullopt where
-  // the frame's time was spent before any start ran.
+  // harmonic one (`starts` says which ran); Y its solution, `phases` its phases from `laps`;
+  // the report's iterations count both starts' steps. The construction takes the frame's
+  // boundary and, for conformal inner fairness, the weights of X0. SolverError where the
+  // harmonic start fails; nullopt where no start ran to its end (the frame's time was spent
+  // first, or after a secant start that failed).
   std::optional<IterationReport> warm_newton(const Positions& X0, Positions& Y, Phases& phases,
-                                             Laps& laps, std::optional<int>& secant_steps);
+                                             Laps& laps, WarmStarts& starts);
 
   // The warm start of one frame from X for the frame's input W (/ scale); nullopt where it
   // did not converge (`why` then says how it ended).

@@ -326,8 +326,9 @@ struct HoleChoice {
 
 /// Options of LiveFairing beyond fair's (FairingOptions).
 struct LiveOptions {
-  /// Newton steps a frame's warm start may take (after its tangential relaxation) before
-  /// the frame falls back to the cold path; >= 1.
+  /// Newton steps each warm start of a frame may take (from the secant predictor, then
+  /// where that does not converge from the harmonic one, after its tangential relaxation)
+  /// before the frame falls back to the cold path; >= 1.
   int max_warm_steps = 8;
   /// Detail preservation (Kobbelt et al. 1998; Botsch & Kobbelt 2004): the region is split
   /// into its own faired base (Δ_B H = 0 with the input's boundary and handle: the

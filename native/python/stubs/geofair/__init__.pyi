@@ -275,8 +275,9 @@ class LiveFairing:
         input's offsets from the base in the base's local frames (normal and a tangent from a
         neighbour edge); every update adds them back onto the new base (its residual and folds
         are the base's), and live.result at the start is the input itself.
-    max_warm_steps : int >= 1 (default 8), Newton steps a frame's warm start may take before
-        the frame runs the cold path.
+    max_warm_steps : int >= 1 (default 8), Newton steps each warm start of a frame may take
+        (from the secant predictor, then where that does not converge from the harmonic one)
+        before the frame runs the cold path; a frame's .iterations counts both starts' steps.
     remesh : False (default; also "off"): the region keeps the input's triangles in every frame.
         "if_needed": connectivity that follows the drag. A frame whose warm start does not
         converge, or converges with more folded edges than the input had, is remeshed, and so
