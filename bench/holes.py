@@ -43,7 +43,8 @@ each and the median ratio ours/CGAL.
 
     PYTHONPATH=build/python python3 bench/holes.py [--quick] [--only SUBSTRING[,SUBSTRING...]]
         [--seeds N] [--sizes 100,1000,10000] [--all] [--rings N] [--timeout SECONDS]
-        [--inner uniform|conformal|...] [--rim keep|trim] [--no-cgal] [--no-ours] [--cache DIR] [--json FILE]
+        [--inner uniform|conformal|...] [--rim keep|trim] [--tuning JSON] [--no-cgal] [--no-ours]
+        [--cache DIR] [--json FILE]
 
 Default: the analytic holes, all 12 meshes with holes of 100 and 1,000 vertices, seeds 0
 and 1, and holes of 10,000 vertices on bear, diplodocus and ChineseDragon-10kv (seed 0).
@@ -166,6 +167,8 @@ def child(args):
     options = {"inner_fairness": args.inner} if args.inner else {}
     if args.rim:
         options["rim"] = args.rim
+    if args.tuning:
+        options["tuning"] = json.loads(args.tuning)
     out, r = child_process.solve(lambda: geofair.fill_holes(v, f, loops=[loop], **options))
     if r is not None:
         removed = np.asarray(getattr(r, "removed_faces", np.zeros(0, np.int32)))
@@ -192,6 +195,8 @@ def run_ours(hole, args):
         cmd += ["--inner", args.inner]
     if args.rim:
         cmd += ["--rim", args.rim]
+    if args.tuning:
+        cmd += ["--tuning", args.tuning]
     out = child_process.run(cmd, args.timeout)
     if out["status"] != "done":
         return out, None, None
@@ -373,6 +378,7 @@ def main():
     parser.add_argument("--timeout", type=float, default=120.0, help="per fill, seconds")
     parser.add_argument("--inner", default=None, help="fill_holes' inner_fairness (default: its own default)")
     parser.add_argument("--rim", default=None, help="fill_holes' rim: keep (default) or trim")
+    parser.add_argument("--tuning", default=None, help="overrides of fill_holes' tuning (JSON)")
     parser.add_argument("--no-cgal", action="store_true", help="skip CGAL's fill")
     parser.add_argument("--no-ours", action="store_true", help="skip geofair.fill_holes")
     parser.add_argument("--cache", default=DEFAULT_CACHE)
@@ -402,6 +408,7 @@ def main():
     around = f"{args.rings} rings of triangles" if args.rings > 0 else "the whole mesh"
     inner = f" (inner fairness {args.inner})" if args.inner and "geofair" in methods else ""
     inner += f" (rim {args.rim})" if args.rim and "geofair" in methods else ""
+    inner += f" (tuning {args.tuning})" if args.tuning and "geofair" in methods else ""
     print(f"# {len(descs)} holes; methods: {', '.join(methods) or 'none'}{inner}; surroundings: {around}; "
           f"timeout {args.timeout:.0f} s; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")  # fmt: skip
     for note in notes:

@@ -55,6 +55,19 @@ def test_hole_in_a_sphere_is_filled_with_the_sphere(irregular):
     assert 0.5 * 262 < len(new) < 2 * 262
 
 
+def test_fills_take_their_own_newton_step_limit():
+    """fill_holes' fairs limit Newton's steps by newton.fill_max_step, not by fair's
+    newton.max_step; either limit fills the sphere."""
+    v, f = sphere_with_hole(polar_angle=1.0)
+    default = geofair.fill_holes(v, f)
+    assert np.array_equal(geofair.fill_holes(v, f, tuning={"newton.max_step": 0.5}).vertices, default.vertices)
+    longer = geofair.fill_holes(v, f, tuning={"newton.fill_max_step": 4.0})
+    assert not np.array_equal(longer.vertices, default.vertices)
+    for r in (default, longer):
+        assert r.converged and r.folds == 0, r.message
+        assert np.abs(np.linalg.norm(r.vertices[len(v) :], axis=1) - 1).max() < 1e-3
+
+
 def test_hole_in_a_cylinder_and_a_catenoid():
     for scene, bound in ((scenes.cylinder_patch(n_free=3000, irregular=True, seed=1), 1e-3),
                          (scenes.catenoid_patch(n_free=3000, irregular=True, seed=1), 1e-3)):  # fmt: skip

@@ -202,6 +202,7 @@ FillSubmesh with_outer_rings(const Positions& V, const Triangles& F,
 FairingOptions fill_fairing_options(const FairingOptions& options, FillMethod method) {
   FairingOptions fairing = options;
   fairing.remesh = Remesh::Off;
+  fairing.tuning.newton.max_step = options.tuning.newton.fill_max_step;
   if (method == FillMethod::G0) fairing.boundary = BoundaryCondition::G0;
   if (method == FillMethod::Linear) fairing.outer_fairness = OuterFairness::Bilaplacian;
   return fairing;

@@ -37,8 +37,11 @@ struct NewtonTuning {
   /// would only delay the next attempt (docs/NEWTON.md, "NewtonTuning::far_merit").
   int far_steps = 5;
   double far_merit = 1.0;
-  /// Largest move of a vertex in one step, in mean distances to its neighbours.
+  /// Largest move of a vertex in one step, in mean distances to its neighbours ...
   double max_step = 4.0;
+  /// ... in the fairs of fill_holes, which start from a hole's linear fill, farther from
+  /// the solution than a region's initial mesh (docs/NEWTON.md, "NewtonTuning::max_step").
+  double fill_max_step = 1.0;
   /// Tangential solves towards inner fairness before the first step, at most: more than one
   /// where the stretch limit cuts a solve short.
   int relaxations = 8;
@@ -235,6 +238,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.far_steps", t.newton.far_steps, 1, inf, false, false);
   f("newton.far_merit", t.newton.far_merit, 0, inf, true, false);
   f("newton.max_step", t.newton.max_step, 0, inf, true, false);
+  f("newton.fill_max_step", t.newton.fill_max_step, 0, inf, true, false);
   f("newton.relaxations", t.newton.relaxations, 1, inf, false, false);
   f("newton.projection_move", t.newton.projection_move, 0, inf, false, false);
   f("newton.polishes", t.newton.polishes, 0, inf, false, false);
