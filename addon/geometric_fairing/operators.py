@@ -224,8 +224,8 @@ class _SolvingOperator:
         not_kept = [
             (report.object_name, fairing.NotConvergedError(report, self.unconverged_hint(options, report)))
             for report in reports
+            if report.discarded
         ]
-        not_kept = [(name, error) for name, error in not_kept if error.report.discarded]
         reports = [report for report in reports if not report.discarded]
         errors = [*self._failed, *errors, *not_kept]
         wm = context.window_manager
