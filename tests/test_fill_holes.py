@@ -68,6 +68,20 @@ def test_fills_take_their_own_newton_step_limit():
         assert np.abs(np.linalg.norm(r.vertices[len(v) :], axis=1) - 1).max() < 1e-3
 
 
+def test_fills_take_their_own_iteration_limit():
+    """Each fill runs at most schedule.fill_max_iterations iterations, or the caller's
+    max_iterations where that is lower; a fill stopped there gives way to the next."""
+    v, f = sphere_with_hole(polar_angle=1.0)
+    by_tuning = geofair.fill_holes(v, f, iteration="paper", tuning={"schedule.fill_max_iterations": 3})
+    by_caller = geofair.fill_holes(v, f, iteration="paper", max_iterations=3)
+    for r in (by_tuning, by_caller):
+        (hole,) = r.holes
+        assert not hole.attempts[0]["converged"] and "within max_iterations" in hole.attempts[0]["message"]
+        assert [a["method"] for a in hole.attempts] == ["intrinsic", "intrinsic_finer", "g0", "linear"]
+    assert np.array_equal(by_tuning.vertices, by_caller.vertices)
+    assert geofair.defaults()["tuning"]["schedule.fill_max_iterations"] < geofair.defaults()["max_iterations"]
+
+
 def test_hole_in_a_cylinder_and_a_catenoid():
     for scene, bound in ((scenes.cylinder_patch(n_free=3000, irregular=True, seed=1), 1e-3),
                          (scenes.catenoid_patch(n_free=3000, irregular=True, seed=1), 1e-3)):  # fmt: skip
@@ -347,6 +361,10 @@ def test_rim_trim_removes_the_teeth_names_them_and_keeps_the_order():
     assert r.converged and r.folds == 0, r.message
     assert r.removed_faces.tolist() == hole.removed_faces.tolist() == teeth.tolist()
     assert "5 input faces removed at the rim" in r.message
+    # A rim with teeth is trimmed before a finer fill is tried.
+    assert [a["method"] for a in geofair.fill_holes(v, f, rim="trim").holes[0].attempts] == [
+        "intrinsic", "intrinsic_trimmed"
+    ]  # fmt: skip
     # The rows stay (the tips, in no face now, are named); the other faces keep their order.
     n, m = len(v), len(f) - len(teeth)
     assert np.array_equal(r.vertices[:n].view(np.uint64), v.view(np.uint64))

@@ -465,6 +465,7 @@ std::string fair_doc(std::string doc) {
   replace("{damping}", number(o.damping));
   replace("{cg_iterations}", std::to_string(o.cg_iterations));
   replace("{max_fill_vertices}", std::to_string(kMaxFillVertices));
+  replace("{fill_max_iterations}", std::to_string(t.schedule.fill_max_iterations));
   replace("{outer_border_percent}", number(100.0 * kOuterBorderArea));
   return doc;
 }
@@ -1329,12 +1330,13 @@ vertices free, each hole on its own (its patch and the faces within three rings 
 
 Every hole gets a fill: per hole the fills below are tried in order and the first that
 converges without a folded edge is kept, else the one with the fewest folded edges
-(converged first among equals): "intrinsic" (the fill above), "intrinsic_finer" (at half
-the loop's edge length, where target_edge_length is None and the first fill has at most
-5000 new vertices: ragged loops need a finer fill next to them), "intrinsic_trimmed" (rim="trim" only: the rim's teeth, triangles with two
+(converged first among equals): "intrinsic" (the fill above), "intrinsic_trimmed"
+(rim="trim" only, where the rim has something to trim: the rim's teeth, triangles with two
 loop edges, and the triangles at loop vertices whose faces span less than 90° removed, up to
 three rounds, while the hole stays one simple loop; MeshFix's remove-and-fill, Attene
-2010), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
+2010), "intrinsic_finer" (at half the loop's edge length, where target_edge_length is None
+and the first fill has at most 5000 new vertices: ragged loops need a finer fill next to
+them), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
 Δ²f = 0 fill of the same patch, the method of CGAL's triangulate_refine_and_fair_hole; the
 last two on the trimmed rim where it was trimmed). .holes says which fill each hole got.
 A hole is left open only where no fill can be made (over {max_fill_vertices} new vertices).
@@ -1367,8 +1369,10 @@ rim : "keep" (default): every input face is kept; "trim": where the fill of a lo
     in .removed_faces and each hole's .removed_faces).
 boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
 damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
-    geofair.fair (time_limit covers the filling too); boundary="g0" fills with the minimal
-    surface spanned by the loop.
+    geofair.fair (time_limit covers the filling too), except that each fill runs at most
+    tuning "schedule.fill_max_iterations" ({fill_max_iterations}) iterations where max_iterations is higher,
+    so that a fill that does not converge gives way to the next; boundary="g0" fills with
+    the minimal surface spanned by the loop.
 
 Returns
 -------

@@ -197,12 +197,14 @@ FillSubmesh with_outer_rings(const Positions& V, const Triangles& F,
   return out;
 }
 
-// fair()'s options for a fill by `method`: no remesh (the patch is a remesh already), and the
-// G0 or the linear fill where the method is one.
+// fair()'s options for a fill by `method`: no remesh (the patch is a remesh already), the
+// fills' own step and iteration limits, and the G0 or the linear fill where the method is one.
 FairingOptions fill_fairing_options(const FairingOptions& options, FillMethod method) {
   FairingOptions fairing = options;
   fairing.remesh = Remesh::Off;
   fairing.tuning.newton.max_step = options.tuning.newton.fill_max_step;
+  fairing.max_iterations =
+      std::min(options.max_iterations, options.tuning.schedule.fill_max_iterations);
   if (method == FillMethod::G0) fairing.boundary = BoundaryCondition::G0;
   if (method == FillMethod::Linear) fairing.outer_fairness = OuterFairness::Bilaplacian;
   return fairing;
@@ -362,12 +364,10 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   }
   if (attempt(loop, committed, L, first)) return finish();
   if (!chain.kept.made) return finish();  // over the size limit: no other fill is smaller
+  const Eigen::Index first_size = chain.kept.vertices.rows();
   if (linear_only) return finish();
-  // Half the edge length: four times the vertices; not for large fills (their time).
-  const bool small = chain.kept.vertices.rows() <= kMaxFinerFillVertices;
-  if (target_edge_length <= 0.0 && small && time_left() &&
-      attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
-    return finish();
+  // With rim="trim", a rim that has something to trim is trimmed before the finer fill: the
+  // folds of a ragged rim sit at its teeth and slits, which a finer fill keeps.
   std::vector<int> hole = loop, removed = committed;
   double L_hole = L;
   if (rim == Rim::Trim) {
@@ -382,6 +382,10 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
         return finish();
     }
   }
+  // Half the edge length: four times the vertices; not for large fills (their time).
+  if (target_edge_length <= 0.0 && first_size <= kMaxFinerFillVertices && time_left() &&
+      attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
+    return finish();
   if (first == FillMethod::Intrinsic && time_left() &&
       attempt(hole, removed, L_hole, FillMethod::G0))
     return finish();

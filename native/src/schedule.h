@@ -47,9 +47,10 @@ namespace geofair {
 /// |                                         | iterations, and each doubling | iterate                        |
 /// | fair_if_needed (Remesh::IfNeeded)       | no convergence, or new folds  | remesh the region, schedule    |
 /// |                                         |                               | again; the better result       |
-/// | fill_holes, per hole (hole_filling.cpp) | no fold-free convergence      | intrinsic, intrinsic_finer     |
-/// |                                         |                               | (half the edge length),        |
-/// |                                         |                               | intrinsic_trimmed, g0, linear  |
+/// | fill_holes, per hole (hole_filling.cpp) | no fold-free convergence      | intrinsic, intrinsic_trimmed   |
+/// |                                         |                               | (rim="trim"), intrinsic_finer  |
+/// |                                         |                               | (half the edge length), g0,    |
+/// |                                         |                               | linear                         |
 /// | LiveFairing::update (live.cpp)          | the warm frame fails          | fair() from the frame's input  |
 std::vector<Attempt> plan_attempts(const Problem& problem);
 

@@ -62,7 +62,8 @@ enum class Rim {
   Trim,
 };
 
-/// How a hole was filled (HoleFill::method), in the order fill_holes tries them.
+/// How a hole was filled (HoleFill::method), in the order fill_holes tries them, except that
+/// IntrinsicTrimmed goes before IntrinsicFiner.
 enum class FillMethod {
   Intrinsic,         ///< the G1 intrinsic fill at the loop's edge length (options.boundary)
   IntrinsicFiner,    ///< the same at half the loop's edge length

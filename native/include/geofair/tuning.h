@@ -185,6 +185,10 @@ struct ScheduleTuning {
   /// ... each attempt at most this many Newton steps (or NewtonTuning::patience steps
   /// without halving its residual).
   int newton_attempt_steps = 60;
+  /// fill_holes' fairs run at most this many iterations (FairingOptions::max_iterations,
+  /// where that is lower, else this): a fill not converged by then gives way to the next
+  /// fill of its hole (docs/DESIGN_NOTES.md, "Filling holes").
+  int fill_max_iterations = 2000;
   /// The Newton hierarchy keeps at least this many free vertices on its base level (one
   /// level below four times this; docs/DESIGN_NOTES.md, "Coarse levels").
   int newton_min_base_free = 400;
@@ -283,6 +287,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("schedule.time_limit_hard_factor", t.schedule.time_limit_hard_factor, 1, inf, false, false);
   f("schedule.newton_attempt_first", t.schedule.newton_attempt_first, 1, inf, false, false);
   f("schedule.newton_attempt_steps", t.schedule.newton_attempt_steps, 1, inf, false, false);
+  f("schedule.fill_max_iterations", t.schedule.fill_max_iterations, 1, inf, false, false);
   f("schedule.newton_min_base_free", t.schedule.newton_min_base_free, 1, inf, false, false);
   f("schedule.newton_retry_min_free", t.schedule.newton_retry_min_free, 1, inf, false, false);
   f("schedule.membrane_first_irregularity", t.schedule.membrane_first_irregularity, 0, inf, false,
