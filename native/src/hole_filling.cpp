@@ -301,6 +301,29 @@ bool better(const Tried& a, const Tried& b) {
   return a.attempt.converged && !b.attempt.converged;
 }
 
+// A hole as its fills after the rim's trim see it: its loop, and the faces removed (the
+// trimmed ones with `committed`); the input loop and `committed` unless rim="trim" and the
+// rim has something to trim.
+struct HoleRim {
+  std::vector<int> loop, removed;
+  bool trimmed = false;
+};
+
+HoleRim hole_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
+                 const std::vector<int>& loop, const std::vector<int>& committed,
+                 const std::vector<bool>& other_border, Rim rim) {
+  HoleRim out{loop, committed};
+  if (rim != Rim::Trim) return out;
+  hole_filling::TrimmedHole trimmed = hole_filling::trim_rim(V, F, edges, loop, other_border);
+  if (trimmed.removed.empty()) return out;
+  out.loop = std::move(trimmed.loop);
+  out.removed.clear();
+  std::set_union(committed.begin(), committed.end(), trimmed.removed.begin(),
+                 trimmed.removed.end(), std::back_inserter(out.removed));
+  out.trimmed = true;
+  return out;
+}
+
 // One hole's fallback chain (fill_holes): its record and the fill kept.
 struct Chain {
   HoleFill record;
@@ -368,28 +391,20 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   if (linear_only) return finish();
   // With rim="trim", a rim that has something to trim is trimmed before the finer fill: the
   // folds of a ragged rim sit at its teeth and slits, which a finer fill keeps.
-  std::vector<int> hole = loop, removed = committed;
-  double L_hole = L;
-  if (rim == Rim::Trim) {
-    hole_filling::TrimmedHole trimmed = hole_filling::trim_rim(V, F, edges, loop, other_border);
-    if (!trimmed.removed.empty()) {
-      hole = std::move(trimmed.loop);
-      removed.clear();
-      std::set_union(committed.begin(), committed.end(), trimmed.removed.begin(),
-                     trimmed.removed.end(), std::back_inserter(removed));
-      L_hole = target_edge_length > 0.0 ? target_edge_length : mean_loop_edge_length(V, hole);
-      if (time_left() && attempt(hole, removed, L_hole, FillMethod::IntrinsicTrimmed))
-        return finish();
-    }
-  }
+  const HoleRim hole = hole_rim(V, F, edges, loop, committed, other_border, rim);
+  const double L_hole =
+      hole.trimmed && target_edge_length <= 0.0 ? mean_loop_edge_length(V, hole.loop) : L;
+  if (hole.trimmed && time_left() &&
+      attempt(hole.loop, hole.removed, L_hole, FillMethod::IntrinsicTrimmed))
+    return finish();
   // Half the edge length: four times the vertices; not for large fills (their time).
   if (target_edge_length <= 0.0 && first_size <= kMaxFinerFillVertices && time_left() &&
       attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
     return finish();
   if (first == FillMethod::Intrinsic && time_left() &&
-      attempt(hole, removed, L_hole, FillMethod::G0))
+      attempt(hole.loop, hole.removed, L_hole, FillMethod::G0))
     return finish();
-  attempt(hole, removed, L_hole, FillMethod::Linear);
+  attempt(hole.loop, hole.removed, L_hole, FillMethod::Linear);
   return finish();
 }
 
