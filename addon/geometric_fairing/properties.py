@@ -120,6 +120,8 @@ REMESH_VALUES = {"off": False, "if_needed": "if_needed", "always": True}
 # module nothing can be faired and the panel shows why; the properties then start at their first
 # item or lower bound.
 _LIBRARY = native.geofair.defaults() if native.geofair is not None else {}
+# fill_holes' own limit of iterations per fill (at most the caller's max_iterations).
+_FILL_MAX_ITERATIONS = _LIBRARY.get("tuning", {}).get("schedule.fill_max_iterations", 2000)
 DEFAULTS = {
     "inner_fairness": _LIBRARY.get("inner_fairness", INNER_FAIRNESS_ITEMS[0][0]),
     "outer_fairness": _LIBRARY.get("outer_fairness", OUTER_FAIRNESS_ITEMS[0][0]),
@@ -212,7 +214,10 @@ def _tolerance(**options):
 def _max_iterations(**options):
     return IntProperty(
         name="Max Iterations",
-        description="Upper bound on the number of fairing iterations on each level",
+        description=(
+            "Upper bound on the number of fairing iterations on each level; Fill Holes runs each fill at most "
+            f"{_FILL_MAX_ITERATIONS} iterations, so that a fill that does not converge gives way to the next"
+        ),
         default=DEFAULTS["max_iterations"],
         min=1,
         soft_max=100000,
