@@ -215,8 +215,8 @@ def _max_iterations(**options):
     return IntProperty(
         name="Max Iterations",
         description=(
-            "Upper bound on the number of fairing iterations on each level; Fill Holes runs each fill at most "
-            f"{_FILL_MAX_ITERATIONS} iterations, so that a fill that does not converge gives way to the next"
+            "Upper bound on the number of fairing iterations on each level (for Fill Holes at most "
+            f"{_FILL_MAX_ITERATIONS}, so that a fill that does not converge gives way to the next)"
         ),
         default=DEFAULTS["max_iterations"],
         min=1,

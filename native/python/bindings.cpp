@@ -1369,10 +1369,11 @@ rim : "keep" (default): every input face is kept; "trim": where the fill of a lo
     in .removed_faces and each hole's .removed_faces).
 boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
 damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
-    geofair.fair (time_limit covers the filling too), except that each fill runs at most
-    tuning "schedule.fill_max_iterations" ({fill_max_iterations}) iterations where max_iterations is higher,
-    so that a fill that does not converge gives way to the next; boundary="g0" fills with
-    the minimal surface spanned by the loop.
+    geofair.fair (time_limit covers the filling too), except that each fill's fair takes
+    max_iterations (iterations per level) at most tuning "schedule.fill_max_iterations"
+    ({fill_max_iterations}), so that a fill that does not converge gives way to the next (its
+    attempt then reports "did not converge within max_iterations"); boundary="g0" fills
+    with the minimal surface spanned by the loop.
 
 Returns
 -------

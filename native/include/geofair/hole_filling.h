@@ -124,11 +124,12 @@ struct FillResult : FairingResult {
 ///
 /// Every hole gets a fill: each is filled and faired on its own (its patch and the input's
 /// triangles within three rings of its loop, which hold everything the G1 normals are
-/// estimated from), trying in turn (FillMethod) the intrinsic fill, the same at half the
+/// estimated from), trying in turn (FillMethod) the intrinsic fill, with rim = Trim the same
+/// on the trimmed rim (where it has something to trim), the intrinsic fill at half the
 /// loop's edge length (only where target_edge_length is 0 and the first fill has at most
-/// kMaxFinerFillVertices new vertices), with rim = Trim the same on the
-/// trimmed rim, then G0 and the linear Δ²f = 0 fill (both on the trimmed rim where it was
-/// trimmed), and keeps the first that converges without a folded edge, else the one with
+/// kMaxFinerFillVertices new vertices), then G0 and the linear Δ²f = 0 fill (both on the
+/// trimmed rim where it was trimmed), each with max_iterations at most
+/// SolverTuning::schedule.fill_max_iterations, and keeps the first that converges without a folded edge, else the one with
 /// the fewest folded edges (converged first among equals, then the earlier). HoleFill
 /// records which; result.message sums it up. A hole is left open only where no fill can be
 /// made: one over kMaxFillVertices (its reason says so; if no hole can be filled at all,

@@ -603,10 +603,11 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
         in .removed_faces and each hole's .removed_faces).
     boundary, inner_fairness, outer_fairness, normal_weighting, tolerance, max_iterations,
     damping, cg_iterations, levels, iteration, progress, time_limit, tuning : as for
-        geofair.fair (time_limit covers the filling too), except that each fill runs at most
-        tuning "schedule.fill_max_iterations" (2000) iterations where max_iterations is higher,
-        so that a fill that does not converge gives way to the next; boundary="g0" fills with
-        the minimal surface spanned by the loop.
+        geofair.fair (time_limit covers the filling too), except that each fill's fair takes
+        max_iterations (iterations per level) at most tuning "schedule.fill_max_iterations"
+        (2000), so that a fill that does not converge gives way to the next (its
+        attempt then reports "did not converge within max_iterations"); boundary="g0" fills
+        with the minimal surface spanned by the loop.
     
     Returns
     -------
