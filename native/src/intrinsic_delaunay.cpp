@@ -100,7 +100,7 @@ IntrinsicTriangulation intrinsic_delaunay(const Positions& V, const Triangles& F
   const int nv = int(V.rows()), nt = int(F.rows());
   if (!V.allFinite())
     throw InvalidInputError(std::string(fn) + ": vertices contain a non-finite coordinate");
-  build_one_rings(nv, F, fn);  // validates indices, manifoldness and orientation
+  check_triangles(nv, F, fn);  // indices, manifoldness and orientation
   Flipper m;
   m.T = F;
   m.len.resize(3 * std::size_t(nt));

@@ -192,6 +192,11 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
   return r;
 }
 
+void check_triangles(int n_vertices, const Triangles& triangles, const char* caller) {
+  Mesh mesh;
+  build_mesh(mesh, n_vertices, triangles, caller, nullptr);
+}
+
 namespace {
 
 // The sizes and indices of the input (the first checks of extract_region and

@@ -57,6 +57,9 @@ struct OneRings {
 OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char* caller,
                          const std::vector<int>* triangle_ids = nullptr);
 
+/// The checks of build_one_rings alone, with the same errors, without building the rings.
+void check_triangles(int n_vertices, const Triangles& triangles, const char* caller);
+
 /// The part of a mesh that fairing works on.
 ///
 /// Local vertex ids: [0, n_free) are the free vertices V_I, [n_free, n) the G1 boundary
