@@ -57,7 +57,8 @@ struct OneRings {
 OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char* caller,
                          const std::vector<int>* triangle_ids = nullptr);
 
-/// The checks of build_one_rings alone, with the same errors, without building the rings.
+/// The checks of build_one_rings alone, without building the rings.
+/// \throw InvalidInputError as build_one_rings, with the same message.
 void check_triangles(int n_vertices, const Triangles& triangles, const char* caller);
 
 /// The part of a mesh that fairing works on.

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace geofair {
@@ -138,6 +139,42 @@ TEST(UniformWeights, PolygonIdsOfTheWrongSizeAreAnError) {
   const testing::Mesh m = testing::planar_grid(4);
   const std::vector<int> short_ids(m.F.rows() - 1, 0);
   EXPECT_THROW(quad_grid_region(m, &short_ids), InvalidInputError);
+}
+
+
+// check_triangles refuses what build_one_rings refuses, with the same message, and accepts
+// what it accepts.
+TEST(Region, CheckTrianglesAgreesWithBuildOneRings) {
+  const testing::Mesh m = testing::hexagon_fan();
+  auto message = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const InvalidInputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::vector<Triangles> cases;
+  cases.push_back(m.F);  // valid
+  Triangles out_of_range = m.F;
+  out_of_range(2, 1) = 7;
+  cases.push_back(out_of_range);
+  Triangles repeated = m.F;
+  repeated(3, 2) = repeated(3, 1);
+  cases.push_back(repeated);
+  Triangles flipped = m.F;
+  std::swap(flipped(4, 1), flipped(4, 2));
+  cases.push_back(flipped);
+  Triangles third_face(m.F.rows() + 1, 3);  // a third triangle on the edge (0, 1)
+  third_face << m.F, m.F.row(0);
+  third_face.bottomRows(1)(0, 2) = m.F(3, 2);
+  cases.push_back(third_face);
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const int n = int(m.V.rows());
+    const std::string expected = message([&] { build_one_rings(n, cases[k], "test"); });
+    EXPECT_EQ(message([&] { check_triangles(n, cases[k], "test"); }), expected) << "case " << k;
+    EXPECT_EQ(expected.empty(), k == 0) << "case " << k;
+  }
 }
 
 }  // namespace
