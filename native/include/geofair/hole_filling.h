@@ -129,11 +129,11 @@ struct FillResult : FairingResult {
 /// loop's edge length (only where target_edge_length is 0 and the first fill has at most
 /// kMaxFinerFillVertices new vertices), then G0 and the linear Δ²f = 0 fill (both on the
 /// trimmed rim where it was trimmed), each with max_iterations at most
-/// SolverTuning::schedule.fill_max_iterations, and keeps the first that converges without a folded edge, else the one with
-/// the fewest folded edges (converged first among equals, then the earlier). HoleFill
-/// records which; result.message sums it up. A hole is left open only where no fill can be
-/// made: one over kMaxFillVertices (its reason says so; if no hole can be filled at all,
-/// InvalidInputError). The time spent counts against an explicit options.time_limit (and
+/// SolverTuning::schedule.fill_max_iterations, and keeps the first that converges without a
+/// folded edge, else the one with the fewest folded edges (converged first among equals,
+/// then the earlier). HoleFill records which; result.message sums it up. A hole is left
+/// open only where no fill can be made: one over kMaxFillVertices (its reason says so; if
+/// no hole can be filled at all, InvalidInputError). The time spent counts against an explicit options.time_limit (and
 /// options.deadline); once it is spent, the holes not yet filled get the linear fill alone.
 /// phase_seconds starts with "fill" (triangulations and remeshes), then fair()'s phases
 /// summed over the holes.
