@@ -15,6 +15,28 @@
 namespace geofair {
 namespace {
 
+// Levels with at least this many free vertices factorize the first Newton step's
+// preconditioner during their last relaxation (relax_before_steps; docs/NEWTON.md, "The
+// first factorization beside the last relaxation"). Below, the factorization costs little,
+// and small fills keep their steps.
+constexpr int kPrefactorizeMin = 500;
+
+// Sets this thread's loop threads back to `saved` (if > 0) at restore() or on leaving the
+// scope.
+class LoopThreadsRestore {
+ public:
+  explicit LoopThreadsRestore(int& saved) : saved_(saved) {}
+  ~LoopThreadsRestore() { restore(); }
+  LoopThreadsRestore(const LoopThreadsRestore&) = delete;
+  LoopThreadsRestore& operator=(const LoopThreadsRestore&) = delete;
+  void restore() {
+    if (saved_ > 0) set_loop_threads(saved_), saved_ = 0;
+  }
+
+ private:
+  int& saved_;
+};
+
 // Throws if the residual of iteration k is not finite or has grown a millionfold.
 void check_divergence(double residual, double first_residual, int k) {
   if (!std::isfinite(residual))
@@ -156,10 +178,22 @@ bool Construction::relax_before_steps(Positions& X, bool warm) {
   const NewtonTuning& newton = options_.tuning.newton;
   Positions surface, surface_normals;
   std::unique_ptr<SurfaceProjection> projection;
+  double last_scale = 0.0;  // of the last solve
+  bool prefactorized = false;
   for (int p = 0; p < newton.relaxations; ++p) {
     // Each solve factorizes a system of the level's size (seconds at 10^5 vertices).
     if (options_.stop_requested && options_.stop_requested()) return false;
     evaluate(X);  // the normals at X
+    // After a solve that took its whole step the vertices lie near inner fairness, and a
+    // Newton preconditioner factorized here needs no more GMRES iterations than one at the
+    // relaxed positions: it is factorized on a second thread while this one finishes the
+    // relaxations and the local step on one core (run_newton restores the threads).
+    if (p > 0 && last_scale == 1.0 && !warm && region_.n_free >= kPrefactorizeMin) {
+      const bool async = loop_threads() > 1;
+      newton_.prefactorize(X, N_, H_, dirichlet_.weights(), async);
+      prefactorized = true;
+      if (async) overlap_threads_ = loop_threads(), set_loop_threads(1);
+    }
     if (p == 0) surface = X, surface_normals = N_;
     const Positions before = X;
     const bool near = p > 0 || warm;
@@ -171,6 +205,12 @@ bool Construction::relax_before_steps(Positions& X, bool warm) {
                                                          std::move(surface_normals));
       for (int i = 0; i < region_.n_free; ++i) projection->project(i, X);
     }
+    if (prefactorized && scale < 1.0) {  // the vertices move on: factorized at the steps
+      newton_.discard_prefactorization();
+      LoopThreadsRestore(overlap_threads_).restore();  // the loops on all threads again
+      prefactorized = false;
+    }
+    last_scale = scale;
     if (scale <= 0.0 || ((p > 0 || warm) && scale == 1.0)) break;
   }
   return true;
@@ -281,6 +321,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   const NewtonTuning& newton = options_.tuning.newton;
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
+  LoopThreadsRestore threads(overlap_threads_);  // after the local step, or on leaving
   const bool relaxed =
       !tangential_ || newton_run.skip_relaxation || relax_before_steps(X, newton_run.warm);
   report.relax_seconds = laps.lap();
@@ -291,6 +332,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
     return report;
   }
   if (newton_run.prolongated) residual = local_step(X, residual);
+  threads.restore();
   const double first_residual = residual;
   double best = residual;
   int best_at = 0, polishes = 0;

@@ -223,6 +223,9 @@ class Construction {
   Eigen::VectorXd probe_H_;
   const Eigen::VectorXd* source_ = nullptr;
   bool tangential_ = true;
+  // This thread's loop threads while the first Newton factorization runs beside the
+  // relaxation (relax_before_steps), else 0.
+  int overlap_threads_ = 0;
   long iterations_ = 0;
 };
 

@@ -126,10 +126,37 @@ void NewtonStep::assemble(const Positions& X, const Positions& N, const Eigen::V
   }
 }
 
+void NewtonStep::prefactorize(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
+                              const std::vector<double>& w, bool async) {
+  discard_prefactorization();
+  assemble(X, N, H, w);
+  factorized_sigma_ = 0.0;
+  refactorize_ = false;
+  prefactorized_ = true;
+  if (async)
+    prefactorization_ = std::async(std::launch::async, [this] { return lu_.factorize(A_); });
+  else
+    lu_.factorize(A_);
+}
+
+bool NewtonStep::finish_prefactorization() {
+  if (!prefactorized_) return false;
+  prefactorized_ = false;
+  const bool factorized =
+      prefactorization_.valid() ? prefactorization_.get() : lu_.factorized();
+  if (!factorized) refactorize_ = true;
+  return factorized;
+}
+
+void NewtonStep::discard_prefactorization() {
+  if (finish_prefactorization()) refactorize_ = true;
+}
+
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                        const std::vector<double>& w, const Eigen::VectorXd& defects,
                        const Eigen::VectorXd* tau, const JacobianProduct& product,
                        const Shift& shift, Eigen::VectorXd& t) {
+  bool ahead = finish_prefactorization();  // a fresh factorization, made before the call
   Eigen::VectorXd b = tau ? Eigen::VectorXd(*tau - defects) : Eigen::VectorXd(-defects);
   const double sigma = shift.mass ? shift.sigma : 0.0;
   const JacobianProduct shifted = [&](const Eigen::VectorXd& v, Eigen::VectorXd& Jv) {
@@ -162,7 +189,8 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
     // The iterations a stale factorization costs beyond a fresh one's, summed until a
     // refactorization would have been cheaper.
     const int iterations = int(gmres_.iterations());
-    if (fresh) first_iterations_ = iterations, extra_products_ = 0;
+    if (fresh || ahead) first_iterations_ = iterations, extra_products_ = 0;
+    ahead = false;
     extra_products_ += std::max(0, iterations - first_iterations_);
     if (iterations > tuning_.krylov_iterations / 2 ||
         extra_products_ >= tuning_.refactorization_products)

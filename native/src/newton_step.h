@@ -9,6 +9,7 @@
 #include <unsupported/Eigen/IterativeSolvers>
 
 #include <functional>
+#include <future>
 #include <vector>
 
 namespace geofair {
@@ -140,6 +141,15 @@ class NewtonStep {
   /// vertices on.
   void analyze() { lu_.analyze(A_, A_.rows() >= kNestedDissectionMin); }
 
+  /// The first step's preconditioner ahead of the step: assembled at X (N, H, w as in
+  /// solve()) on this thread, factorized on another where `async` (else here), which solve()
+  /// then waits for and uses with no shift. Construction::relax_before_steps calls it before
+  /// its last relaxation.
+  void prefactorize(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
+                    const std::vector<double>& w, bool async);
+  /// Waits for prefactorize()'s factorization and drops it: the next solve() factorizes.
+  void discard_prefactorization();
+
  private:
   // Fills A_ = D J_1 at X (the preconditioner's matrix, see the class comment).
   void assemble(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
@@ -159,6 +169,12 @@ class NewtonStep {
   int extra_products_ = 0;    // iterations beyond first_iterations_ since, summed
   // GMRES preconditioned by the last factorization of D J_1, of an earlier iterate.
   Eigen::GMRES<JacobianOperator, LaggedFactorization> gmres_;
+  // prefactorize()'s factorization (true if it succeeded), waited for by the next solve();
+  // the last member, so that its thread ends before A_ and lu_ go.
+  bool prefactorized_ = false;
+  std::future<bool> prefactorization_;
+  // Waits for prefactorize()'s factorization; true if one is in place for solve().
+  bool finish_prefactorization();
 };
 
 }  // namespace geofair
