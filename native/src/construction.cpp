@@ -15,10 +15,10 @@
 namespace geofair {
 namespace {
 
-// Levels with at least this many free vertices factorize the first Newton step's
-// preconditioner during their last relaxation (relax_before_steps; docs/NEWTON.md, "The
-// first factorization beside the last relaxation"). Below, the factorization costs little,
-// and small fills keep their steps.
+// Finest levels with at least this many free vertices factorize the first Newton step's
+// preconditioner during their last relaxation (NewtonRun::factorize_ahead; docs/NEWTON.md,
+// "The first factorization beside the last relaxation"). Below, the factorization costs
+// little, and small fills keep their steps.
 constexpr int kPrefactorizeMin = 500;
 
 // Sets this thread's loop threads back to `saved` (if > 0) at restore() or on leaving the
@@ -164,7 +164,7 @@ double Construction::longest_move(const Positions& before, const Positions& X) c
   return move;
 }
 
-bool Construction::relax_before_steps(Positions& X, bool warm) {
+bool Construction::relax_before_steps(Positions& X, bool warm, bool factorize_ahead) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
   // do not move vertices tangentially (docs/NEWTON.md, NewtonTuning::relaxations). At least two
@@ -188,7 +188,8 @@ bool Construction::relax_before_steps(Positions& X, bool warm) {
     // Newton preconditioner factorized here needs no more GMRES iterations than one at the
     // relaxed positions: it is factorized on a second thread while this one finishes the
     // relaxations and the local step on one core (run_newton restores the threads).
-    if (p > 0 && last_scale == 1.0 && !warm && region_.n_free >= kPrefactorizeMin) {
+    if (factorize_ahead && p > 0 && last_scale == 1.0 && !warm &&
+        region_.n_free >= kPrefactorizeMin) {
       const bool async = loop_threads() > 1;
       newton_.prefactorize(X, N_, H_, dirichlet_.weights(), async);
       prefactorized = true;
@@ -323,7 +324,8 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   Laps laps;  // report's relax, step and polish seconds
   LoopThreadsRestore threads(overlap_threads_);  // after the local step, or on leaving
   const bool relaxed =
-      !tangential_ || newton_run.skip_relaxation || relax_before_steps(X, newton_run.warm);
+      !tangential_ || newton_run.skip_relaxation ||
+      relax_before_steps(X, newton_run.warm, newton_run.factorize_ahead);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
   if (!relaxed) {
