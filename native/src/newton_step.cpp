@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <system_error>
 
 namespace geofair {
 
@@ -132,11 +133,15 @@ void NewtonStep::prefactorize(const Positions& X, const Positions& N, const Eige
   assemble(X, N, H, w);
   factorized_sigma_ = 0.0;
   refactorize_ = false;
+  if (async) {
+    try {
+      prefactorization_ = std::async(std::launch::async, [this] { return lu_.factorize(A_); });
+    } catch (const std::system_error&) {  // no thread to be had: factorized here
+      async = false;
+    }
+  }
+  if (!async) lu_.factorize(A_);
   prefactorized_ = true;
-  if (async)
-    prefactorization_ = std::async(std::launch::async, [this] { return lu_.factorize(A_); });
-  else
-    lu_.factorize(A_);
 }
 
 bool NewtonStep::finish_prefactorization() {
