@@ -291,8 +291,16 @@ Construction::StepOutcome Construction::continuation_step(Positions& X, Continua
   };
   c.d0 = dirichlet_.defects(H_);
   if (c.sigma > 0.0) shift_mass(X, c.mass);
+  // An inexact Newton step: GMRES to krylov_tolerance, or, in a cold run, tighter where that
+  // would leave the step above the run's tolerance but a solve down to krylov_tolerance_min
+  // would not (NewtonTuning::krylov_reach; docs/NEWTON.md).
+  const double reaching = newton.krylov_reach * c.tolerance / residual;
+  const double krylov_tolerance = c.reach && reaching < newton.krylov_tolerance &&
+                                          reaching >= newton.krylov_tolerance_min
+                                      ? reaching
+                                      : newton.krylov_tolerance;
   if (!newton_.solve(X, N_, H_, dirichlet_.weights(), c.d0, source_, product, {c.sigma, &c.mass},
-                     c.t))
+                     krylov_tolerance, c.t))
     throw SolverError("fair: the Newton system is singular (degenerate triangles)");
   // Step length: no vertex moves by more than max_step mean distances to its neighbours.
   double ratio = 0.0;
@@ -342,6 +350,8 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   probe_N_ = N_;
   probe_H_.resize(region_.n);
   Continuation c;
+  c.tolerance = tolerance;
+  c.reach = !newton_run.warm;
   c.merit = merit();
   double last_merit = c.merit;  // at the previous step
   c.mass.resize(region_.n_free);

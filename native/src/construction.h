@@ -203,6 +203,8 @@ class Construction {
   struct Continuation {
     double sigma = 0.0;
     double merit = 0.0;
+    double tolerance = 0.0;  // run_newton's
+    bool reach = false;      // GMRES aims a step at the tolerance (NewtonTuning::krylov_reach)
     Eigen::VectorXd mass, t, d0;
   };
   enum class StepOutcome { Taken, Rejected, Stalled };

@@ -160,7 +160,7 @@ void NewtonStep::discard_prefactorization() {
 bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
                        const std::vector<double>& w, const Eigen::VectorXd& defects,
                        const Eigen::VectorXd* tau, const JacobianProduct& product,
-                       const Shift& shift, Eigen::VectorXd& t) {
+                       const Shift& shift, double krylov_tolerance, Eigen::VectorXd& t) {
   bool ahead = finish_prefactorization();  // a fresh factorization, made before the call
   Eigen::VectorXd b = tau ? Eigen::VectorXd(*tau - defects) : Eigen::VectorXd(-defects);
   const double sigma = shift.mass ? shift.sigma : 0.0;
@@ -178,7 +178,6 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
   // refactorize at X and solve again.
   const JacobianOperator J(b.size(), shifted);
   gmres_.preconditioner().lu = &lu_;
-  set_up_gmres(gmres_, J, tuning_.krylov_iterations, tuning_.krylov_tolerance);
   for (int attempt = 0; attempt < 2; ++attempt) {
     const bool fresh = refactorize_ || !lu_.factorized();
     if (fresh) {
@@ -190,6 +189,10 @@ bool NewtonStep::solve(const Positions& X, const Positions& N, const Eigen::Vect
       if (!lu_.factorize(A_)) return false;
       refactorize_ = false;
     }
+    // A lagged factorization converges slowly: each decade below krylov_tolerance costs it
+    // several iterations, a fresh one about one.
+    set_up_gmres(gmres_, J, tuning_.krylov_iterations,
+                 fresh || ahead ? krylov_tolerance : tuning_.krylov_tolerance);
     t = gmres_.solve(b);
     // The iterations a stale factorization costs beyond a fresh one's, summed until a
     // refactorization would have been cheaper.

@@ -124,6 +124,9 @@ class NewtonStep {
   /// \param shift  pseudo-transient continuation (run_newton): solve (J + σ M) t = τ − d
   ///               instead, with σ = shift.sigma ≥ 0 (dimensionless) and M = shift.mass
   ///               (#V_I, 1/length², positive); σ = 0 is Newton's step
+  /// \param krylov_tolerance GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ for this step
+  ///               where the factorization is fresh (made at this step or just before it);
+  ///               on a lagged one NewtonTuning::krylov_tolerance
   /// \param t      out: #V_I normal offsets, mesh units, positive along N
   /// \return false if the preconditioner's factorization failed (singular system) or the
   ///         step is not finite
@@ -134,7 +137,7 @@ class NewtonStep {
   bool solve(const Positions& X, const Positions& N, const Eigen::VectorXd& H,
              const std::vector<double>& w, const Eigen::VectorXd& defects,
              const Eigen::VectorXd* tau, const JacobianProduct& product, const Shift& shift,
-             Eigen::VectorXd& t);
+             double krylov_tolerance, Eigen::VectorXd& t);
 
   /// The symbolic analysis of the preconditioner's pattern (PatternLU::analyze) now rather
   /// than at the first step: with METIS's nested dissection from kNestedDissectionMin free
