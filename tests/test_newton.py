@@ -174,3 +174,20 @@ def test_newton_on_levels_reaches_the_single_level_solution(levels):
     assert multi.converged and single.converged
     assert len(multi.iterations_per_level) == levels and len(single.iterations_per_level) == 1
     assert_same_solution(multi, single, s, f"{levels} levels", "one level", uniform=True)
+
+
+def test_steps_aimed_at_the_tolerance_change_the_steps_not_the_surface():
+    # NewtonTuning::krylov_reach solves a step that can end the run more exactly; with
+    # krylov_tolerance_min at krylov_tolerance every step solves to krylov_tolerance (the rule
+    # off). Both reproduce the sphere and agree on the surface.
+    s = scenes.sphere_cap(n_free=13000, irregular=True, seed=1, boundary_rings=2)
+    v = s.disturbed(seed=2, amplitude=0.1)  # bench/speed.py's 13k irregular cap
+    aimed = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals)
+    plain = geofair.fair(v, s.faces, s.free, boundary_normals=s.normals,
+                         tuning={"newton.krylov_tolerance_min": 1e-3})  # fmt: skip
+    print(f"\nsteps aimed {aimed.iterations_per_level}, plain {plain.iterations_per_level}")
+    assert aimed.converged and plain.converged
+    assert sum(aimed.iterations_per_level) < sum(plain.iterations_per_level)  # the rule acted
+    assert max_error(s, aimed) < 1e-5 and max_error(s, plain) < 1e-5
+    distance = measures.hausdorff(aimed.vertices, s.faces, plain.vertices, s.faces) / s.size
+    assert distance <= 1e-5

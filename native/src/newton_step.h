@@ -80,7 +80,8 @@ namespace geofair {
 /// recomputed: the normals (quadric fits), the Moreton–Séquin H of all region vertices
 /// (eq. (10), with the spiral samples of 6.2 that read the neighbours' normals) and the
 /// cotangent weights w_ij (eq. (6)). It is never assembled: Eigen's GMRES
-/// (NewtonTuning::krylov_iterations, relative residual krylov_tolerance) reads only its
+/// (NewtonTuning::krylov_iterations, relative residual krylov_tolerance, or the caller's
+/// tighter one on a fresh factorization, see solve) reads only its
 /// products J v, which the caller computes by a forward difference of the defects (one
 /// evaluation of the whole mesh per product).
 ///

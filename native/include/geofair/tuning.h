@@ -89,7 +89,8 @@ struct NewtonTuning {
   /// factorization solves GMRES to krylov_reach · tolerance / r instead (the run's
   /// tolerance), where that lies below krylov_tolerance and not below krylov_tolerance_min:
   /// a step that can end the run is not left short by the linear solve's error (a forcing
-  /// term aimed at the tolerance, in the manner of Eisenstat and Walker). Dimensionless.
+  /// term aimed at the tolerance, in the manner of Eisenstat and Walker). Dimensionless;
+  /// 0, or krylov_tolerance_min at or above krylov_tolerance, turns this off.
   double krylov_reach = 0.5;
   /// The tightest GMRES tolerance of such a step; a step that would need a tighter one solves
   /// to krylov_tolerance (it starts too far to end the run). Dimensionless.
