@@ -295,10 +295,9 @@ Construction::StepOutcome Construction::continuation_step(Positions& X, Continua
   // would leave the step above the run's tolerance but a solve down to krylov_tolerance_min
   // would not (NewtonTuning::krylov_reach; docs/NEWTON.md).
   const double reaching = newton.krylov_reach * c.tolerance / residual;
-  const double krylov_tolerance = c.reach && reaching < newton.krylov_tolerance &&
-                                          reaching >= newton.krylov_tolerance_min
-                                      ? reaching
-                                      : newton.krylov_tolerance;
+  const bool aimed = c.reach && reaching < newton.krylov_tolerance &&
+                     reaching >= newton.krylov_tolerance_min;
+  const double krylov_tolerance = aimed ? reaching : newton.krylov_tolerance;
   if (!newton_.solve(X, N_, H_, dirichlet_.weights(), c.d0, source_, product, {c.sigma, &c.mass},
                      krylov_tolerance, c.t))
     throw SolverError("fair: the Newton system is singular (degenerate triangles)");

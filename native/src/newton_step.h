@@ -94,7 +94,8 @@ namespace geofair {
 /// reach of the spiral samples (valence 3 and 4) and of the normal fit's flaps (valence
 /// below 5) beyond the ring. It is factorized at the first step and again only after a step
 /// whose GMRES needed more than half of its iterations or failed, once the iterations beyond
-/// those of the factorization's first solve add up to NewtonTuning::refactorization_products
+/// those of the factorization's first solve (as it ran, tighter or not; docs/NEWTON.md) add
+/// up to NewtonTuning::refactorization_products
 /// (a lagged factorization ages as the iterate moves on, over the frames of LiveFairing
 /// too), or when the shift σ differs from the factorized one by more than
 /// NewtonTuning::shift_refactorization (shifts below shift_negligible count as none).
@@ -127,7 +128,8 @@ class NewtonStep {
   ///               (#V_I, 1/length², positive); σ = 0 is Newton's step
   /// \param krylov_tolerance GMRES's relative residual ‖P⁻¹(b − J t)‖/‖P⁻¹ b‖ for this step
   ///               where the factorization is fresh (made at this step or just before it);
-  ///               on a lagged one NewtonTuning::krylov_tolerance
+  ///               on a lagged one NewtonTuning::krylov_tolerance. A solve that stops short
+  ///               of it but within krylov_tolerance is taken.
   /// \param t      out: #V_I normal offsets, mesh units, positive along N
   /// \return false if the preconditioner's factorization failed (singular system) or the
   ///         step is not finite

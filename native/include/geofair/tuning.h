@@ -90,10 +90,11 @@ struct NewtonTuning {
   /// tolerance), where that lies below krylov_tolerance and not below krylov_tolerance_min:
   /// a step that can end the run is not left short by the linear solve's error (a forcing
   /// term aimed at the tolerance, in the manner of Eisenstat and Walker). Dimensionless;
-  /// 0, or krylov_tolerance_min at or above krylov_tolerance, turns this off.
+  /// 0 turns this off.
   double krylov_reach = 0.5;
   /// The tightest GMRES tolerance of such a step; a step that would need a tighter one solves
-  /// to krylov_tolerance (it starts too far to end the run). Dimensionless.
+  /// to krylov_tolerance (it starts too far to end the run). Dimensionless, at most
+  /// krylov_tolerance; equal to it turns the rule off.
   double krylov_tolerance_min = 1e-5;
   /// The preconditioner of a shifted step is refactorized when the shift differs from the
   /// factorized one by more than this factor (dimensionless).
@@ -267,7 +268,8 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.krylov_iterations", t.newton.krylov_iterations, 1, inf, false, false);
   f("newton.krylov_tolerance", t.newton.krylov_tolerance, 0, 1, true, true);
   f("newton.krylov_reach", t.newton.krylov_reach, 0, inf, false, false);
-  f("newton.krylov_tolerance_min", t.newton.krylov_tolerance_min, 0, 1, true, true);
+  f("newton.krylov_tolerance_min", t.newton.krylov_tolerance_min, 0, t.newton.krylov_tolerance,
+    true, false);
   f("newton.refactorization_products", t.newton.refactorization_products, 0, inf, false, false);
   f("newton.shift_refactorization", t.newton.shift_refactorization, 1, inf, true, false);
   f("tangential.max_stretch", t.tangential.max_stretch, 0, 1, true, true);
