@@ -4,10 +4,11 @@ or an installed wheel's (bench/speed.py ``--module``).
 A module is named by a spec: ``this`` (whatever ``import geofair`` finds here), a folder
 holding the compiled module (``build/python``; put first on PYTHONPATH), or a wheel file,
 installed with its dependencies (numpy, scipy-openblas32) into a venv of its own under
-``~/.cache/geofair/bench-venvs/`` (made once per wheel, by its file name and size; the venv
+``~/.cache/geofair/bench-venvs/`` (made once per wheel, by its file name and content hash; the venv
 sees this Python's site-packages for numpy and geofair_dev, as a user's would see theirs).
 """
 
+import hashlib
 import os
 import pathlib
 import subprocess
@@ -41,7 +42,9 @@ def _venv_for(wheel):
     wheel = pathlib.Path(wheel).resolve()
     if not wheel.is_file():
         raise FileNotFoundError(f"no wheel {wheel}")
-    folder = VENVS / f"{wheel.stem}-{wheel.stat().st_size}"
+    # Keyed by the wheel's content: two builds of one version can have the same size.
+    digest = hashlib.sha256(wheel.read_bytes()).hexdigest()[:16]
+    folder = VENVS / f"{wheel.stem}-{digest}"
     python = folder / "bin" / "python"
     if not python.exists():
         subprocess.run([sys.executable, "-m", "venv", str(folder)], check=True)

@@ -15,7 +15,7 @@
 namespace geofair {
 namespace {
 
-// Finest levels with at least this many free vertices factorize the first Newton step's
+// Levels with at least this many free vertices factorize the first Newton step's
 // preconditioner during their last relaxation (NewtonRun::factorize_ahead; docs/NEWTON.md,
 // "The first factorization beside the last relaxation"). Below, the factorization costs
 // little, and small fills keep their steps.
@@ -164,7 +164,7 @@ double Construction::longest_move(const Positions& before, const Positions& X) c
   return move;
 }
 
-bool Construction::relax_before_steps(Positions& X, bool warm, bool factorize_ahead) {
+bool Construction::relax_before_steps(Positions& X, const NewtonRun& newton_run) {
   // Inner fairness first: the vertex distribution that satisfies it can lie many edge
   // lengths from that of the initial mesh or of a prolongated one, and the Newton steps
   // do not move vertices tangentially (docs/NEWTON.md, NewtonTuning::relaxations). At least two
@@ -176,6 +176,7 @@ bool Construction::relax_before_steps(Positions& X, bool warm, bool factorize_ah
   // inner fairness: turning planes and the last factorization from the first solve on, and
   // one solve unless the stretch limit cut it short (the polish at convergence follows).
   const NewtonTuning& newton = options_.tuning.newton;
+  const bool warm = newton_run.warm;
   Positions surface, surface_normals;
   std::unique_ptr<SurfaceProjection> projection;
   double last_scale = 0.0;  // of the last solve
@@ -188,8 +189,8 @@ bool Construction::relax_before_steps(Positions& X, bool warm, bool factorize_ah
     // Newton preconditioner factorized here needs no more GMRES iterations than one at the
     // relaxed positions: it is factorized on a second thread while this one finishes the
     // relaxations and the local step on one core (run_newton restores the threads).
-    if (factorize_ahead && p > 0 && last_scale == 1.0 && !warm &&
-        region_.n_free >= kPrefactorizeMin) {
+    if (newton_run.factorize_ahead && p > 0 && last_scale == 1.0 && !warm &&
+        region_.n_free >= kPrefactorizeMin && merit() <= newton_run.ahead_merit) {
       const bool async = loop_threads() > 1;
       newton_.prefactorize(X, N_, H_, dirichlet_.weights(), async);
       prefactorized = true;
@@ -332,7 +333,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   LoopThreadsRestore threads(overlap_threads_);  // after the local step, or on leaving
   const bool relaxed =
       !tangential_ || newton_run.skip_relaxation ||
-      relax_before_steps(X, newton_run.warm, newton_run.factorize_ahead);
+      relax_before_steps(X, newton_run);
   report.relax_seconds = laps.lap();
   double residual = evaluate(X);
   if (!relaxed) {

@@ -10,6 +10,7 @@
 #include "geofair/types.h"
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace geofair {
@@ -48,9 +49,12 @@ struct NewtonRun {
   /// no tangential relaxation before the steps, only the polish at convergence.
   bool skip_relaxation = false;
   /// The first step's preconditioner factorized on a second thread during the last
-  /// relaxation (relax_before_steps). fair() sets it on the finest level only: a coarse
-  /// level took more steps from it (docs/NEWTON.md).
+  /// relaxation (relax_before_steps), where the merit there is at most ahead_merit. fair()
+  /// sets it on every level, with ahead_merit infinite on the finest and
+  /// NewtonTuning::prefactorize_merit on the coarse ones: a coarse level far from its
+  /// solution took more steps from it (docs/NEWTON.md).
   bool factorize_ahead = false;
+  double ahead_merit = std::numeric_limits<double>::infinity();
   /// Asked before each step: true ends the run (cancelled; LiveFairing's frame time limit).
   std::function<bool()> stop;
 };
@@ -189,7 +193,7 @@ class Construction {
   // of X); one polish at a converged shape (returns the largest move in mean distances to
   // the neighbours); the continuation's M_i = Σ_j |w_ij| / h_i² (#V_I, 1/length²); and
   // J v by a forward difference of the defects d0 at X, everything recomputed at X + ε v N.
-  bool relax_before_steps(Positions& X, bool warm, bool factorize_ahead);
+  bool relax_before_steps(Positions& X, const NewtonRun& newton_run);
   // The largest move of a free vertex from `before` to X, in mean distances to its
   // neighbours at `before`.
   double longest_move(const Positions& before, const Positions& X) const;

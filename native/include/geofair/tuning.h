@@ -37,6 +37,11 @@ struct NewtonTuning {
   /// would only delay the next attempt (docs/NEWTON.md, "NewtonTuning::far_merit").
   int far_steps = 5;
   double far_merit = 1.0;
+  /// A coarse level factorizes its first step's preconditioner beside its last relaxation
+  /// (as the finest level always does) where its merit there is at most this: from farther
+  /// the first steps need the preconditioner of their own positions (docs/NEWTON.md, "The
+  /// first factorization beside the last relaxation"). Dimensionless; 0: never.
+  double prefactorize_merit = 1.0;
   /// Largest move of a vertex in one step, in mean distances to its neighbours ...
   double max_step = 4.0;
   /// ... in the fairs of fill_holes, which start from a hole's linear fill, farther from
@@ -252,6 +257,7 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.coarse_merit", t.newton.coarse_merit, 0, inf, false, false);
   f("newton.far_steps", t.newton.far_steps, 1, inf, false, false);
   f("newton.far_merit", t.newton.far_merit, 0, inf, true, false);
+  f("newton.prefactorize_merit", t.newton.prefactorize_merit, 0, inf, false, false);
   f("newton.max_step", t.newton.max_step, 0, inf, true, false);
   f("newton.fill_max_step", t.newton.fill_max_step, 0, inf, true, false);
   f("newton.relaxations", t.newton.relaxations, 1, inf, false, false);
