@@ -98,7 +98,10 @@ def test_tuning_errors_name_the_field():
         ({"newton.patience": 0}, "tuning.newton.patience must be in [1, inf), got 0"),
         ({"tangential.max_stretch": 1.0}, "tuning.tangential.max_stretch must be in (0, 1), got 1"),
         # A range bounded by another field: the tightest GMRES tolerance by the ordinary one.
-        ({"newton.krylov_tolerance_min": 2e-3}, "krylov_tolerance_min must be in (0, 0.001], got 0.002"),
+        (
+            {"newton.krylov_tolerance_min": 2e-3},
+            "krylov_tolerance_min must be in (0, 0.001] (bounded by newton.krylov_tolerance), got 0.002",
+        ),
         ([("newton.patience", 3)], "tuning must be a dict or None, got list"),
     ]
     for tuning, message in cases:
@@ -107,3 +110,5 @@ def test_tuning_errors_name_the_field():
         assert message in str(error.value)
     raised = {"newton.krylov_tolerance": 1e-2, "newton.krylov_tolerance_min": 2e-3}
     assert geofair.fair(*args, boundary_normals=scene.normals, tuning=raised).converged
+    equal = {"newton.krylov_tolerance_min": 1e-3}  # the closed upper end: the rule off
+    assert geofair.fair(*args, boundary_normals=scene.normals, tuning=equal).converged

@@ -46,7 +46,8 @@ def _venv_for(wheel):
     digest = hashlib.sha256(wheel.read_bytes()).hexdigest()[:16]
     folder = VENVS / f"{wheel.stem}-{digest}"
     python = folder / "bin" / "python"
-    if not python.exists():
+    installed = folder / "geofair-installed"  # written last: an interrupted install is redone
+    if not installed.exists():
         subprocess.run([sys.executable, "-m", "venv", str(folder)], check=True)
         # This environment's packages after the venv's own (also where this is a venv, which
         # --system-site-packages would skip for its base Python's).
@@ -61,6 +62,7 @@ def _venv_for(wheel):
         subprocess.run(
             [python, "-m", "pip", "install", "-q", "--disable-pip-version-check", str(wheel)], check=True, env=env
         )
+        installed.write_text(str(wheel) + "\n")
     return python
 
 

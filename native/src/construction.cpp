@@ -190,7 +190,8 @@ bool Construction::relax_before_steps(Positions& X, const NewtonRun& newton_run)
     // relaxed positions: it is factorized on a second thread while this one finishes the
     // relaxations and the local step on one core (run_newton restores the threads).
     if (newton_run.factorize_ahead && p > 0 && last_scale == 1.0 && !warm &&
-        region_.n_free >= kPrefactorizeMin && merit() <= newton_run.ahead_merit) {
+        region_.n_free >= kPrefactorizeMin &&
+        (std::isinf(newton_run.ahead_merit) || merit() < newton_run.ahead_merit)) {
       const bool async = loop_threads() > 1;
       newton_.prefactorize(X, N_, H_, dirichlet_.weights(), async);
       prefactorized = true;

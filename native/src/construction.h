@@ -49,8 +49,8 @@ struct NewtonRun {
   /// no tangential relaxation before the steps, only the polish at convergence.
   bool skip_relaxation = false;
   /// The first step's preconditioner factorized on a second thread during the last
-  /// relaxation (relax_before_steps), where the merit there is at most ahead_merit. fair()
-  /// sets it on every level, with ahead_merit infinite on the finest and
+  /// relaxation (relax_before_steps), where the merit there is below ahead_merit. fair()
+  /// sets it on every level above the base, with ahead_merit infinite on the finest and
   /// NewtonTuning::prefactorize_merit on the coarse ones: a coarse level far from its
   /// solution took more steps from it (docs/NEWTON.md).
   bool factorize_ahead = false;

@@ -18,6 +18,7 @@ void validate_tuning(const SolverTuning& tuning) {
     s << "fair: tuning." << name << " must be in " << (lo_open ? "(" : "[") << lo << ", ";
     if (hi >= kUnbounded) s << "inf)";
     else s << hi << (hi_open ? ")" : "]");
+    if (const char* bound = tuning_range_bound(name)) s << " (bounded by " << bound << ")";
     s << ", got " << value;
     throw InvalidInputError(s.str());
   });

@@ -6,6 +6,8 @@
 // (validate_tuning; the fields' names and ranges: for_each_tuning_field).
 #pragma once
 
+#include <string_view>
+
 namespace geofair {
 
 /// The paper's iteration (section 7; Construction::run).
@@ -38,8 +40,8 @@ struct NewtonTuning {
   int far_steps = 5;
   double far_merit = 1.0;
   /// A coarse level factorizes its first step's preconditioner beside its last relaxation
-  /// (as the finest level always does) where its merit there is at most this: from farther
-  /// the first steps need the preconditioner of their own positions (docs/NEWTON.md, "The
+  /// (as the finest level does) where its merit there is below this: from farther the
+  /// first steps need the preconditioner of their own positions (docs/NEWTON.md, "The
   /// first factorization beside the last relaxation"). Dimensionless; 0: never.
   double prefactorize_merit = 1.0;
   /// Largest move of a vertex in one step, in mean distances to its neighbours ...
@@ -315,6 +317,14 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("schedule.coarse_newton_steps", t.schedule.coarse_newton_steps, 1, inf, false, false);
   f("schedule.coarse_tolerance", t.schedule.coarse_tolerance, 1, inf, false, false);
   f("schedule.coarse_iterations", t.schedule.coarse_iterations, 1, inf, false, false);
+}
+
+/// The field whose value bounds `name`'s range in for_each_tuning_field (shift_max's
+/// lower bound, krylov_tolerance_min's upper one), or nullptr: validate_tuning names it.
+inline const char* tuning_range_bound(std::string_view name) {
+  if (name == "newton.shift_max") return "newton.shift_start";
+  if (name == "newton.krylov_tolerance_min") return "newton.krylov_tolerance";
+  return nullptr;
 }
 
 /// Checks every field of `tuning` against its range (for_each_tuning_field).
