@@ -392,7 +392,7 @@ void set_tuning(const py::object& tuning, SolverTuning& t) {
     const py::handle value = item.second;  // (a lambda may not capture a structured binding in C++17)
     bool found = false;
     for_each_tuning_field(t, [&](const char* field_name, auto& field, double, double, bool,
-                                 bool) {
+                                 bool, const char*) {
       if (found || name != field_name) return;
       found = true;
       using Field = std::decay_t<decltype(field)>;
@@ -439,7 +439,7 @@ py::dict defaults_py() {
   d["time_limit"] = py::none();
   py::dict tuning;
   for_each_tuning_field(o.tuning, [&](const char* key, const auto& value, double, double, bool,
-                                      bool) { tuning[key] = value; });
+                                      bool, const char*) { tuning[key] = value; });
   d["tuning"] = tuning;
   return d;
 }

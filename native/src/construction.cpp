@@ -16,7 +16,7 @@ namespace geofair {
 namespace {
 
 // Levels with at least this many free vertices factorize the first Newton step's
-// preconditioner during their last relaxation (NewtonRun::factorize_ahead; docs/NEWTON.md,
+// preconditioner during their last relaxation (NewtonRun::factorize_ahead_merit; docs/NEWTON.md,
 // "The first factorization beside the last relaxation"). Below, the factorization costs
 // little, and small fills keep their steps.
 constexpr int kPrefactorizeMin = 500;
@@ -189,9 +189,9 @@ bool Construction::relax_before_steps(Positions& X, const NewtonRun& newton_run)
     // Newton preconditioner factorized here needs no more GMRES iterations than one at the
     // relaxed positions: it is factorized on a second thread while this one finishes the
     // relaxations and the local step on one core (run_newton restores the threads).
-    if (newton_run.factorize_ahead && p > 0 && last_scale == 1.0 && !warm &&
-        region_.n_free >= kPrefactorizeMin &&
-        (std::isinf(newton_run.ahead_merit) || merit() < newton_run.ahead_merit)) {
+    const double ahead_merit = newton_run.factorize_ahead_merit;
+    if (ahead_merit > 0.0 && p > 0 && last_scale == 1.0 && !warm &&
+        region_.n_free >= kPrefactorizeMin && merit() < ahead_merit) {
       const bool async = loop_threads() > 1;
       newton_.prefactorize(X, N_, H_, dirichlet_.weights(), async);
       prefactorized = true;

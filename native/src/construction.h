@@ -10,7 +10,6 @@
 #include "geofair/types.h"
 
 #include <functional>
-#include <limits>
 #include <vector>
 
 namespace geofair {
@@ -49,12 +48,11 @@ struct NewtonRun {
   /// no tangential relaxation before the steps, only the polish at convergence.
   bool skip_relaxation = false;
   /// The first step's preconditioner factorized on a second thread during the last
-  /// relaxation (relax_before_steps), where the merit there is below ahead_merit. fair()
-  /// sets it on every level above the base, with ahead_merit infinite on the finest and
-  /// NewtonTuning::prefactorize_merit on the coarse ones: a coarse level far from its
+  /// relaxation (relax_before_steps) where the merit there is below this (0: never). fair()
+  /// sets it on every level above the base: infinite on the finest,
+  /// NewtonTuning::prefactorize_merit on the coarse ones, since a coarse level far from its
   /// solution took more steps from it (docs/NEWTON.md).
-  bool factorize_ahead = false;
-  double ahead_merit = std::numeric_limits<double>::infinity();
+  double factorize_ahead_merit = 0.0;
   /// Asked before each step: true ends the run (cancelled; LiveFairing's frame time limit).
   std::function<bool()> stop;
 };

@@ -359,8 +359,8 @@ class NewtonLevels final : public LevelIteration {
       newton_run.iteration_offset = newton_;
       newton_run.patience = finest ? tuning.newton.patience : tuning.newton.coarse_patience;
       newton_run.polish_at_convergence = finest;
-      newton_run.factorize_ahead = true;
-      if (!finest) newton_run.ahead_merit = tuning.newton.prefactorize_merit;
+      newton_run.factorize_ahead_merit = finest ? std::numeric_limits<double>::infinity()
+                                                : tuning.newton.prefactorize_merit;
       newton_run.prolongated = l > 0;
       newton_run.from_initial_mesh = l == 0;
       if (!finest) newton_run.crawl_merit = tuning.newton.coarse_merit;

@@ -10,7 +10,7 @@ namespace geofair {
 
 void validate_tuning(const SolverTuning& tuning) {
   for_each_tuning_field(tuning, [](const char* name, double value, double lo, double hi,
-                                   bool lo_open, bool hi_open) {
+                                   bool lo_open, bool hi_open, const char* bound) {
     const bool ok = std::isfinite(value) && (lo_open ? value > lo : value >= lo) &&
                     (hi_open ? value < hi : value <= hi);
     if (ok) return;
@@ -18,7 +18,7 @@ void validate_tuning(const SolverTuning& tuning) {
     s << "fair: tuning." << name << " must be in " << (lo_open ? "(" : "[") << lo << ", ";
     if (hi >= kUnbounded) s << "inf)";
     else s << hi << (hi_open ? ")" : "]");
-    if (const char* bound = tuning_range_bound(name)) s << " (bounded by " << bound << ")";
+    if (bound) s << " (bounded by " << bound << ")";
     s << ", got " << value;
     throw InvalidInputError(s.str());
   });

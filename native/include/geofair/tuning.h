@@ -6,8 +6,6 @@
 // (validate_tuning; the fields' names and ranges: for_each_tuning_field).
 #pragma once
 
-#include <string_view>
-
 namespace geofair {
 
 /// The paper's iteration (section 7; Construction::run).
@@ -245,13 +243,18 @@ struct SolverTuning {
 };
 
 /// Calls f(name, field, lo, hi, lo_open, hi_open) for every field of `t` (a SolverTuning,
-/// const or not): its dotted name ("newton.patience"), a reference to it, and its valid
-/// range [lo, hi], open at an end where lo_open / hi_open (hi = kUnbounded: none). The one
-/// table of the fields' names and ranges: validate_tuning and the Python bindings read it.
+/// const or not): its dotted name ("newton.patience"), a reference to it, its valid range
+/// [lo, hi], open at an end where lo_open / hi_open (hi = kUnbounded: none), and the name of
+/// the field whose value lo or hi is (bound; nullptr for a constant range). The one table of
+/// the fields' names and ranges: validate_tuning and the Python bindings read it.
 constexpr double kUnbounded = 1e300;
-template <class Tuning, class F>
-void for_each_tuning_field(Tuning& t, F&& f) {
+template <class Tuning, class Visit>
+void for_each_tuning_field(Tuning& t, Visit&& visit) {
   constexpr double inf = kUnbounded;
+  const auto f = [&visit](const char* name, auto& field, double lo, double hi, bool lo_open,
+                          bool hi_open, const char* bound = nullptr) {
+    visit(name, field, lo, hi, lo_open, hi_open, bound);
+  };
   f("paper.coupling_refresh", t.paper.coupling_refresh, 1, inf, false, false);
   f("paper.tangential_iterations", t.paper.tangential_iterations, 1, inf, false, false);
   f("newton.patience", t.newton.patience, 1, inf, false, false);
@@ -271,13 +274,14 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("newton.merit_growth", t.newton.merit_growth, 1, inf, false, false);
   f("newton.shift_start", t.newton.shift_start, 0, inf, true, false);
   f("newton.shift_increase", t.newton.shift_increase, 1, inf, true, false);
-  f("newton.shift_max", t.newton.shift_max, t.newton.shift_start, inf, false, false);
+  f("newton.shift_max", t.newton.shift_max, t.newton.shift_start, inf, false, false,
+    "newton.shift_start");
   f("newton.shift_negligible", t.newton.shift_negligible, 0, 1, false, true);
   f("newton.krylov_iterations", t.newton.krylov_iterations, 1, inf, false, false);
   f("newton.krylov_tolerance", t.newton.krylov_tolerance, 0, 1, true, true);
   f("newton.krylov_reach", t.newton.krylov_reach, 0, inf, false, false);
   f("newton.krylov_tolerance_min", t.newton.krylov_tolerance_min, 0, t.newton.krylov_tolerance,
-    true, false);
+    true, false, "newton.krylov_tolerance");
   f("newton.refactorization_products", t.newton.refactorization_products, 0, inf, false, false);
   f("newton.shift_refactorization", t.newton.shift_refactorization, 1, inf, true, false);
   f("tangential.max_stretch", t.tangential.max_stretch, 0, 1, true, true);
@@ -317,14 +321,6 @@ void for_each_tuning_field(Tuning& t, F&& f) {
   f("schedule.coarse_newton_steps", t.schedule.coarse_newton_steps, 1, inf, false, false);
   f("schedule.coarse_tolerance", t.schedule.coarse_tolerance, 1, inf, false, false);
   f("schedule.coarse_iterations", t.schedule.coarse_iterations, 1, inf, false, false);
-}
-
-/// The field whose value bounds `name`'s range in for_each_tuning_field (shift_max's
-/// lower bound, krylov_tolerance_min's upper one), or nullptr: validate_tuning names it.
-inline const char* tuning_range_bound(std::string_view name) {
-  if (name == "newton.shift_max") return "newton.shift_start";
-  if (name == "newton.krylov_tolerance_min") return "newton.krylov_tolerance";
-  return nullptr;
 }
 
 /// Checks every field of `tuning` against its range (for_each_tuning_field).
