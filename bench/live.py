@@ -55,6 +55,7 @@ times are wall times): rerun when a figure matters.
 """
 
 import argparse
+import json
 import os
 import time
 
@@ -148,7 +149,10 @@ def newton_steps(result):
 def run(n, kind, args):
     v, f, free, handle, normals = handle_scene(n, kind, args.handle)
     t = time.perf_counter()
-    live = geofair.LiveFairing(v, f, free, boundary_normals=normals, inner_fairness=args.inner, remesh=args.remesh)
+    tuning = {"tuning": json.loads(args.tuning)} if args.tuning else {}
+    live = geofair.LiveFairing(
+        v, f, free, boundary_normals=normals, inner_fairness=args.inner, remesh=args.remesh, **tuning
+    )
     prepare = time.perf_counter() - t
     limit = args.time_limit
     if limit == "addon":  # the add-on's bound (addon/geometric_fairing/live.py)
@@ -205,7 +209,7 @@ def run(n, kind, args):
     for i in picks:
         _, w, n_w = frames[i]
         t = time.perf_counter()
-        c = geofair.fair(w, f, free, boundary_normals=n_w, inner_fairness=args.inner)
+        c = geofair.fair(w, f, free, boundary_normals=n_w, inner_fairness=args.inner, **tuning)
         cold_times.append(time.perf_counter() - t)
         cold_bad += not c.converged or c.new_folds > 0
         # A remeshed frame's mesh is not the cold fair's (no row-wise comparison).
@@ -246,6 +250,7 @@ def main():
         "--cold-every", type=int, default=5, help="a cold fair of every K-th frame's input and the last (0: the last)"
     )
     parser.add_argument("--frames", action="store_true", help="a row per frame")
+    parser.add_argument("--tuning", default=None, help="LiveFairing's tuning, JSON (geofair.defaults()['tuning'])")
     parser.add_argument(
         "--time-limit",
         default=None,

@@ -355,11 +355,13 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   c.reach = !newton_run.warm;
   c.merit = merit();
   double last_merit = c.merit;  // at the previous step
+  const double polish_at = newton_run.warm ? newton.warm_polish_residual * tolerance : tolerance;
   c.mass.resize(region_.n_free);
   for (int k = 0;; ++k) {
     check_divergence(residual, first_residual, newton_run.iteration_offset + k);
-    while (residual <= tolerance && tangential_ && newton_run.polish_at_convergence && !polished) {
-      // Inner fairness at the converged shape; go on if it moved the residual up.
+    while (residual <= polish_at && tangential_ && newton_run.polish_at_convergence && !polished) {
+      // Inner fairness at the converged shape (a warm run's near it); go on if it moved the
+      // residual up.
       report.step_seconds += laps.lap();
       const double move = polish(X);
       // Another polish (after the steps it needs) while the next would still move a vertex

@@ -66,6 +66,11 @@ struct NewtonTuning {
   /// converge quadratically; 1 leaves a margin over the measured contraction, and with
   /// polished_move = 1e-3 polishing stops after a move δ ≤ 0.032).
   double polish_contraction = 1.0;
+  /// A LiveFairing frame's warm run polishes once its residual is below this multiple of the
+  /// tolerance (a cold run at the tolerance): the polish moves the residual, and the step
+  /// that still follows takes that up instead of a step after it (dimensionless, at least 1;
+  /// 1 polishes at convergence).
+  double warm_polish_residual = 300.0;
   /// Forward-difference step of the Jacobian products: the largest vertex move as a
   /// fraction of L (the region's diagonal).
   double product_step = 1e-7;
@@ -270,6 +275,7 @@ void for_each_tuning_field(Tuning& t, Visit&& visit) {
   f("newton.polishes", t.newton.polishes, 0, inf, false, false);
   f("newton.polished_move", t.newton.polished_move, 0, inf, true, false);
   f("newton.polish_contraction", t.newton.polish_contraction, 0, inf, false, false);
+  f("newton.warm_polish_residual", t.newton.warm_polish_residual, 1, inf, false, false);
   f("newton.product_step", t.newton.product_step, 0, 0.01, true, false);
   f("newton.merit_growth", t.newton.merit_growth, 1, inf, false, false);
   f("newton.shift_start", t.newton.shift_start, 0, inf, true, false);
