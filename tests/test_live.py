@@ -96,6 +96,9 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
         r = live.update(w)
         check_frame(r, w, free)
         assert r.converged and r.folds == 0, r.message
+        # A steady rotation repeats in the span of the last two frames' moves: from the third
+        # frame on the secant start is that close (two steps each from the last frame's alone).
+        assert k < 3 or r.newton_iterations <= 1, (k, r.message)
         radial = np.abs(np.linalg.norm(r.vertices[free], axis=1) - 1.0).max()
         assert radial < 1e-4, (k, radial)
     assert live.cold_frames == 0

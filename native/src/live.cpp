@@ -63,12 +63,33 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
   const int nb = region.n - region.n_free;
   Positions Y = X;
   Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
-  const double last = secant && last_step.rows() > 0 ? last_step.bottomRows(nb).squaredNorm() : 0.0;
-  if (last > 0.0) {
-    const double alpha = std::clamp(moves.cwiseProduct(last_step.bottomRows(nb)).sum() / last,
-                                    -kSecantLimit, kSecantLimit);
-    moves -= alpha * last_step.bottomRows(nb);
-    Y.topRows(region.n_free) += alpha * last_step.topRows(region.n_free);
+  if (secant && drag_steps.last.rows() > 0) {
+    // The fixed vertices' moves fitted by the last two frames' moves (least squares), the
+    // free vertices moved by the same combination of those frames' responses: a drag that
+    // turns at a steady rate repeats in that span (m_k = 2 cos θ m_{k−1} − m_{k−2} for a
+    // rotation by θ a frame). One frame's alone where the two are parallel (a translation)
+    // or the fit leaves the secant limit.
+    const Positions& s1 = drag_steps.last;
+    const Positions& s2 = drag_steps.before;
+    const auto a = s1.bottomRows(nb);
+    const double aa = a.squaredNorm(), am = a.cwiseProduct(moves).sum();
+    double c1 = 0.0, c2 = 0.0;
+    if (s2.rows() == s1.rows()) {
+      const auto b = s2.bottomRows(nb);
+      const double ab = a.cwiseProduct(b).sum(), bb = b.squaredNorm();
+      const double bm = b.cwiseProduct(moves).sum(), det = aa * bb - ab * ab;
+      if (det > 1e-8 * aa * bb) {
+        c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
+        if (std::abs(c1) > kTwoStepSecantLimit || std::abs(c2) > kTwoStepSecantLimit) c1 = c2 = 0.0;
+      }
+    }
+    if (c1 == 0.0 && c2 == 0.0 && aa > 0.0) c1 = std::clamp(am / aa, -kSecantLimit, kSecantLimit);
+    moves -= c1 * a;
+    Y.topRows(region.n_free) += c1 * s1.topRows(region.n_free);
+    if (c2 != 0.0) {
+      moves -= c2 * s2.bottomRows(nb);
+      Y.topRows(region.n_free) += c2 * s2.topRows(region.n_free);
+    }
   }
   predictor->predict(moves, Y);
   Y.bottomRows(nb) = X0.bottomRows(nb);
@@ -108,7 +129,7 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
   // The secant start first; where Newton does not converge from it or fails (a drag whose
   // response changes, as triangles squeeze), the harmonic one.
   const bool secant_first =
-      last_step.rows() > 0 && last_step.bottomRows(region.n - region.n_free).any();
+      drag_steps.last.rows() > 0 && drag_steps.last.bottomRows(region.n - region.n_free).any();
   for (const bool secant : {true, false}) {
     if (secant && !secant_first) continue;
     if (!secant && out_of_time()) break;  // the secant start spent the frame's time
@@ -413,7 +434,7 @@ FairingResult LiveFairing::update(const Positions& V_in, const Positions* normal
 void LiveState::take_warm(FairingResult& result, Phases& phases) {
   result.message += frame_note;
   result.phase_seconds = std::move(phases);
-  last_step = pending - X;
+  drag_steps.push(pending - X);
   X = std::move(pending);
   last = result;
   ++frames;

@@ -53,7 +53,7 @@ void LiveState::swap_mesh(LiveMesh& other) noexcept {
   std::swap(unreferenced, other.unreferenced);
   std::swap(X, other.X);
   std::swap(pending, other.pending);  // a folded warm frame of the old mesh is taken from it
-  std::swap(last_step, other.last_step);
+  std::swap(drag_steps, other.drag_steps);
   std::swap(trigger.mesh_angle, other.mesh_angle);
 }
 
@@ -151,7 +151,7 @@ void LiveState::take_warm_remesh(FairingResult& result, Phases& phases) {
   take_warm(result, phases);
   V0 = result.vertices / scale;
   trigger.mesh_angle = smallest_angle(X, region.triangles);
-  last_step.resize(0, 3);  // a remesh is no drag response
+  drag_steps.clear();  // a remesh is no drag response
   ++remeshes;
 }
 

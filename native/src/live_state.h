@@ -39,8 +39,19 @@ inline double diagonal(const Positions& X) {
 // Frames between remesh attempts for folds that a remesh left (RemeshTrigger).
 constexpr int kRemeshRetry = 3;
 
-// The secant predictor's largest multiple of the last frame's response (warm_frame).
+// The secant predictor's largest multiple of the last frame's response (warm_start) ...
 constexpr double kSecantLimit = 2.0;
+// ... and of either of the last two frames' responses in their combination (a steady
+// rotation takes about 2 and -1).
+constexpr double kTwoStepSecantLimit = 4.0;
+
+// The last two warm frames' changes of the region's positions (#region×3 each; empty after a
+// cold frame or a remesh): the secant predictor's (LiveState::warm_start).
+struct DragSteps {
+  Positions last, before;
+  void push(Positions step) { before = std::move(last), last = std::move(step); }
+  void clear() { last.resize(0, 3), before.resize(0, 3); }
+};
 
 // With remesh IfNeeded, a converged frame whose smallest triangle angle falls below this
 // fraction of the live mesh's own remeshes at the next frame: a handle dragged towards the
@@ -131,8 +142,7 @@ struct LiveState {
                             // with details its base
   bool warm = false;        // X is a converged solution to start from
   Positions pending;         // a warm frame's solution until update() takes it (X's update)
-  Positions last_step;      // the last warm frame's change of X (#region×3; empty after a cold
-                            // frame), the secant predictor's
+  live_detail::DragSteps drag_steps;  // the last warm frames' changes of X, the secant predictor's
   FairingResult last;
   int frames = 0, cold_frames = 0, remeshes = 0;
   // The end of the frame being solved (update()'s time_limit), if it has one.
@@ -179,7 +189,8 @@ struct LiveState {
     std::unique_ptr<Construction> construction;  // after finest: it refers to it
     std::unique_ptr<DisplacementPredictor> predictor;
     std::vector<int> used_fixed, unreferenced;
-    Positions X, pending, last_step;
+    Positions X, pending;
+    live_detail::DragSteps drag_steps;
     double mesh_angle = 0.0;
   };
   // Exchanges the live mesh with `other` (a warm remesh keeps the old one to go back to).
@@ -273,7 +284,7 @@ struct LiveState {
     if (options.remesh == Remesh::IfNeeded)
       trigger.mesh_angle = live_detail::smallest_angle(X, region.triangles);
     warm = true;
-    last_step.resize(0, 3);
+    drag_steps.clear();
     if (details) result.vertices = caller_positions(result.vertices, X);
     last = result;
   }
