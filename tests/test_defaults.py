@@ -67,7 +67,7 @@ def test_docstring_figures_are_filled_in():
 
 def test_tuning_defaults_name_every_field_once():
     tuning = geofair.defaults()["tuning"]
-    assert len(tuning) == 62
+    assert len(tuning) == 63
     assert tuning["newton.patience"] == 20 and isinstance(tuning["newton.patience"], int)
     assert not any(name.startswith("time_limit_") for name in geofair.defaults())  # only in the tuning
     assert {name.split(".")[0] for name in tuning} == {

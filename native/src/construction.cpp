@@ -233,14 +233,15 @@ double Construction::local_step(Positions& X, double residual) {
   return evaluate(X);
 }
 
-double Construction::polish(Positions& X) {
+double Construction::polish(Positions& X, bool warm) {
   // The tangential solve moves the vertices in their tangent planes; each is lifted back by
   // the surface's drop −H/2·|d|² over the tangential move d (as in prolongate). N_ and H_
   // are those of X. The solve is preconditioned by the factorization of the relaxation
-  // before the steps (lagged).
+  // before the steps (lagged); a warm run's solves to its own tolerance.
   const OneRings& rings = region_.rings;
   const Positions before = X;
-  tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning);
+  tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning,
+                           warm ? options_.tuning.tangential.warm_lagged_tolerance : 0.0);
   double move = 0.0;  // the largest move, in mean distances to the neighbours
   for (int i = 0; i < region_.n_free; ++i) {
     const Vec3 d = (X.row(i) - before.row(i)).transpose();
@@ -363,7 +364,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
       // Inner fairness at the converged shape (a warm run's near it); go on if it moved the
       // residual up.
       report.step_seconds += laps.lap();
-      const double move = polish(X);
+      const double move = polish(X, newton_run.warm);
       // Another polish (after the steps it needs) while the next would still move a vertex
       // by more than polished_move: the solves converge quadratically, so the next moves
       // about polish_contraction · move².

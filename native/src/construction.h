@@ -196,7 +196,7 @@ class Construction {
   // neighbours at `before`.
   double longest_move(const Positions& before, const Positions& X) const;
   double local_step(Positions& X, double residual);
-  double polish(Positions& X);
+  double polish(Positions& X, bool warm);
   void shift_mass(const Positions& X, Eigen::VectorXd& mass) const;
   void jacobian_product(const Positions& X, const Eigen::VectorXd& d0, const Eigen::VectorXd& v,
                         Eigen::VectorXd& out);

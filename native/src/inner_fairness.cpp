@@ -295,14 +295,16 @@ void TangentialSolver::step(const InnerFairnessWeights& lambda, const Positions&
 }
 
 double TangentialSolver::relax(const InnerFairnessWeights& lambda, const Positions& N,
-                               Positions& X, bool lagged, TangentPlanes planes) {
+                               Positions& X, bool lagged, TangentPlanes planes,
+                               double lagged_tolerance) {
   const int nf = n_free_;
   const Eigen::VectorXd rhs = assemble(lambda, N, X, planes);
   Eigen::VectorXd u;
   if (!coarse_.vertex.empty() && !solve_two_grid(rhs, lagged, u)) u.resize(0);
   if (u.size() == 0 && lagged && direct_.factorized()) {
     lagged_.preconditioner().lu = &direct_;
-    set_up_gmres(lagged_, A_, tuning_.lagged_iterations, tuning_.lagged_tolerance);
+    set_up_gmres(lagged_, A_, tuning_.lagged_iterations,
+                 lagged_tolerance > 0.0 ? lagged_tolerance : tuning_.lagged_tolerance);
     u = lagged_.solve(rhs);
     if (lagged_.info() != Eigen::Success) u.resize(0);
   }

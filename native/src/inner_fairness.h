@@ -162,8 +162,11 @@ class TangentialSolver {
   /// converges quadratically.
   /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
   ///         length (X unchanged)
+  /// `lagged_tolerance`: GMRES's relative residual on the lagged factorization, if not
+  /// tuning.lagged_tolerance (0).
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
-               bool lagged = false, TangentPlanes planes = TangentPlanes::Fixed);
+               bool lagged = false, TangentPlanes planes = TangentPlanes::Fixed,
+               double lagged_tolerance = 0.0);
 
   /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
   /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a

@@ -123,6 +123,11 @@ struct TangentialTuning {
   double lagged_tolerance = 1e-8;
   /// ... and its iteration limit there; beyond it the system is factorized anew.
   int lagged_iterations = 20;
+  /// The relative residual of a LiveFairing frame's polish instead of lagged_tolerance: its
+  /// move is about 1e-2 mean neighbour distances, so that 1e-4 of it lies far below
+  /// NewtonTuning::polished_move, while the frames' turning tangent planes make each decade
+  /// below cost another iteration on the aging factorization.
+  double warm_lagged_tolerance = 1e-4;
   /// Gauss–Seidel sweeps before and after the coarse-grid correction of the two-grid
   /// preconditioner ...
   int two_grid_sweeps = 2;
@@ -294,6 +299,7 @@ void for_each_tuning_field(Tuning& t, Visit&& visit) {
   f("tangential.max_turn", t.tangential.max_turn, 0, inf, true, false);
   f("tangential.lagged_tolerance", t.tangential.lagged_tolerance, 0, 1, true, true);
   f("tangential.lagged_iterations", t.tangential.lagged_iterations, 1, inf, false, false);
+  f("tangential.warm_lagged_tolerance", t.tangential.warm_lagged_tolerance, 0, 1, true, true);
   f("tangential.two_grid_sweeps", t.tangential.two_grid_sweeps, 1, inf, false, false);
   f("tangential.two_grid_blocks", t.tangential.two_grid_blocks, 1, inf, false, false);
   f("tangential.two_grid_iterations", t.tangential.two_grid_iterations, 1, inf, false, false);
