@@ -174,7 +174,7 @@ bool Construction::relax_before_steps(Positions& X, const NewtonRun& newton_run)
   // Long moves are put back onto the surface of X and its normals as the relaxations
   // found them (the projection is set up the first time it is needed). A warm start is near
   // inner fairness: turning planes and the last factorization from the first solve on, and
-  // one solve unless the stretch limit cut it short (the polish at convergence follows).
+  // one solve unless the stretch limit cut it short (the polish near convergence follows).
   const NewtonTuning& newton = options_.tuning.newton;
   const bool warm = newton_run.warm;
   Positions surface, surface_normals;
@@ -365,7 +365,7 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
       // residual up.
       report.step_seconds += laps.lap();
       const double move = polish(X, newton_run.warm);
-      // Another polish (after the steps it needs) while the next would still move a vertex
+      // Another polish (after the steps it needs, if any) while the next would still move a vertex
       // by more than polished_move: the solves converge quadratically, so the next moves
       // about polish_contraction · move².
       polished = newton.polish_contraction * move * move <= newton.polished_move ||

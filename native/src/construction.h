@@ -42,10 +42,11 @@ struct NewtonRun {
   /// X the solution of nearby boundary data, with the new data's fixed rows (LiveFairing's
   /// warm start): the tangential relaxations before the steps turn their planes from the
   /// first one on, are preconditioned by the factorization of the last call's, and stop after
-  /// the first that the stretch limit did not cut short.
+  /// the first that the stretch limit did not cut short; the polish comes near convergence
+  /// (NewtonTuning::warm_polish_residual) and solves to TangentialTuning::warm_lagged_tolerance.
   bool warm = false;
   /// X already near inner fairness (a warm start that repeats the last frame's response):
-  /// no tangential relaxation before the steps, only the polish at convergence.
+  /// no tangential relaxation before the steps, only the polish.
   bool skip_relaxation = false;
   /// The first step's preconditioner factorized on a second thread during the last
   /// relaxation (relax_before_steps) where the merit there is below this (0: never). fair()
@@ -98,12 +99,13 @@ class Construction {
   /// (switched evolution relaxation), so σ vanishes as the merit falls and the steps
   /// become Newton's again. Above shift_max the run stops as stalled. The tangential
   /// (inner-fairness) relaxation is not interleaved with the steps: if
-  /// `newton_run.polish_at_convergence` is set, where the residual reaches the tolerance one
+  /// `newton_run.polish_at_convergence` is set, where the residual reaches the tolerance (a
+  /// warm run's: warm_polish_residual times it, so that the last step takes up its change) one
   /// tangential solve with turning tangent planes restores inner fairness (direct, or on the two-grid
   /// preconditioner of set_coarse_space), each vertex lifted back by −H/2·|d|² along its
   /// normal over its tangential move d; that changes the discretization of H, so the
   /// residual may rise and the steps go on. The polish repeats (at once if the residual is
-  /// still within the tolerance, else at the next convergence) while the next one would
+  /// still within that bound, else when it is again) while the next one would
   /// move a vertex by more than polished_move mean distances to its neighbours (predicted
   /// from the last one's move by the quadratic convergence, polish_contraction), at most
   /// `polishes` times (all of options.tuning.newton).

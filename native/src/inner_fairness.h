@@ -160,10 +160,10 @@ class TangentialSolver {
   /// is taken if there is none or GMRES does not converge in tuning.lagged_iterations.
   /// `planes`: the linearization (TangentPlanes): Turning near inner fairness, where it
   /// converges quadratically.
-  /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
-  ///         length (X unchanged)
   /// `lagged_tolerance`: GMRES's relative residual on the lagged factorization, if not
   /// tuning.lagged_tolerance (0).
+  /// \return the scale applied, in (0, 1]; 0 if the system was singular or an edge has zero
+  ///         length (X unchanged)
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
                bool lagged = false, TangentPlanes planes = TangentPlanes::Fixed,
                double lagged_tolerance = 0.0);

@@ -138,7 +138,7 @@ std::optional<IterationReport> LiveState::warm_newton(const Positions& X0, Posit
       starts.secant_steps = report ? report->iterations : 0;
     }
     Y = warm_start(X0, secant);
-    // The secant start carries the last frame's tangential response: the polish at
+    // The secant start carries the last frame's tangential response: the polish near
     // convergence is enough (the harmonic one squeezes vertices against a moving handle).
     run.skip_relaxation = secant;
     phases.emplace_back("boundary data and predictor", laps.lap());

@@ -247,7 +247,7 @@ class LiveFairing:
     of the Newton preconditioner, the inner fairness pattern. Each update starts from the last
     converged frame with the new fixed positions (a warm start): a tangential relaxation
     towards inner fairness and Newton's method on the region (eq. (12)), preconditioned by the
-    last frame's factorizations where GMRES still converges on them, then fair's polishes. A
+    last frame's factorizations where GMRES still converges on them, and fair's polish near the end. A
     frame whose warm start does not converge in max_warm_steps Newton steps runs the cold path,
     geofair.fair's whole schedule, and its .message says so.
     
