@@ -74,16 +74,17 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
     const auto a = s1.bottomRows(nb);
     const double aa = a.squaredNorm(), am = a.cwiseProduct(moves).sum();
     double c1 = 0.0, c2 = 0.0;
+    bool two_steps = false;
     if (s2.rows() == s1.rows()) {
       const auto b = s2.bottomRows(nb);
       const double ab = a.cwiseProduct(b).sum(), bb = b.squaredNorm();
       const double bm = b.cwiseProduct(moves).sum(), det = aa * bb - ab * ab;
       if (det > 1e-8 * aa * bb) {
         c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
-        if (std::abs(c1) > kTwoStepSecantLimit || std::abs(c2) > kTwoStepSecantLimit) c1 = c2 = 0.0;
+        two_steps = std::abs(c1) <= kTwoStepSecantLimit && std::abs(c2) <= kTwoStepSecantLimit;
       }
     }
-    if (c1 == 0.0 && c2 == 0.0 && aa > 0.0) c1 = std::clamp(am / aa, -kSecantLimit, kSecantLimit);
+    if (!two_steps) c2 = 0.0, c1 = aa > 0.0 ? std::clamp(am / aa, -kSecantLimit, kSecantLimit) : 0.0;
     moves -= c1 * a;
     Y.topRows(region.n_free) += c1 * s1.topRows(region.n_free);
     if (c2 != 0.0) {
