@@ -106,6 +106,23 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
     assert np.abs(r.vertices[free] - v[free]).max() > 0.1
 
 
+def test_steady_translation_takes_one_step_a_frame(handle_scene):
+    # A translation repeats one direction: the secant start extrapolates the free vertices'
+    # response from the last two frames (2 m₁ − m₂), one Newton step a frame from the third
+    # frame on (two from the last frame's response alone).
+    v, f, free, handle = handle_scene
+    live = geofair.LiveFairing(v, f, free)
+    for k in range(1, 9):  # 0.02 a frame, about a third of an edge
+        w = lifted(v, handle, 0.02 * k)
+        r = live.update(w)
+        check_frame(r, w, free)
+        assert r.converged and "cold path" not in r.message, r.message
+        assert k < 3 or r.newton_iterations <= 1, (k, r.message)
+    cold = geofair.fair(w, f, free)
+    assert cold.converged
+    assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * region_diagonal(w, f, free)
+
+
 def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):
     # 30° along the sphere, 2° a frame: the triangles between the handle and the region's
     # border squeeze until the warm start folds or fails (about 20°); with remesh="if_needed"

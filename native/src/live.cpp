@@ -63,26 +63,33 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
   const int nb = region.n - region.n_free;
   Positions Y = X;
   Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
-  if (secant && drag_steps.last.rows() > 0) {
+  if (secant && drag_steps.last.rows() > 0 && moves.any()) {
     // The fixed vertices' moves fitted by the last two frames' moves (least squares), the
     // free vertices moved by the same combination of those frames' responses: a drag that
     // turns at a steady rate repeats in that span (m_k = 2 cos θ m_{k−1} − m_{k−2} for a
-    // rotation by θ a frame). One frame's alone where the two are parallel (a translation)
-    // or the fit leaves the secant limit.
+    // rotation by θ a frame). One frame's alone after the first warm frame or where the fit
+    // leaves the secant limit.
     const Positions& s1 = drag_steps.last;
     const Positions& s2 = drag_steps.before;
     const auto a = s1.bottomRows(nb);
     const double aa = a.squaredNorm(), am = a.cwiseProduct(moves).sum();
     double c1 = 0.0, c2 = 0.0;
     bool two_steps = false;
-    if (s2.rows() == s1.rows()) {
+    if (s2.rows() == s1.rows() && aa > 0.0) {
       const auto b = s2.bottomRows(nb);
       const double ab = a.cwiseProduct(b).sum(), bb = b.squaredNorm();
       const double bm = b.cwiseProduct(moves).sum(), det = aa * bb - ab * ab;
       if (det > 1e-8 * aa * bb) {
         c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
-        two_steps = std::abs(c1) <= kTwoStepSecantLimit && std::abs(c2) <= kTwoStepSecantLimit;
+      } else {
+        // Parallel moves (a translation): every c with c1 + β c2 = α fits them (b = β a,
+        // m ≈ α a); the one nearest (2, −1), the extrapolation of a response that changes
+        // at a steady rate, which a steady or accelerating drag repeats.
+        const double beta = ab / aa, alpha = am / aa;
+        const double e = (alpha - (2.0 - beta)) / (1.0 + beta * beta);
+        c1 = 2.0 + e, c2 = -1.0 + e * beta;
       }
+      two_steps = std::abs(c1) <= kTwoStepSecantLimit && std::abs(c2) <= kTwoStepSecantLimit;
     }
     if (!two_steps) c2 = 0.0, c1 = aa > 0.0 ? std::clamp(am / aa, -kSecantLimit, kSecantLimit) : 0.0;
     moves -= c1 * a;
