@@ -124,10 +124,10 @@ struct TangentialTuning {
   /// ... and its iteration limit there; beyond it the system is factorized anew.
   int lagged_iterations = 20;
   /// The relative residual of a LiveFairing frame's polish instead of lagged_tolerance: its
-  /// move is about 5e-3 mean neighbour distances, so that 1e-4 of it lies far below
-  /// NewtonTuning::polished_move, while the frames' turning tangent planes make each decade
-  /// below cost another iteration on the aging factorization.
-  double warm_lagged_tolerance = 1e-4;
+  /// move is about 5e-3 mean neighbour distances, so that 1e-2 of it lies far below
+  /// NewtonTuning::polished_move, and what one frame's polish leaves the next one's takes
+  /// up. Each decade below costs another iteration on the aging factorization.
+  double warm_lagged_tolerance = 1e-2;
   /// Gauss–Seidel sweeps before and after the coarse-grid correction of the two-grid
   /// preconditioner ...
   int two_grid_sweeps = 2;
