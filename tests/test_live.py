@@ -107,20 +107,27 @@ def test_drag_along_the_sphere_keeps_the_sphere(handle_scene):
 
 
 def test_steady_translation_takes_one_step_a_frame(handle_scene):
-    # A translation repeats one direction: the secant start extrapolates the free vertices'
-    # response from the last two frames (2 m₁ − m₂), one Newton step a frame from the third
-    # frame on (two from the last frame's response alone).
+    # A translation moves the handle along a line: the secant start interpolates the free
+    # vertices' response quadratically through the last three frames, one Newton step a
+    # frame from the third frame on (two from the last frame's response alone). A step back
+    # is the frame before, exactly: no step.
     v, f, free, handle = handle_scene
     live = geofair.LiveFairing(v, f, free)
+    frames = []
     for k in range(1, 9):  # 0.02 a frame, about a third of an edge
         w = lifted(v, handle, 0.02 * k)
         r = live.update(w)
         check_frame(r, w, free)
         assert r.converged and "cold path" not in r.message, r.message
-        assert k < 3 or r.newton_iterations <= 1, (k, r.message)
+        assert k < 3 or (r.newton_iterations <= 1 and "harmonic" not in r.message), (k, r.message)
+        frames.append(r)
     cold = geofair.fair(w, f, free)
     assert cold.converged
-    assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * region_diagonal(w, f, free)
+    L = region_diagonal(w, f, free)
+    assert np.abs(r.vertices - cold.vertices).max() <= 1e-4 * L
+    back = live.update(lifted(v, handle, 0.02 * 7))
+    assert back.converged and back.newton_iterations == 0, back.message
+    assert np.abs(back.vertices - frames[-2].vertices).max() <= 1e-4 * L
 
 
 def test_drag_past_the_triangles_remeshes_and_keeps_the_sphere(handle_scene):

@@ -67,8 +67,8 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
     // The fixed vertices' moves fitted by the last two frames' moves (least squares), the
     // free vertices moved by the same combination of those frames' responses: a drag that
     // turns at a steady rate repeats in that span (m_k = 2 cos θ m_{k−1} − m_{k−2} for a
-    // rotation by θ a frame). One frame's alone after the first warm frame or where the fit
-    // leaves the secant limit.
+    // rotation by θ a frame). The last frame's alone where only one warm frame precedes or
+    // the fit leaves the secant limit.
     const Positions& s1 = drag_steps.last;
     const Positions& s2 = drag_steps.before;
     const auto a = s1.bottomRows(nb);
@@ -81,15 +81,19 @@ Positions LiveState::warm_start(const Positions& X0, bool secant) const {
       const double bm = b.cwiseProduct(moves).sum(), det = aa * bb - ab * ab;
       if (det > 1e-8 * aa * bb) {
         c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
-      } else {
-        // Parallel moves (a translation): every c with c1 + β c2 = α fits them (b = β a,
-        // m ≈ α a); the one nearest (2, −1), the extrapolation of a response that changes
-        // at a steady rate, which a steady or accelerating drag repeats.
-        const double beta = ab / aa, alpha = am / aa;
-        const double e = (alpha - (2.0 - beta)) / (1.0 + beta * beta);
-        c1 = 2.0 + e, c2 = -1.0 + e * beta;
+        two_steps = true;
+      } else if (const double beta = ab / aa;
+                 std::abs(beta) > 1e-3 && std::abs(1.0 + beta) > 1e-3) {
+        // Parallel moves (a translation along a line: b = β a, and α a the part of m along
+        // a): the free vertices' response as a function of the handle's place on the line,
+        // interpolated quadratically through the last three frames and evaluated at this one.
+        // c1 + β c2 = α; (2, −1) for equal steps, (0, 0) for none, (−1, 0) going back.
+        const double alpha = am / aa, k = alpha * (alpha + 1.0) / (1.0 + beta);
+        c1 = alpha + k, c2 = -k / beta;
+        two_steps = true;
       }
-      two_steps = std::abs(c1) <= kTwoStepSecantLimit && std::abs(c2) <= kTwoStepSecantLimit;
+      two_steps = two_steps && std::abs(c1) <= kTwoStepSecantLimit &&
+                  std::abs(c2) <= kTwoStepSecantLimit;
     }
     if (!two_steps) c2 = 0.0, c1 = aa > 0.0 ? std::clamp(am / aa, -kSecantLimit, kSecantLimit) : 0.0;
     moves -= c1 * a;
