@@ -17,6 +17,7 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace geofair {
 
@@ -59,43 +60,53 @@ FairingResult LiveState::warm_result(const Positions& V, const Positions& X0,
   return result;
 }
 
+namespace {
+
+// The secant start's coefficients (c1, c2) of the last two warm frames' fixed moves a and b
+// for this frame's fixed moves m, or nullopt where the last frame's alone is to be used.
+template <class A, class B>
+std::optional<std::pair<double, double>> two_frame_fit(const A& a, const B& b, const Positions& m) {
+  const double aa = a.squaredNorm(), ab = a.cwiseProduct(b).sum(), bb = b.squaredNorm();
+  const double am = a.cwiseProduct(m).sum(), bm = b.cwiseProduct(m).sum();
+  const double det = aa * bb - ab * ab;
+  double c1 = 0.0, c2 = 0.0;
+  if (det > 1e-8 * aa * bb) {  // least squares
+    c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
+  } else {
+    // Parallel moves (a translation along a line: b = β a, and α a the part of m along a):
+    // the free vertices' response as a function of the handle's place on the line,
+    // interpolated quadratically through the last three frames and evaluated at this one.
+    // c1 + β c2 = α; (2, −1) for equal steps, (0, 0) for none, (−1, 0) going back.
+    const double beta = ab / aa, alpha = am / aa;
+    if (!(std::abs(beta) > 1e-3 && std::abs(1.0 + beta) > 1e-3)) return std::nullopt;
+    const double k = alpha * (alpha + 1.0) / (1.0 + beta);
+    c1 = alpha + k, c2 = -k / beta;
+  }
+  if (!(std::abs(c1) <= kTwoStepSecantLimit && std::abs(c2) <= kTwoStepSecantLimit))
+    return std::nullopt;
+  return std::make_pair(c1, c2);
+}
+
+}  // namespace
+
 Positions LiveState::warm_start(const Positions& X0, bool secant) const {
   const int nb = region.n - region.n_free;
   Positions Y = X;
   Positions moves = X0.bottomRows(nb) - X.bottomRows(nb);
-  if (secant && drag_steps.last.rows() > 0 && moves.any()) {
-    // The fixed vertices' moves fitted by the last two frames' moves (least squares), the
+  const Positions& s1 = drag_steps.last;
+  const Positions& s2 = drag_steps.before;
+  if (secant && s1.rows() > 0 && moves.any() && s1.bottomRows(nb).any()) {
+    // The fixed vertices' moves fitted by the last two frames' moves (two_frame_fit), the
     // free vertices moved by the same combination of those frames' responses: a drag that
     // turns at a steady rate repeats in that span (m_k = 2 cos θ m_{k−1} − m_{k−2} for a
     // rotation by θ a frame). The last frame's alone where only one warm frame precedes or
-    // the fit leaves the secant limit.
-    const Positions& s1 = drag_steps.last;
-    const Positions& s2 = drag_steps.before;
+    // the fit fails.
     const auto a = s1.bottomRows(nb);
-    const double aa = a.squaredNorm(), am = a.cwiseProduct(moves).sum();
-    double c1 = 0.0, c2 = 0.0;
-    bool two_steps = false;
-    if (s2.rows() == s1.rows() && aa > 0.0) {
-      const auto b = s2.bottomRows(nb);
-      const double ab = a.cwiseProduct(b).sum(), bb = b.squaredNorm();
-      const double bm = b.cwiseProduct(moves).sum(), det = aa * bb - ab * ab;
-      if (det > 1e-8 * aa * bb) {
-        c1 = (bb * am - ab * bm) / det, c2 = (aa * bm - ab * am) / det;
-        two_steps = true;
-      } else if (const double beta = ab / aa;
-                 std::abs(beta) > 1e-3 && std::abs(1.0 + beta) > 1e-3) {
-        // Parallel moves (a translation along a line: b = β a, and α a the part of m along
-        // a): the free vertices' response as a function of the handle's place on the line,
-        // interpolated quadratically through the last three frames and evaluated at this one.
-        // c1 + β c2 = α; (2, −1) for equal steps, (0, 0) for none, (−1, 0) going back.
-        const double alpha = am / aa, k = alpha * (alpha + 1.0) / (1.0 + beta);
-        c1 = alpha + k, c2 = -k / beta;
-        two_steps = true;
-      }
-      two_steps = two_steps && std::abs(c1) <= kTwoStepSecantLimit &&
-                  std::abs(c2) <= kTwoStepSecantLimit;
-    }
-    if (!two_steps) c2 = 0.0, c1 = aa > 0.0 ? std::clamp(am / aa, -kSecantLimit, kSecantLimit) : 0.0;
+    std::optional<std::pair<double, double>> c;
+    if (s2.rows() == s1.rows()) c = two_frame_fit(a, s2.bottomRows(nb), moves);
+    if (!c) c = {std::clamp(a.cwiseProduct(moves).sum() / a.squaredNorm(), -kSecantLimit, kSecantLimit),
+                 0.0};
+    const auto [c1, c2] = *c;
     moves -= c1 * a;
     Y.topRows(region.n_free) += c1 * s1.topRows(region.n_free);
     if (c2 != 0.0) {
