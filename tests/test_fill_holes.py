@@ -378,6 +378,34 @@ def test_rim_trim_removes_the_teeth_names_them_and_keeps_the_order():
         geofair.fill_holes(v, f, rim="clean")
 
 
+def test_rim_trim_removes_the_input_triangles_that_fold_against_the_fill():
+    # bench/holes.py's ChineseDragon-10kv/100/s0: the scan's triangles at the loop are
+    # crumpled (its own edges there fold), and every fill of the rim as it is, and of the rim
+    # without its teeth, folds against one of them. With rim="trim" those triangles are
+    # removed too and the larger hole filled without a fold; every removed face is named.
+    cut, _, _ = holes.corpus_hole("ChineseDragon-10kv", 100, 0, corpus.DEFAULT_CACHE)
+    hole = holes.neighbourhood(cut, 4)
+    v, f, loop = hole.vertices, hole.faces, hole.loop
+    (kept,) = geofair.fill_holes(v, f, [loop]).holes
+    assert kept.folds > 0 and len(kept.removed_faces) == 0, kept.attempts
+    r = geofair.fill_holes(v, f, [loop], rim="trim")
+    (record,) = r.holes
+    methods = [a["method"] for a in record.attempts]
+    assert methods[:2] == ["intrinsic", "intrinsic_trimmed"] and record.attempts[1]["folds"] > 0, record.attempts
+    assert methods.count("intrinsic_trimmed") >= 2, record.attempts  # a round of the folded rim
+    assert record.method == "intrinsic_trimmed" and record.converged and record.folds == 0, record.attempts
+    assert 0 < len(record.removed_faces) <= len(loop)
+    c = holes.check_fill(v, f, loop, r.vertices, r.faces, r.removed_faces)
+    assert c["input_kept"] and c["closed"] and c["manifold"] is None and c["folds"] == 0, c
+    # The removed faces reach the loop: each shares a vertex with the loop or another removed one.
+    reached, faces = set(loop.tolist()), set(record.removed_faces.tolist())
+    while faces:
+        near = {k for k in faces if reached & set(f[k].tolist())}
+        assert near, sorted(faces)
+        faces -= near
+        reached |= set(f[list(near)].ravel().tolist())
+
+
 def test_every_hole_gets_a_fill_even_out_of_time():
     v, f = sphere_with_hole()
     inside = v[:, 2] < -np.cos(0.5)

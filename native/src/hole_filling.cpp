@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <iterator>
 #include <map>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -82,7 +83,9 @@ std::vector<std::vector<int>> rings_around(const Triangles& F, const DirectedEdg
 
 // Folded edges of the triangles T.row(first .. end - 1): edges among them and with the
 // other triangles whose two normals have a non-positive dot product (bench/holes.py's test).
-int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen::Index end) {
+// `others`, if given, gets the rows below `first` on such an edge (sorted, once each).
+int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen::Index end,
+               std::vector<int>* others = nullptr) {
   std::map<std::pair<int, int>, std::vector<Eigen::Index>> by_edge;
   std::unordered_map<int, bool> fill_vertex;
   for (Eigen::Index t = first; t < end; ++t)
@@ -96,12 +99,17 @@ int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen
     return (X.row(T(t, 1)) - X.row(T(t, 0))).cross(X.row(T(t, 2)) - X.row(T(t, 0))).eval();
   };
   int folds = 0;
+  std::set<int> folded_others;
   for (const auto& [edge, faces] : by_edge) {
     (void)edge;
     auto in_fill = [&](Eigen::Index t) { return t >= first && t < end; };
     if (faces.size() != 2 || (!in_fill(faces[0]) && !in_fill(faces[1]))) continue;
-    folds += normal(faces[0]).dot(normal(faces[1])) <= 0.0;
+    if (normal(faces[0]).dot(normal(faces[1])) > 0.0) continue;
+    ++folds;
+    for (const Eigen::Index t : faces)
+      if (t < first) folded_others.insert(int(t));
   }
+  if (others) others->assign(folded_others.begin(), folded_others.end());
   return folds;
 }
 
@@ -113,6 +121,7 @@ struct Tried {
   Positions vertices;
   Triangles faces;
   std::vector<int> removed;  // rows of F removed at the rim (sorted)
+  std::vector<int> folded_rim;  // rows of F that fold against the fill (sorted)
   bool made = false;         // false: refused before fair (attempt.message says why)
   bool ok() const { return made && attempt.converged && attempt.folds == 0; }
 };
@@ -281,7 +290,10 @@ Tried try_fill(const Positions& V, const Triangles& F, const DirectedEdges& edge
     out.fairing.phase_seconds.insert(out.fairing.phase_seconds.begin(), {"fill", prepared});
     out.made = true;
     out.attempt.converged = out.fairing.converged;
-    out.attempt.folds = fill_folds(out.fairing.vertices, sub.faces, kept, fill_end);
+    std::vector<int> folded;  // rows of the submesh's first ring: rings[0] in order
+    out.attempt.folds = fill_folds(out.fairing.vertices, sub.faces, kept, fill_end, &folded);
+    for (const int t : folded) out.folded_rim.push_back(rings[0][size_t(t)]);
+    std::sort(out.folded_rim.begin(), out.folded_rim.end());
     out.attempt.message = out.fairing.message;
     fill_in_caller_indices(out, ring.global, r, n_fixed, sub.faces, kept, fill_end);
     out.attempt.seconds = prepared + laps.lap();
@@ -302,25 +314,29 @@ bool better(const Tried& a, const Tried& b) {
 }
 
 // A hole as its fills after the rim's trim see it: its loop, and the faces removed (the
-// trimmed ones with `committed`); the input loop and `committed` unless rim="trim" and the
-// rim has something to trim.
+// trimmed ones, `own`, with `committed`); the input loop and `committed` unless rim="trim"
+// and the rim has something to trim.
 struct HoleRim {
   std::vector<int> loop, removed;
+  hole_filling::TrimmedHole own;  // this hole's trim alone
   bool trimmed = false;
+
+  // Sets the trim to `trim` (of the input loop) on top of `committed`.
+  void set(hole_filling::TrimmedHole trim, const std::vector<int>& committed) {
+    own = std::move(trim);
+    loop = own.loop;
+    removed.clear();
+    std::set_union(committed.begin(), committed.end(), own.removed.begin(), own.removed.end(),
+                   std::back_inserter(removed));
+    trimmed = !own.removed.empty();
+  }
 };
 
 HoleRim hole_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                  const std::vector<int>& loop, const std::vector<int>& committed,
                  const std::vector<bool>& other_border, Rim rim) {
-  HoleRim out{loop, committed};
-  if (rim != Rim::Trim) return out;
-  hole_filling::TrimmedHole trimmed = hole_filling::trim_rim(V, F, edges, loop, other_border);
-  if (trimmed.removed.empty()) return out;
-  out.loop = std::move(trimmed.loop);
-  out.removed.clear();
-  std::set_union(committed.begin(), committed.end(), trimmed.removed.begin(),
-                 trimmed.removed.end(), std::back_inserter(out.removed));
-  out.trimmed = true;
+  HoleRim out{loop, committed, {loop, {}}};
+  if (rim == Rim::Trim) out.set(hole_filling::trim_rim(V, F, edges, loop, other_border), committed);
   return out;
 }
 
@@ -341,6 +357,7 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   Chain chain;
   chain.record.loop = loop;
   Laps watch;
+  std::vector<int> last_folded_rim;  // the last fill's (Tried::folded_rim)
   auto time_left = [&] { return has_time_left(options, spent); };
   // Tries one fill; true once the chain is done (a fill without folds, or cancelled).
   auto attempt = [&](const std::vector<int>& hole, const std::vector<int>& removed, double L,
@@ -353,6 +370,7 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
     }
     Tried tried = try_fill(V, F, edges, hole, removed, L, method, now, unit);
     spent += watch.lap();
+    last_folded_rim = tried.folded_rim;
     chain.record.attempts.push_back(tried.attempt);
     chain.cancelled = tried.made && tried.fairing.stop_reason == StopReason::Cancelled;
     if (tried.ok() || better(tried, chain.kept)) chain.kept = std::move(tried);
@@ -391,20 +409,36 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   if (linear_only) return finish();
   // With rim="trim", a rim that has something to trim is trimmed before the finer fill: the
   // folds of a ragged rim sit at its teeth and slits, which a finer fill keeps.
-  const HoleRim hole = hole_rim(V, F, edges, loop, committed, other_border, rim);
-  const double L_hole =
-      hole.trimmed && target_edge_length <= 0.0 ? mean_loop_edge_length(V, hole.loop) : L;
+  HoleRim hole = hole_rim(V, F, edges, loop, committed, other_border, rim);
+  auto L_hole = [&] {
+    return hole.trimmed && target_edge_length <= 0.0 ? mean_loop_edge_length(V, hole.loop) : L;
+  };
   if (hole.trimmed && time_left() &&
-      attempt(hole.loop, hole.removed, L_hole, FillMethod::IntrinsicTrimmed))
+      attempt(hole.loop, hole.removed, L_hole(), FillMethod::IntrinsicTrimmed))
     return finish();
-  // Half the edge length: four times the vertices; not for large fills (their time).
-  if (target_edge_length <= 0.0 && first_size <= kMaxFinerFillVertices && time_left() &&
-      attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
-    return finish();
+  // Then the input triangles that fold against the last fill are trimmed too, and the hole
+  // filled again (a crumpled rim, whose G1 normals no smooth fill meets).
+  for (int round = 0; rim == Rim::Trim && round < kFoldTrimRounds && time_left(); ++round) {
+    hole_filling::TrimmedHole grown =
+        hole_filling::trim_faces(F, edges, loop, hole.own, last_folded_rim, other_border);
+    if (grown.removed.size() == hole.own.removed.size()) break;
+    grown = hole_filling::trim_rim(V, F, edges, loop, other_border, &grown);  // new teeth
+    hole.set(std::move(grown), committed);
+    if (attempt(hole.loop, hole.removed, L_hole(), FillMethod::IntrinsicTrimmed)) return finish();
+  }
+  // Half the edge length: four times the vertices; not for large fills (their time). On the
+  // input's rim, then on the trimmed one.
+  if (target_edge_length <= 0.0 && first_size <= kMaxFinerFillVertices) {
+    if (time_left() && attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
+      return finish();
+    if (hole.trimmed && time_left() &&
+        attempt(hole.loop, hole.removed, 0.5 * L_hole(), FillMethod::IntrinsicFiner))
+      return finish();
+  }
   if (first == FillMethod::Intrinsic && time_left() &&
-      attempt(hole.loop, hole.removed, L_hole, FillMethod::G0))
+      attempt(hole.loop, hole.removed, L_hole(), FillMethod::G0))
     return finish();
-  attempt(hole.loop, hole.removed, L_hole, FillMethod::Linear);
+  attempt(hole.loop, hole.removed, L_hole(), FillMethod::Linear);
   return finish();
 }
 

@@ -120,7 +120,16 @@ struct TrimmedHole {
 /// loop vertices whose remaining triangles span less than kTrimSpikeAngle there; a removal
 /// is made only where the hole stays one simple loop that touches no other border (a vertex
 /// with `other_border` true) and at most as many faces as the loop has vertices are removed.
+/// `start`: a trim of `loop` to go on from (trim_faces'), else none.
 TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
-                     const std::vector<int>& loop, const std::vector<bool>& other_border);
+                     const std::vector<int>& loop, const std::vector<bool>& other_border,
+                     const TrimmedHole* start = nullptr);
+
+/// The hole `now` (trim_rim's, grown from the input `loop`) grown further by `faces` (rows of
+/// F at its rim), one at a time: each is removed only where the hole stays one simple loop
+/// that touches no other border, while fewer faces than the loop has vertices are removed.
+TrimmedHole trim_faces(const Triangles& F, const DirectedEdges& edges, const std::vector<int>& loop,
+                       const TrimmedHole& now, const std::vector<int>& faces,
+                       const std::vector<bool>& other_border);
 
 }  // namespace geofair::hole_filling

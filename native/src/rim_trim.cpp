@@ -70,9 +70,10 @@ double corner_angle(const Positions& V, int at, int b, int c) {
 }  // namespace
 
 TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
-                     const std::vector<int>& loop, const std::vector<bool>& other_border) {
-  TrimmedHole out{loop, {}};
-  std::set<int> removed;
+                     const std::vector<int>& loop, const std::vector<bool>& other_border,
+                     const TrimmedHole* start) {
+  TrimmedHole out = start ? *start : TrimmedHole{loop, {}};
+  std::set<int> removed(out.removed.begin(), out.removed.end());
   const size_t cap = loop.size();
   for (int round = 0; round < kTrimRounds; ++round) {
     // Per loop vertex, the faces to remove: a tooth alone, or a spike's remaining fan.
@@ -110,6 +111,24 @@ TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges
       if (!try_remove(group) && group.size() > 1)
         for (int f : group) try_remove({f});
     if (!changed) break;
+  }
+  out.removed.assign(removed.begin(), removed.end());
+  return out;
+}
+
+TrimmedHole trim_faces(const Triangles& F, const DirectedEdges& edges, const std::vector<int>& loop,
+                       const TrimmedHole& now, const std::vector<int>& faces,
+                       const std::vector<bool>& other_border) {
+  TrimmedHole out = now;
+  std::set<int> removed(now.removed.begin(), now.removed.end());
+  for (int f : faces) {
+    if (removed.count(f) || removed.size() >= loop.size()) continue;
+    std::set<int> trial = removed;
+    trial.insert(f);
+    std::vector<int> grown = grown_loop(F, edges, loop, trial, other_border);
+    if (grown.empty()) continue;
+    removed = std::move(trial);
+    out.loop = std::move(grown);
   }
   out.removed.assign(removed.begin(), removed.end());
   return out;

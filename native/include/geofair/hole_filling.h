@@ -45,6 +45,9 @@ constexpr double kTrimSpikeAngle = 1.5707963267948966;  // 90°
 /// The most rounds of Rim::Trim, each removing the current loop's teeth and spikes (so at
 /// most this many rings of triangles).
 constexpr int kTrimRounds = 3;
+/// The most rounds of Rim::Trim's second kind: the input triangles that fold against the
+/// last intrinsic fill (share a folded edge with it) removed and the hole filled again.
+constexpr int kFoldTrimRounds = 3;
 
 /// fill_holes tries a hole at half its loop's edge length (FillMethod::IntrinsicFiner) only
 /// where its first fill has at most this many new vertices: the finer fill has four times as
@@ -58,7 +61,10 @@ enum class Rim {
   /// Where the fill of the loop as it is folds or does not converge, the rim may be trimmed
   /// first: teeth (triangles with two loop edges) and the triangles at loop vertices whose
   /// own side spans less than kTrimSpikeAngle are removed, kTrimRounds rounds at most, as
-  /// long as the hole stays one simple loop (MeshFix's remove-and-fill, Attene 2010).
+  /// long as the hole stays one simple loop (MeshFix's remove-and-fill, Attene 2010); where
+  /// the fill still folds, the input triangles that fold against it (kFoldTrimRounds rounds
+  /// at most, each with the teeth and spikes it uncovers). At most as many faces as the
+  /// loop has vertices are removed.
   Trim,
 };
 
@@ -125,10 +131,12 @@ struct FillResult : FairingResult {
 /// Every hole gets a fill: each is filled and faired on its own (its patch and the input's
 /// triangles within three rings of its loop, which hold everything the G1 normals are
 /// estimated from), trying in turn (FillMethod) the intrinsic fill, with rim = Trim the same
-/// on the trimmed rim (where it has something to trim), the intrinsic fill at half the
-/// loop's edge length (only where target_edge_length is 0 and the first fill has at most
-/// kMaxFinerFillVertices new vertices), then G0 and the linear Δ²f = 0 fill (both on the
-/// trimmed rim where it was trimmed), each with max_iterations at most
+/// on the trimmed rim (where it has something to trim) and on the rim trimmed of the input
+/// triangles that fold against the last fill (Rim::Trim), the intrinsic fill at half the
+/// loop's edge length (on the input's rim, then on the trimmed one; only where
+/// target_edge_length is 0 and the first fill has at most kMaxFinerFillVertices new
+/// vertices), then G0 and the linear Δ²f = 0 fill (both on the trimmed rim where it was
+/// trimmed), each with max_iterations at most
 /// SolverTuning::schedule.fill_max_iterations, and keeps the first that converges without a
 /// folded edge, else the one with the fewest folded edges (converged first among equals,
 /// then the earlier). HoleFill records which; result.message sums it up. A hole is left

@@ -568,9 +568,11 @@ def fill_holes(vertices: numpy.typing.NDArray[numpy.float64], faces: numpy.typin
     (rim="trim" only, where the rim has something to trim: the rim's teeth, triangles with two
     loop edges, and the triangles at loop vertices whose faces span less than 90° removed, up to
     three rounds, while the hole stays one simple loop; MeshFix's remove-and-fill, Attene
-    2010), "intrinsic_finer" (at half the loop's edge length, where target_edge_length is None
-    and the first fill has at most 5000 new vertices: ragged loops need a finer fill next to
-    them), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
+    2010; then, where the fill still folds, the input triangles that fold against it, up to
+    three rounds; at most as many faces as the loop has vertices), "intrinsic_finer" (at half
+    the loop's edge length, on the input's rim and then on the trimmed one, where
+    target_edge_length is None and the first fill has at most 5000 new vertices: ragged loops
+    need a finer fill next to them), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
     Δ²f = 0 fill of the same patch, the method of CGAL's triangulate_refine_and_fair_hole; the
     last two on the trimmed rim where it was trimmed). .holes says which fill each hole got.
     A hole is left open only where no fill can be made (over 2000000 new vertices).
