@@ -12,7 +12,8 @@ interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). Ev
 a fill: the library tries its fills in turn and keeps the best (``geofair.FillResult.holes``
 says which), so a fill that did not converge is written too and the report says so. With
 *Clean Rim* (``clean_rim``, off by default: it deletes the user's faces) the library may remove
-the faces of a ragged rim (teeth, spikes) first; the report names them (face indices before the fill).
+the faces of a ragged rim (teeth, spikes, faces that fold against the fill) first; the report
+names them (face indices before the fill).
 """
 
 import threading

@@ -331,8 +331,8 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
         name="Clean Rim",
         description=(
             "Where a hole's fill folds or does not converge, remove the ragged faces of its rim first (teeth with "
-            "two boundary edges, spikes narrower than 90°) and fill the larger hole; the report names the faces "
-            "removed. Off by default: it deletes faces of yours"
+            "two boundary edges, spikes narrower than 90°, faces that fold against the fill) and fill the larger "
+            "hole; the report names the faces removed. Off by default: it deletes faces of yours"
         ),
         default=False,
         options={"SKIP_SAVE"},
