@@ -1340,7 +1340,7 @@ the loop's edge length, on the input's rim and then on the trimmed one, where
 target_edge_length is None and the first fill has at most 5000 new vertices: ragged loops
 need a finer fill next to them), "g0" (positions only at the loop: the minimal surface) and "linear" (the linear
 Δ²f = 0 fill of the same patch, the method of CGAL's triangulate_refine_and_fair_hole; the
-last two on the trimmed rim where it was trimmed). .holes says which fill each hole got.
+last two on the last trimmed rim where it was trimmed). .holes says which fill each hole got.
 A hole is left open only where no fill can be made (over {max_fill_vertices} new vertices).
 
 Parameters

@@ -104,7 +104,7 @@ int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen
     (void)edge;
     auto in_fill = [&](Eigen::Index t) { return t >= first && t < end; };
     if (faces.size() != 2 || (!in_fill(faces[0]) && !in_fill(faces[1]))) continue;
-    if (normal(faces[0]).dot(normal(faces[1])) > 0.0) continue;
+    if (!(normal(faces[0]).dot(normal(faces[1])) <= 0.0)) continue;
     ++folds;
     for (const Eigen::Index t : faces)
       if (t < first) folded_others.insert(int(t));
@@ -417,7 +417,8 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
       attempt(hole.loop, hole.removed, L_hole(), FillMethod::IntrinsicTrimmed))
     return finish();
   // Then the input triangles that fold against the last fill are trimmed too, and the hole
-  // filled again (a crumpled rim, whose G1 normals no smooth fill meets).
+  // filled again (a crumpled rim, whose G1 normals no smooth fill meets). The later fills
+  // take the last rim: on the corpus its finer fill mends holes that earlier rims' do not.
   for (int round = 0; rim == Rim::Trim && round < kFoldTrimRounds && time_left(); ++round) {
     hole_filling::TrimmedHole grown =
         hole_filling::trim_faces(F, edges, loop, hole.own, last_folded_rim, other_border);

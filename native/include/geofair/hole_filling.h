@@ -42,11 +42,11 @@ constexpr int kMaxFillVertices = 2000000;
 /// angle there (radians; a spike into the hole, whose fill folds over it: docs/DESIGN_NOTES.md,
 /// "Filling holes").
 constexpr double kTrimSpikeAngle = 1.5707963267948966;  // 90°
-/// The most rounds of Rim::Trim, each removing the current loop's teeth and spikes (so at
-/// most this many rings of triangles).
+/// The most rounds of Rim::Trim's teeth and spikes, each removing the current loop's (run
+/// again after each round of kFoldTrimRounds).
 constexpr int kTrimRounds = 3;
 /// The most rounds of Rim::Trim's second kind: the input triangles that fold against the
-/// last intrinsic fill (share a folded edge with it) removed and the hole filled again.
+/// last fill (share a folded edge with it) removed and the hole filled again.
 constexpr int kFoldTrimRounds = 3;
 
 /// fill_holes tries a hole at half its loop's edge length (FillMethod::IntrinsicFiner) only
@@ -133,10 +133,10 @@ struct FillResult : FairingResult {
 /// estimated from), trying in turn (FillMethod) the intrinsic fill, with rim = Trim the same
 /// on the trimmed rim (where it has something to trim) and on the rim trimmed of the input
 /// triangles that fold against the last fill (Rim::Trim), the intrinsic fill at half the
-/// loop's edge length (on the input's rim, then on the trimmed one; only where
-/// target_edge_length is 0 and the first fill has at most kMaxFinerFillVertices new
-/// vertices), then G0 and the linear Δ²f = 0 fill (both on the trimmed rim where it was
-/// trimmed), each with max_iterations at most
+/// loop's edge length (on the input's rim, then on the trimmed one at half its own loop's;
+/// only where target_edge_length is 0 and the first fill has at most kMaxFinerFillVertices
+/// new vertices), then G0 and the linear Δ²f = 0 fill (both on the last trimmed rim where
+/// it was trimmed), each with max_iterations at most
 /// SolverTuning::schedule.fill_max_iterations, and keeps the first that converges without a
 /// folded edge, else the one with the fewest folded edges (converged first among equals,
 /// then the earlier). HoleFill records which; result.message sums it up. A hole is left
