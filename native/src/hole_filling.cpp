@@ -347,6 +347,27 @@ struct Chain {
   bool cancelled = false;
 };
 
+// A hole's chain done: its record from the fill kept, or why none was made. `committed`:
+// as fill_one_hole's.
+Chain finished(Chain chain, const std::vector<int>& committed) {
+  HoleFill& h = chain.record;
+  if (!chain.kept.made) {
+    h.reason = chain.cancelled ? "cancelled"
+                               : "cannot be filled: it would take " + h.attempts.front().message;
+    return chain;
+  }
+  const Tried& k = chain.kept;
+  h.method = k.attempt.method;
+  h.converged = k.attempt.converged;
+  h.folds = k.attempt.folds;
+  h.residual = k.fairing.residual;
+  h.new_vertices = int(k.vertices.rows());
+  h.new_faces = int(k.faces.rows());
+  std::set_difference(k.removed.begin(), k.removed.end(), committed.begin(), committed.end(),
+                      std::back_inserter(h.removed_faces));
+  return chain;
+}
+
 // Tries the fills of one hole in fill_holes' order and keeps the first that converges
 // without a folded edge, else the best (better). `committed`: rows of F removed for the
 // holes before (sorted); `spent`: seconds of the call so far, advanced here.
@@ -376,24 +397,7 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
     if (tried.ok() || better(tried, chain.kept)) chain.kept = std::move(tried);
     return chain.kept.ok() || chain.cancelled;
   };
-  auto finish = [&] {
-    HoleFill& h = chain.record;
-    if (!chain.kept.made) {
-      h.reason = chain.cancelled ? "cancelled"
-                                 : "cannot be filled: it would take " + h.attempts.front().message;
-      return std::move(chain);
-    }
-    const Tried& k = chain.kept;
-    h.method = k.attempt.method;
-    h.converged = k.attempt.converged;
-    h.folds = k.attempt.folds;
-    h.residual = k.fairing.residual;
-    h.new_vertices = int(k.vertices.rows());
-    h.new_faces = int(k.faces.rows());
-    std::set_difference(k.removed.begin(), k.removed.end(), committed.begin(), committed.end(),
-                        std::back_inserter(h.removed_faces));
-    return std::move(chain);
-  };
+  auto finish = [&] { return finished(std::move(chain), committed); };
   const double L = target_edge_length > 0.0 ? target_edge_length : mean_loop_edge_length(V, loop);
   const bool linear_only = options.outer_fairness == OuterFairness::Bilaplacian;
   const FillMethod first = linear_only                                  ? FillMethod::Linear
