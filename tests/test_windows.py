@@ -54,6 +54,26 @@ def wine():
     unavailable("wine64 is not installed (Debian: apt-get install wine64)")
 
 
+def wine_prefix(loader, env):
+    """Makes wine's prefix (``env["WINEPREFIX"]``) where it is missing or broken, and waits for it.
+
+    Under load wineboot's boot event can time out on a new prefix, which then cannot start a
+    program ("could not load kernel32.dll, status c0000135"); such a prefix is removed and made again.
+    """
+    prefix = pathlib.Path(env["WINEPREFIX"])
+    server = shutil.which("wineserver") or str(pathlib.Path(loader).with_name("wineserver"))
+    for _ in range(3):
+        subprocess.run([loader, "wineboot", "--init"], capture_output=True, env=env, timeout=600)
+        subprocess.run([server, "-w"], capture_output=True, env=env, timeout=600)
+        done = subprocess.run([loader, "cmd", "/c", "echo", "ready"], capture_output=True, text=True, env=env,
+                              timeout=600)  # fmt: skip
+        if done.returncode == 0 and "ready" in done.stdout:
+            return
+        subprocess.run([server, "-k"], capture_output=True, env=env, timeout=60)
+        shutil.rmtree(prefix, ignore_errors=True)
+    raise AssertionError(f"wine cannot make its prefix {prefix}: {done.stdout}{done.stderr}")
+
+
 def windows_path(path):
     """``path`` as Wine's Windows programs see it (the Linux root is drive Z:)."""
     return "Z:" + str(pathlib.Path(path).resolve()).replace("/", "\\")
@@ -159,6 +179,7 @@ def windows_run(request, tmp_path_factory):
         WINEPREFIX=str(REPO / "build" / "wine"), WINEDEBUG="-all", WINEDLLOVERRIDES="mscoree,mshtml=",
         PYTHONPATH=windows_path(site), PYTHONDONTWRITEBYTECODE="1",
     )  # fmt: skip
+    wine_prefix(loader, env)
     reports = {}
     for threads in ("2", "1"):
         env["GEOFAIR_NUM_THREADS"] = threads
