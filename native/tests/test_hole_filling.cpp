@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <vector>
@@ -247,6 +249,87 @@ TEST(FillHoles, ADeadlinePassedGivesTheLinearFill) {
   EXPECT_TRUE(r.holes[0].converged) << r.message;
   EXPECT_EQ(r.holes[0].attempts.size(), 1u);
   EXPECT_EQ(r.holes[1].method, FillMethod::None);
+}
+
+// The hole in the middle of grid_with_hole: the mesh, the hole's loop (the shorter of its two
+// loops) and the vertices of the outer border.
+struct GridHole {
+  testing::Mesh mesh;
+  std::vector<int> loop;
+  std::vector<bool> outer;
+};
+
+GridHole grid_hole() {
+  GridHole g{grid_with_hole(12, 0.35), {}, {}};
+  auto loops = boundary_loops(g.mesh.V, g.mesh.F);
+  std::sort(loops.begin(), loops.end(),
+            [](const auto& a, const auto& b) { return a.size() < b.size(); });
+  g.loop = loops[0];
+  g.outer.assign(size_t(g.mesh.V.rows()), false);
+  for (int v : loops[1]) g.outer[size_t(v)] = true;
+  return g;
+}
+
+// F without the rows `removed` (sorted).
+Triangles without(const Triangles& F, const std::vector<int>& removed) {
+  Triangles out(F.rows() - Eigen::Index(removed.size()), 3);
+  Eigen::Index k = 0;
+  for (int f = 0; f < F.rows(); ++f)
+    if (!std::binary_search(removed.begin(), removed.end(), f)) out.row(k++) = F.row(f);
+  return out;
+}
+
+// `loop` is, up to where it starts, one of the boundary loops of F without `removed`.
+bool is_a_border_loop(const GridHole& g, const std::vector<int>& loop,
+                      const std::vector<int>& removed) {
+  for (const auto& other : boundary_loops(g.mesh.V, without(g.mesh.F, removed))) {
+    if (other.size() != loop.size()) continue;
+    const auto at = std::find(other.begin(), other.end(), loop[0]);
+    if (at == other.end()) continue;
+    std::vector<int> turned(at, other.end());
+    turned.insert(turned.end(), other.begin(), at);
+    if (turned == loop) return true;
+  }
+  return false;
+}
+
+TEST(TrimFaces, RemovesRimFacesWhileTheHoleStaysOneLoopAndRefusesOthers) {
+  const GridHole g = grid_hole();
+  const hole_filling::DirectedEdges edges(g.mesh.F);
+  std::set<int> at_loop;  // the faces with a loop vertex
+  for (int v : g.loop) edges.for_each_triangle_at(v, [&](int f) { at_loop.insert(f); });
+  // A face away from the hole would open a second hole: refused.
+  int far = -1;
+  for (int f = 0; f < g.mesh.F.rows() && far < 0; ++f) {
+    bool near = false;
+    for (int c = 0; c < 3; ++c) near = near || std::abs(g.mesh.V(g.mesh.F(f, c), 0)) < 0.7;
+    if (!near) far = f;
+  }
+  ASSERT_GE(far, 0);
+  const hole_filling::TrimmedHole none{g.loop, {}};
+  const auto refused = hole_filling::trim_faces(g.mesh.F, edges, g.loop, none, {far}, g.outer);
+  EXPECT_TRUE(refused.removed.empty());
+  EXPECT_EQ(refused.loop, g.loop);
+  // The rim's faces: as many as keep one simple loop, at most the loop's size; the loop is
+  // the border of what is left.
+  const std::vector<int> rim(at_loop.begin(), at_loop.end());
+  ASSERT_GT(rim.size(), g.loop.size());
+  const auto grown = hole_filling::trim_faces(g.mesh.F, edges, g.loop, none, rim, g.outer);
+  EXPECT_FALSE(grown.removed.empty());
+  EXPECT_LE(grown.removed.size(), g.loop.size());
+  EXPECT_TRUE(std::is_sorted(grown.removed.begin(), grown.removed.end()));
+  for (int f : grown.removed) EXPECT_TRUE(at_loop.count(f)) << f;
+  EXPECT_TRUE(is_a_border_loop(g, grown.loop, grown.removed));
+  // trim_rim goes on from a trim: it keeps the faces removed and the loop stays a border.
+  const std::vector<int> first = {edges.triangle(g.loop[1], g.loop[0]),
+                                   edges.triangle(g.loop[4], g.loop[3])};  // on loop edges
+  const auto start = hole_filling::trim_faces(g.mesh.F, edges, g.loop, none, first, g.outer);
+  ASSERT_FALSE(start.removed.empty());
+  const auto on = hole_filling::trim_rim(g.mesh.V, g.mesh.F, edges, g.loop, g.outer, &start);
+  EXPECT_TRUE(std::includes(on.removed.begin(), on.removed.end(), start.removed.begin(),
+                            start.removed.end()));
+  EXPECT_LE(on.removed.size(), g.loop.size());
+  EXPECT_TRUE(is_a_border_loop(g, on.loop, on.removed));
 }
 
 TEST(WorkingScale, NamesTheScaleWhereSquaredLengthsLeaveTheDoubles) {
