@@ -62,16 +62,23 @@ def wine_prefix(loader, env):
     """
     prefix = pathlib.Path(env["WINEPREFIX"])
     server = shutil.which("wineserver") or str(pathlib.Path(loader).with_name("wineserver"))
-    for _ in range(3):
-        subprocess.run([loader, "wineboot", "--init"], capture_output=True, env=env, timeout=600)
-        subprocess.run([server, "-w"], capture_output=True, env=env, timeout=600)
+
+    def ready():
         done = subprocess.run([loader, "cmd", "/c", "echo", "ready"], capture_output=True, text=True, env=env,
                               timeout=600)  # fmt: skip
-        if done.returncode == 0 and "ready" in done.stdout:
-            return
+        return done.returncode == 0 and "ready" in done.stdout, done.stdout + done.stderr
+
+    if prefix.is_dir() and ready()[0]:
+        return
+    for _ in range(3):
         subprocess.run([server, "-k"], capture_output=True, env=env, timeout=60)
         shutil.rmtree(prefix, ignore_errors=True)
-    raise AssertionError(f"wine cannot make its prefix {prefix}: {done.stdout}{done.stderr}")
+        subprocess.run([loader, "wineboot", "--init"], capture_output=True, env=env, timeout=600)
+        subprocess.run([server, "-w"], capture_output=True, env=env, timeout=600)
+        ok, output = ready()
+        if ok:
+            return
+    raise AssertionError(f"wine cannot make its prefix {prefix}: {output}")
 
 
 def windows_path(path):

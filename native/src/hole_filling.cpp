@@ -313,29 +313,28 @@ bool better(const Tried& a, const Tried& b) {
   return a.attempt.converged && !b.attempt.converged;
 }
 
-// A hole as its fills after the rim's trim see it: its loop, and the faces removed (the
-// trimmed ones, `own`, with `committed`); the input loop and `committed` unless rim="trim"
-// and the rim has something to trim.
+// A hole as its fills after the rim's trim see it: this hole's trim (`own`: its loop and the
+// faces it removed; the input loop and none unless rim="trim" and the rim has something to
+// trim) and the faces removed in all, with `committed`.
 struct HoleRim {
-  std::vector<int> loop, removed;
-  hole_filling::TrimmedHole own;  // this hole's trim alone
-  bool trimmed = false;
+  hole_filling::TrimmedHole own;
+  std::vector<int> removed;
 
+  const std::vector<int>& loop() const { return own.loop; }
+  bool trimmed() const { return !own.removed.empty(); }
   // Sets the trim to `trim` (of the input loop) on top of `committed`.
   void set(hole_filling::TrimmedHole trim, const std::vector<int>& committed) {
     own = std::move(trim);
-    loop = own.loop;
     removed.clear();
     std::set_union(committed.begin(), committed.end(), own.removed.begin(), own.removed.end(),
                    std::back_inserter(removed));
-    trimmed = !own.removed.empty();
   }
 };
 
 HoleRim hole_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                  const std::vector<int>& loop, const std::vector<int>& committed,
                  const std::vector<bool>& other_border, Rim rim) {
-  HoleRim out{loop, committed, {loop, {}}};
+  HoleRim out{{loop, {}}, committed};
   if (rim == Rim::Trim) out.set(hole_filling::trim_rim(V, F, edges, loop, other_border), committed);
   return out;
 }
@@ -415,10 +414,10 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
   // folds of a ragged rim sit at its teeth and slits, which a finer fill keeps.
   HoleRim hole = hole_rim(V, F, edges, loop, committed, other_border, rim);
   auto L_hole = [&] {
-    return hole.trimmed && target_edge_length <= 0.0 ? mean_loop_edge_length(V, hole.loop) : L;
+    return hole.trimmed() && target_edge_length <= 0.0 ? mean_loop_edge_length(V, hole.loop()) : L;
   };
-  if (hole.trimmed && time_left() &&
-      attempt(hole.loop, hole.removed, L_hole(), FillMethod::IntrinsicTrimmed))
+  if (hole.trimmed() && time_left() &&
+      attempt(hole.loop(), hole.removed, L_hole(), FillMethod::IntrinsicTrimmed))
     return finish();
   // Then the input triangles that fold against the last fill are trimmed too, and the hole
   // filled again (a crumpled rim, whose G1 normals no smooth fill meets). The later fills
@@ -429,21 +428,21 @@ Chain fill_one_hole(const Positions& V, const Triangles& F, const DirectedEdges&
     if (grown.removed.size() == hole.own.removed.size()) break;
     grown = hole_filling::trim_rim(V, F, edges, loop, other_border, &grown);  // new teeth
     hole.set(std::move(grown), committed);
-    if (attempt(hole.loop, hole.removed, L_hole(), FillMethod::IntrinsicTrimmed)) return finish();
+    if (attempt(hole.loop(), hole.removed, L_hole(), FillMethod::IntrinsicTrimmed)) return finish();
   }
   // Half the edge length: four times the vertices; not for large fills (their time). On the
   // input's rim, then on the trimmed one.
   if (target_edge_length <= 0.0 && first_size <= kMaxFinerFillVertices) {
     if (time_left() && attempt(loop, committed, 0.5 * L, FillMethod::IntrinsicFiner))
       return finish();
-    if (hole.trimmed && time_left() &&
-        attempt(hole.loop, hole.removed, 0.5 * L_hole(), FillMethod::IntrinsicFiner))
+    if (hole.trimmed() && time_left() &&
+        attempt(hole.loop(), hole.removed, 0.5 * L_hole(), FillMethod::IntrinsicFiner))
       return finish();
   }
   if (first == FillMethod::Intrinsic && time_left() &&
-      attempt(hole.loop, hole.removed, L_hole(), FillMethod::G0))
+      attempt(hole.loop(), hole.removed, L_hole(), FillMethod::G0))
     return finish();
-  attempt(hole.loop, hole.removed, L_hole(), FillMethod::Linear);
+  attempt(hole.loop(), hole.removed, L_hole(), FillMethod::Linear);
   return finish();
 }
 

@@ -67,6 +67,22 @@ double corner_angle(const Positions& V, int at, int b, int c) {
   return std::atan2(u.cross(w).norm(), u.dot(w));
 }
 
+// Removes `faces` (all or none) from the hole grown from the input `loop` by `removed`: only
+// where it stays one simple loop clear of other borders with at most as many faces removed
+// as `loop` has vertices. True where they were; `removed` and `hole_loop` then updated.
+bool remove_faces(const Triangles& F, const DirectedEdges& edges, const std::vector<int>& loop,
+                  const std::vector<bool>& other_border, const std::vector<int>& faces,
+                  std::set<int>& removed, std::vector<int>& hole_loop) {
+  std::set<int> trial = removed;
+  for (int f : faces) trial.insert(f);
+  if (trial.size() == removed.size() || trial.size() > loop.size()) return false;
+  std::vector<int> grown = grown_loop(F, edges, loop, trial, other_border);
+  if (grown.empty()) return false;
+  removed = std::move(trial);
+  hole_loop = std::move(grown);
+  return true;
+}
+
 }  // namespace
 
 TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges& edges,
@@ -74,7 +90,6 @@ TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges
                      const TrimmedHole* start) {
   TrimmedHole out = start ? *start : TrimmedHole{loop, {}};
   std::set<int> removed(out.removed.begin(), out.removed.end());
-  const size_t cap = loop.size();
   for (int round = 0; round < kTrimRounds; ++round) {
     // Per loop vertex, the faces to remove: a tooth alone, or a spike's remaining fan.
     std::vector<std::vector<int>> groups;
@@ -98,14 +113,9 @@ TrimmedHole trim_rim(const Positions& V, const Triangles& F, const DirectedEdges
     }
     bool changed = false;
     auto try_remove = [&](const std::vector<int>& faces) {
-      std::set<int> trial = removed;
-      for (int f : faces) trial.insert(f);
-      if (trial.size() == removed.size() || trial.size() > cap) return false;
-      std::vector<int> grown = grown_loop(F, edges, loop, trial, other_border);
-      if (grown.empty()) return false;
-      removed = std::move(trial);
-      out.loop = std::move(grown);
-      return changed = true;
+      const bool done = remove_faces(F, edges, loop, other_border, faces, removed, out.loop);
+      changed = changed || done;
+      return done;
     };
     for (const auto& group : groups)
       if (!try_remove(group) && group.size() > 1)
@@ -121,15 +131,7 @@ TrimmedHole trim_faces(const Triangles& F, const DirectedEdges& edges, const std
                        const std::vector<bool>& other_border) {
   TrimmedHole out = now;
   std::set<int> removed(now.removed.begin(), now.removed.end());
-  for (int f : faces) {
-    if (removed.count(f) || removed.size() >= loop.size()) continue;
-    std::set<int> trial = removed;
-    trial.insert(f);
-    std::vector<int> grown = grown_loop(F, edges, loop, trial, other_border);
-    if (grown.empty()) continue;
-    removed = std::move(trial);
-    out.loop = std::move(grown);
-  }
+  for (int f : faces) remove_faces(F, edges, loop, other_border, {f}, removed, out.loop);
   out.removed.assign(removed.begin(), removed.end());
   return out;
 }
