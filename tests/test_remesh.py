@@ -254,8 +254,11 @@ def test_invalid_input_raises():
         geofair.remesh_region(v, f, np.zeros(len(v), bool))
     with pytest.raises(ValueError, match="iterations"):
         geofair.remesh_region(v, f, free, iterations=-1)
-    with pytest.raises(ValueError, match="target_edge_length"):
-        geofair.remesh_region(v, f, free, target_edge_length=-1.0)
+    for length in (-1.0, 0.0, float("nan"), "0.1"):  # a string is not a length either
+        with pytest.raises(geofair.InvalidInputError, match="remesh_region: target_edge_length must be None or"):
+            geofair.remesh_region(v, f, free, target_edge_length=length)
+        with pytest.raises(geofair.InvalidInputError, match="fill_holes: target_edge_length must be None or"):
+            geofair.fill_holes(v, f[~free[f].any(axis=1)], target_edge_length=length)
     flipped = f.copy()
     t = np.flatnonzero(free[f].any(axis=1))[0]
     flipped[t] = flipped[t, ::-1]

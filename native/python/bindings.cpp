@@ -492,6 +492,24 @@ double time_limit_seconds(const py::object& time_limit, const char* caller,
   return seconds > 0.0 ? seconds : -1.0;
 }
 
+// A target_edge_length keyword: None as 0 (automatic), else a positive finite length.
+double edge_length_keyword(const py::object& length, const char* caller) {
+  if (length.is_none()) return 0.0;
+  const auto bad = [&] {
+    return InvalidInputError(std::string(caller) +
+                             ": target_edge_length must be None or a positive finite number, got " +
+                             std::string(py::str(py::repr(length))));
+  };
+  double value = 0.0;
+  try {
+    value = length.cast<double>();
+  } catch (const py::cast_error&) {
+    throw bad();
+  }
+  if (!(value > 0.0) || !std::isfinite(value)) throw bad();
+  return value;
+}
+
 // The fairing keywords that fair and fill_holes share, as FairingOptions.
 FairingOptions fairing_options(const std::string& boundary, const std::string& inner_fairness,
                                const std::string& outer_fairness,
@@ -650,14 +668,7 @@ FillResult fill_holes_py(const py::object& vertices, const py::object& faces,
   const Triangles F = to_triangles(faces, "fill_holes", V.rows());
   const std::vector<std::vector<int>> holes = to_loops(loops);
   const HoleRule rule = hole_rule(keep_outer_borders, max_hole_edges, "fill_holes");
-  double length = 0.0;
-  if (!target_edge_length.is_none()) {
-    length = target_edge_length.cast<double>();
-    if (!(length > 0.0) || !std::isfinite(length))
-      throw InvalidInputError(
-          "fill_holes: target_edge_length must be None or a positive finite number, got " +
-          std::string(py::str(target_edge_length)));
-  }
+  const double length = edge_length_keyword(target_edge_length, "fill_holes");
   FairingOptions options = fairing_options(boundary, inner_fairness, outer_fairness,
                                            normal_weighting, tolerance, max_iterations, damping,
                                            cg_iterations, levels, iteration, time_limit, tuning,
@@ -1535,13 +1546,7 @@ void bind_remesh(py::module_& m) {
         const std::vector<bool> mask = to_mask(free, V.rows());
         RemeshOptions options;
         options.iterations = iterations;
-        if (!target_edge_length.is_none()) {
-          options.target_edge_length = target_edge_length.cast<double>();
-          if (!(options.target_edge_length > 0.0) || !std::isfinite(options.target_edge_length))
-            throw InvalidInputError(
-                "remesh_region: target_edge_length must be None or a positive finite number, "
-                "got " + std::string(py::str(target_edge_length)));
-        }
+        options.target_edge_length = edge_length_keyword(target_edge_length, "remesh_region");
         py::gil_scoped_release release;
         return remesh_region(V, F, mask, options);
       },

@@ -34,6 +34,11 @@ inline Positions gather(const Positions& X, const std::vector<int>& ids) {
   return Y;
 }
 
+// The bounding-box diagonal of positions X (a region's: the residual's length L, fairing.h).
+inline double diagonal(const Positions& X) {
+  return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+}
+
 /// Wall-clock seconds between calls, for FairingResult::phase_seconds.
 class Laps {
  public:

@@ -182,7 +182,7 @@ double input_residual(const Positions& V, const Triangles& F, const std::vector<
                                         options.boundary);
   const Positions X0 = gather(V, region.global);
   std::iota(region.global.begin(), region.global.end(), 0);
-  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
+  const double L = diagonal(X0);
   return finite_residual(region, inner_fairness_weights(region, X0, options.inner_fairness),
                          options, L, X0);
 }
@@ -197,7 +197,7 @@ FairingResult solve(const Positions& V, const Triangles& F, const std::vector<bo
   const FairingRegion region = extract_region(V, F, free, boundary_normals, true, polygon_ids,
                                               options.boundary);
   const Positions X0 = gather(V, region.global);  // the original mesh
-  const double L = (X0.colwise().maxCoeff() - X0.colwise().minCoeff()).norm();
+  const double L = diagonal(X0);
   if (!(L > 0.0)) throw InvalidInputError("fair: the region has zero extent");
   // The finest level is the region itself, with region-local ids as its "global" ids.
   FairingRegion finest_level = region;
@@ -241,14 +241,6 @@ void describe(FairingResult& result, const FairingOptions& options, const TimeLi
   result.message = result.converged ? "converged (" + figures + ")" : limit.why_not(figures);
   result.stop_reason = result.converged ? StopReason::Converged : limit.reason();
   if (!how.empty()) result.message += "; " + how;
-}
-
-// The result's connectivity members where the input's triangles are kept.
-void keep_connectivity(FairingResult& result, const Triangles& F, const std::vector<bool>& free) {
-  result.faces = F;
-  result.free = free;
-  result.origin_face.assign(free.size(), -1);
-  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
 }
 
 // fair() with the connectivity kept (options.remesh not read): the schedule's solve under
@@ -455,6 +447,13 @@ FairingResult at_working_scale(const Positions& V, const Triangles& F, Solve&& s
 }
 
 }  // namespace
+
+void keep_connectivity(FairingResult& result, const Triangles& F, const std::vector<bool>& free) {
+  result.faces = F;
+  result.free = free;
+  result.origin_face.assign(free.size(), -1);
+  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
+}
 
 FairingResult fair(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const Positions* boundary_normals, const FairingOptions& options,

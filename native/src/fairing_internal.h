@@ -7,6 +7,10 @@
 
 namespace geofair {
 
+/// Sets the result's connectivity members (faces, free, origin_face, origin_barycentric)
+/// where the input's triangles F are kept: each vertex its own, no origin face.
+void keep_connectivity(FairingResult& result, const Triangles& F, const std::vector<bool>& free);
+
 /// fair() of a remesh (remesh_region) of the region of another surface of the same mesh
 /// (options.remesh is not read): `surface` (#V×3, mesh units, finite) gives the positions
 /// the remesher follows, V the fixed positions and the boundary normals' estimate (G1, as

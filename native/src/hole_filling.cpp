@@ -23,6 +23,7 @@
 namespace geofair {
 
 using hole_filling::DirectedEdges;
+using hole_filling::triangle_normal;
 
 const char* fill_method_name(FillMethod method) {
   switch (method) {
@@ -95,9 +96,7 @@ int fill_folds(const Positions& X, const Triangles& T, Eigen::Index first, Eigen
       const int a = T(t, c), b = T(t, (c + 1) % 3);
       if (fill_vertex.count(a) && fill_vertex.count(b)) by_edge[std::minmax(a, b)].push_back(t);
     }
-  auto normal = [&](Eigen::Index t) {
-    return (X.row(T(t, 1)) - X.row(T(t, 0))).cross(X.row(T(t, 2)) - X.row(T(t, 0))).eval();
-  };
+  auto normal = [&](Eigen::Index t) { return triangle_normal(X, T(t, 0), T(t, 1), T(t, 2)); };
   int folds = 0;
   std::set<int> folded_others;
   for (const auto& [edge, faces] : by_edge) {
@@ -157,10 +156,7 @@ LocalRing local_ring(const Triangles& F, const std::vector<int>& ring,
 // vertex per two triangles of area sqrt(3)/4 L²); empty when it is not.
 std::string fill_size_refusal(const Positions& X, const Triangles& T, double L, double unit) {
   double area = 0.0;
-  for (int t = 0; t < T.rows(); ++t) {
-    const auto a = X.row(T(t, 0)), b = X.row(T(t, 1)), c = X.row(T(t, 2));
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
+  for (int t = 0; t < T.rows(); ++t) area += 0.5 * triangle_normal(X, T(t, 0), T(t, 1), T(t, 2)).norm();
   const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
   if (estimate <= kMaxFillVertices) return {};
   char text[160];

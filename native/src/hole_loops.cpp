@@ -22,11 +22,7 @@ namespace hole_filling {
 // Validates the triangles (indices, manifold, orientation) and the coordinates they use.
 void check_mesh(const Positions& V, const Triangles& F, const char* caller) {
   check_triangles(int(V.rows()), F, caller);
-  for (int f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (!V.row(F(f, c)).allFinite())
-        throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(F(f, c)) +
-                                " has a non-finite coordinate");
+  check_finite(V, F, caller);
 }
 
 namespace {

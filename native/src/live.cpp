@@ -27,11 +27,8 @@ FairingResult LiveState::live_mesh_result(Positions vertices, const Positions& X
                                           const Positions& Y, FoldCount& folds) const {
   FairingResult result;
   result.vertices = std::move(vertices);
-  result.faces = F;
-  result.free = free;
+  keep_connectivity(result, F, free);
   result.unreferenced = unreferenced;
-  result.origin_face.assign(free.size(), -1);
-  result.origin_barycentric = Positions::Zero(Eigen::Index(free.size()), 3);
   result.iteration = Iteration::Newton;
   // Folds: only edges with a free vertex count, and both their triangles are the region's.
   std::vector<bool> local_free(std::size_t(region.n), false);

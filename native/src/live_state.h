@@ -31,11 +31,6 @@ inline std::string newton_steps(int n) {
   return std::to_string(n) + (n == 1 ? " Newton step" : " Newton steps");
 }
 
-// The bounding-box diagonal of the region's positions X (the residual's length L, fairing.h).
-inline double diagonal(const Positions& X) {
-  return (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
-}
-
 // Frames between remesh attempts for folds that a remesh left (RemeshTrigger).
 constexpr int kRemeshRetry = 3;
 

@@ -197,10 +197,6 @@ void check_triangles(int n_vertices, const Triangles& triangles, const char* cal
   build_mesh(mesh, n_vertices, triangles, caller, nullptr);
 }
 
-namespace {
-
-// The sizes and indices of the input (the first checks of extract_region and
-// estimate_boundary_normals).
 void check_indices(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                    const char* fn) {
   const int nv = int(V.rows());
@@ -224,6 +220,8 @@ void check_finite(const Positions& V, const Triangles& F, const char* fn) {
         throw InvalidInputError(prefix(fn) + "vertex " + std::to_string(F(f, c)) +
                                 " has a non-finite coordinate");
 }
+
+namespace {
 
 // Work space of quadric_normal.
 struct QuadricSamples {
@@ -371,7 +369,8 @@ void mark_polygon_diagonals(FairingRegion& region, const Triangles& F,
 }
 
 // The region's vertices (free first, then the G1 boundary), triangles and one-rings, with
-// the checks of each free vertex (in a triangle, not on the border) and finite positions.
+// the checks of each free vertex (in a triangle, not on the border); positions are checked
+// before (check_finite).
 FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                           const std::vector<int>* polygon_ids, const char* fn) {
   const int nv = int(V.rows());
@@ -405,10 +404,6 @@ FairingRegion region_mesh(const Positions& V, const Triangles& F, const std::vec
     throw InvalidInputError(prefix(fn) +
                             "every vertex of the region is free: a G1 boundary (fixed "
                             "vertices next to the free ones) is required");
-  for (int i = 0; i < region.n; ++i)
-    if (!V.row(region.global[i]).allFinite())
-      throw InvalidInputError(prefix(fn) + "vertex " + std::to_string(region.global[i]) +
-                              " has a non-finite coordinate");
 
   region.triangles.resize(Eigen::Index(region_triangles.size()), 3);
   for (std::size_t t = 0; t < region_triangles.size(); ++t)

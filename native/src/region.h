@@ -29,7 +29,6 @@ struct OneRings {
   int valence(int i) const { return offset[i + 1] - offset[i]; }
   /// The slot after k around the same vertex i (cyclic).
   int next_slot(int i, int k) const { return k + 1 < offset[i + 1] ? k + 1 : offset[i]; }
-  int prev_slot(int i, int k) const { return k > offset[i] ? k - 1 : offset[i + 1] - 1; }
   /// True if the fan of i is closed (i is not on the mesh border).
   bool closed(int i) const;
   /// Mean distance from vertex i, at q, to its ring neighbours in X (#V×3), mesh units: the
@@ -60,6 +59,16 @@ OneRings build_one_rings(int n_vertices, const Triangles& triangles, const char*
 /// The checks of build_one_rings alone, without building the rings.
 /// \throw InvalidInputError as build_one_rings, with the same message.
 void check_triangles(int n_vertices, const Triangles& triangles, const char* caller);
+
+/// That `free` has a flag per row of V and every index of F is a row of V.
+/// \throw InvalidInputError naming `caller`, the size or the first index out of range
+void check_indices(const Positions& V, const Triangles& F, const std::vector<bool>& free,
+                   const char* caller);
+
+/// That every vertex a triangle of F uses has finite coordinates (also far from a region:
+/// fair() returns its position).
+/// \throw InvalidInputError naming `caller` and the first such vertex
+void check_finite(const Positions& V, const Triangles& F, const char* caller);
 
 /// The part of a mesh that fairing works on.
 ///

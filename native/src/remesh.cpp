@@ -4,6 +4,8 @@
 // docs/DESIGN_NOTES.md, "Remeshing the region", says why the remesher is our own.
 #include "remesh.h"
 
+#include "region.h"
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -250,16 +252,7 @@ class SurfaceProjector {
 // checks: Remesher's constructor and build).
 void check_input(const Positions& V, const Triangles& F, const std::vector<bool>& free,
                  const RemeshOptions& options) {
-  const int nv = int(V.rows());
-  if (int(free.size()) != nv)
-    throw InvalidInputError(prefix() + "free has " + std::to_string(free.size()) +
-                            " entries for " + std::to_string(nv) + " vertices");
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (F(f, c) < 0 || F(f, c) >= nv)
-        throw InvalidInputError(prefix() + "triangle " + std::to_string(f) +
-                                " has vertex index " + std::to_string(F(f, c)) +
-                                ", out of range [0, " + std::to_string(nv) + ")");
+  check_indices(V, F, free, "remesh_region");
   if (std::find(free.begin(), free.end(), true) == free.end())
     throw InvalidInputError(prefix() + "no vertex is free");
   if (options.iterations < 0) throw InvalidInputError(prefix() + "iterations must be >= 0");
