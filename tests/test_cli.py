@@ -155,3 +155,28 @@ def test_mesh_files_read_and_written_from_threads_at_once(tmp_path):
         results = list(pool.map(round_trip, range(16)))
     assert all(r[:2] == (len(v), len(f)) and abs(r[2] - v[:, 0].min()) < 1e-5 for r in results), results
     assert len(os.listdir(tmp_path)) == 16, sorted(os.listdir(tmp_path))
+
+
+def test_option_values_are_the_librarys_and_a_bad_one_is_a_usage_error(tmp_path):
+    # The command line's choices are the values geofair.fair accepts (its error lists them), so
+    # a bad value is refused before any file is read (exit 2), as --boundary and --rim are.
+    import re
+
+    sys.path.insert(0, os.path.dirname(geofair.__file__))
+    import geofair_cli
+
+    v, f, _ = scan(n=6, hole=0.0)
+    free = np.zeros(len(v), bool)
+    free[len(v) // 2] = True
+    actions = {a.dest: a for a in geofair_cli.build_parser()._subparsers._group_actions[0].choices["fill"]._actions}
+    for name in ("inner_fairness", "outer_fairness", "iteration", "boundary"):
+        with pytest.raises(geofair.InvalidInputError) as error:
+            geofair.fair(v, f, free, **{name: "no-such-value"})
+        accepted = re.findall(r"'([a-z0-9_]+)'", str(error.value).split(", got")[0])
+        assert sorted(actions[name].choices) == sorted(accepted), (name, str(error.value))
+        flag = f"--{name.replace('_', '-')}"
+        status, _, err = run("fill", tmp_path / "missing.obj", "-o", tmp_path / "x.obj", flag, "x")
+        assert status == 2 and "invalid choice" in err, err
+    for length in ("0", "-1", "nan", "a"):
+        status, _, err = run("fill", tmp_path / "missing.obj", "-o", tmp_path / "x.obj", "--edge-length", length)
+        assert status == 2 and "--edge-length: must be a positive length" in err, err

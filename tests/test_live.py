@@ -404,8 +404,9 @@ def test_constructor_checks_its_input(handle_scene):
         geofair.LiveFairing(v, f, free[:-1])
     with pytest.raises(geofair.InvalidInputError, match="tolerance"):
         geofair.LiveFairing(v, f, free, tolerance=-1.0)
-    with pytest.raises(geofair.InvalidInputError, match="remesh must be off or if_needed"):
-        geofair.LiveFairing(v, f, free, remesh="always")
+    for remesh in ("always", True, "sometimes"):
+        with pytest.raises(geofair.InvalidInputError, match="remesh must be False, 'off' or 'if_needed', got"):
+            geofair.LiveFairing(v, f, free, remesh=remesh)
     with pytest.raises(geofair.InvalidInputError, match="details=True"):
         geofair.LiveFairing(v, f, free, remesh="if_needed", details=True)
 

@@ -12,8 +12,9 @@ interpolated harmonically from around each hole (:func:`mesh_edit.add_fill`). Ev
 a fill: the library tries its fills in turn and keeps the best (``geofair.FillResult.holes``
 says which), so a fill that did not converge is written too and the report says so. With
 *Clean Rim* (``clean_rim``, off by default: it deletes the user's faces) the library may remove
-the faces of a ragged rim (teeth, spikes, faces that fold against the fill) first; the report
-names them (face indices before the fill).
+the faces of a ragged rim (teeth, spikes, faces that fold against the fill) where the fill of
+the hole as it is folds or does not converge, and fill the larger hole; the report names them
+(face indices before the fill).
 """
 
 import threading
@@ -36,7 +37,7 @@ class FillRun(fairing.FairingRun):
         options: :class:`fairing.FairingOptions` (its library options are used; region,
             pins, hidden faces and remesh are not).
         all_holes: fill every hole whatever is selected (outer borders of open parts stay open).
-        target_edge_length: the fill's edge length; 0: that of each hole's boundary.
+        target_edge_length: the fill's edge length (object units); 0 or None: that of each hole's boundary.
         progress: optional ``callable(iteration, residual)``; returning False cancels.
         clean_rim: let the library remove the faces of a ragged rim where the fill of the hole as
             it is folds or does not converge (``geofair.fill_holes(rim="trim")``).
@@ -62,7 +63,9 @@ class FillRun(fairing.FairingRun):
         self.object_name = obj.name
         self.mode = obj.mode
         self.options = options
-        self.target_edge_length = float(target_edge_length)
+        self.target_edge_length = float(target_edge_length or 0.0)  # None as geofair's: automatic
+        if not (0.0 <= self.target_edge_length < float("inf")):
+            raise ValueError(f"target_edge_length must be 0, None or a positive length, got {target_edge_length!r}")
         self.clean_rim = bool(clean_rim)
         self.user_progress = progress
         self.timings = {}
@@ -187,13 +190,14 @@ def fill_holes(
     Args:
         obj: a mesh object.
         all_holes: every hole, whatever is selected (with nothing selected: every hole too).
-        target_edge_length: the fill's edge length; 0: that of each hole's boundary.
+        target_edge_length: the fill's edge length (object units); 0 or None: that of each hole's boundary.
         clean_rim: let the library remove the faces of a ragged rim first where the fill of the
             hole as it is folds or does not converge (the report's ``hole_fills`` name them).
         progress: optional ``callable(iteration, residual)``; returning False cancels.
         context: ``bpy.context`` by default (its scene's panel settings are the defaults).
         **options: ``geofair.fill_holes``'s fairing options (``inner_fairness``, ``boundary``,
-            ``normal_weighting``, ``tolerance``, ``time_limit``, ``tuning``, ...), and ``keep_unconverged``.
+            ``normal_weighting``, ``tolerance``, ``time_limit``, ``tuning``, ...); ``keep_unconverged`` is
+            accepted and not read (every hole's best fill is written).
 
     Returns:
         :class:`fairing.FairingReport` (``holes``, ``hole_fills`` what each hole got,
@@ -222,5 +226,5 @@ def fill_holes(
     run.solve()
     report = run.finish()
     if report.discarded:
-        raise fairing.NotConvergedError(report, fairing.KEEP_UNCONVERGED_HINT)
+        raise fairing.NotConvergedError(report, "No hole could be filled; the report's hole_fills say why.")
     return report

@@ -301,7 +301,8 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
 class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, bpy.types.Operator):
     """Fill the holes whose whole boundary loop is selected (nothing selected: every hole, not an open mesh's outer
     border) with a faired surface meeting the faces around with G1 continuity, or G0 (Boundary); every hole gets its
-    best fill (Clean Rim: a ragged rim's faces may be removed first); UVs interpolated from around each hole"""
+    best fill (Clean Rim: where a fill folds or does not converge, a ragged rim's faces may be removed and the hole
+    filled again); UVs interpolated from around each hole"""
 
     bl_idname = "mesh.geometric_fairing_fill_holes"
     bl_label = "Fill Holes (Geometric Fairing)"
@@ -314,7 +315,7 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
         name="All Holes",
         description=(
             "Fill every hole of the mesh, whatever is selected (with nothing selected: every hole too); "
-            "the outer border of an open mesh stays open (select it to fill it)"
+            "the outer border of an open mesh stays open (to fill it, turn this off and select the border)"
         ),
         default=False,
         options={"SKIP_SAVE"},
@@ -337,7 +338,9 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
         default=False,
         options={"SKIP_SAVE"},
     )
-    keep_unconverged: properties._keep_unconverged(options={"SKIP_SAVE"})
+    # Not in the redo panel: every hole's best fill is written, converged or not (read only
+    # with a compiled module older than fill_holes' per-hole records).
+    keep_unconverged: properties._keep_unconverged(options={"SKIP_SAVE", "HIDDEN"})
 
     def resolve_options(self, context):
         """Options given to the operator; the others from the panel (which follows the preferences)."""

@@ -19,6 +19,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from . import native
+from .live import FRAME_PREPARE_FACTOR, FRAME_SECONDS_MIN
 
 INNER_FAIRNESS_ITEMS = (
     (
@@ -264,9 +265,12 @@ def _automatic_time_limit(tuning):
 def _time_limit(**options):
     return FloatProperty(
         name="Time Limit",
-        description="Seconds the solve may take; once spent, the run stops and is reported as not converged. "
+        description="Seconds the solve may take; once spent, Fair stops and reports the run as not converged, "
+        "Fill Holes gives the holes not yet filled the linear fill, and Live Fair Drag keeps the last good frame. "
         "0: automatic (as geofair.fair's time_limit None or 0): with the Auto solver a limit on time without "
-        f"progress ({_automatic_time_limit(_LIBRARY.get('tuning', {}))}); Newton and Paper run to Max Iterations",
+        f"progress ({_automatic_time_limit(_LIBRARY.get('tuning', {}))}); Newton and Paper run to Max Iterations; "
+        f"Live Fair Drag: each frame {FRAME_PREPARE_FACTOR:g} times the region's preparation, at least "
+        f"{FRAME_SECONDS_MIN:g} s",
         default=property_value("time_limit", DEFAULTS["time_limit"]),
         min=0.0,
         soft_max=600.0,

@@ -375,6 +375,19 @@ Remesh parse_remesh(const py::object& value) {
                           std::string(py::str(py::repr(value))));
 }
 
+// LiveFairing's `remesh` argument: False or "off"/"if_needed" (a frame keeps its vertex rows
+// unless it must remesh; "always" would replace them every frame).
+Remesh parse_live_remesh(const py::object& value) {
+  if (py::isinstance<py::bool_>(value) && !value.cast<bool>()) return Remesh::Off;
+  if (py::isinstance<py::str>(value)) {
+    const std::string s = value.cast<std::string>();
+    if (s == "off") return Remesh::Off;
+    if (s == "if_needed") return Remesh::IfNeeded;
+  }
+  throw InvalidInputError("remesh must be False, 'off' or 'if_needed', got " +
+                          std::string(py::str(py::repr(value))));
+}
+
 // The Python value of a Remesh: False, True or "if_needed".
 py::object remesh_value(Remesh remesh) {
   if (remesh == Remesh::IfNeeded) return py::str("if_needed");
@@ -1163,7 +1176,8 @@ void bind_fill_result(py::module_& m) {
           "\"intrinsic_finer\" (at half of it), \"intrinsic_trimmed\" (after rim=\"trim\" "
           "removed faces at the rim), \"g0\" (positions only at the loop: H = 0), "
           "\"linear\" (the linear Δ²f = 0 fill of the same patch), or \"none\": left open "
-          "(.reason says why).")
+          "(.reason says why). With boundary=\"g0\" the first fill is \"g0\", and "
+          "\"intrinsic_finer\" and \"intrinsic_trimmed\" are G0 fills too.")
       .def_property_readonly("filled", [](const HoleFill& h) { return h.method != FillMethod::None; },
                              "True unless the hole was left open.")
       .def_readonly("converged", &HoleFill::converged, "The kept fill's solve converged.")
@@ -1698,7 +1712,7 @@ the input's base (its cold fair) did not converge.)doc");
             boundary, inner_fairness, outer_fairness, normal_weighting, tolerance,
             max_iterations, damping, cg_iterations, levels, iteration, time_limit, tuning,
             "LiveFairing");
-        options.remesh = parse_remesh(remesh);
+        options.remesh = parse_live_remesh(remesh);
         std::optional<Positions> normals;
         if (!boundary_normals.is_none() && options.boundary == BoundaryCondition::G1) {
           normals = to_positions(boundary_normals, "boundary_normals");

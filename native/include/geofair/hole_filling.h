@@ -69,7 +69,8 @@ enum class Rim {
 };
 
 /// How a hole was filled (HoleFill::method), in the order fill_holes tries them, except that
-/// IntrinsicTrimmed goes before IntrinsicFiner.
+/// IntrinsicTrimmed goes before IntrinsicFiner. With options.boundary G0 the first fill is G0,
+/// and IntrinsicFiner and IntrinsicTrimmed are G0 fills too.
 enum class FillMethod {
   Intrinsic,         ///< the G1 intrinsic fill at the loop's edge length (options.boundary)
   IntrinsicFiner,    ///< the same at half the loop's edge length

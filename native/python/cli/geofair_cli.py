@@ -32,15 +32,36 @@ import geofair
 FAIR_OPTIONS = ("boundary", "inner_fairness", "outer_fairness", "iteration", "tolerance", "time_limit")
 
 
+def _positive_length(text):
+    """An argparse type: a finite length > 0 (a usage error otherwise)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not (0.0 < value < float("inf")):
+        raise argparse.ArgumentTypeError(f"must be a positive length, got {text!r}")
+    return value
+
+
 def _add_fair_options(parser):
     parser.add_argument("--boundary", choices=("g1", "g0"), default=None, help="boundary condition (default g1)")
     parser.add_argument(
-        "--inner-fairness", dest="inner_fairness", default=None, help="inner fairness (see geofair.fair)"
+        "--inner-fairness",
+        dest="inner_fairness",
+        choices=("uniform", "conformal", "conformal_intrinsic"),
+        default=None,
+        help="inner fairness (default uniform; see geofair.fair)",
     )
     parser.add_argument(
-        "--outer-fairness", dest="outer_fairness", default=None, help="outer fairness (see geofair.fair)"
+        "--outer-fairness",
+        dest="outer_fairness",
+        choices=("intrinsic", "bilaplacian"),
+        default=None,
+        help="outer fairness (default intrinsic; see geofair.fair)",
     )
-    parser.add_argument("--iteration", default=None, help="auto, newton or paper (see geofair.fair)")
+    parser.add_argument(
+        "--iteration", choices=("auto", "newton", "paper"), default=None, help="solver (default auto; see geofair.fair)"
+    )
     parser.add_argument("--tolerance", type=float, default=None, help="residual tolerance (dimensionless)")
     parser.add_argument(
         "--time-limit", dest="time_limit", type=float, default=None, help="seconds per file (default automatic)"
@@ -61,7 +82,12 @@ def build_parser():
     fill.add_argument("-o", "--output", default=None, help="the output file (one input)")
     fill.add_argument("--output-dir", default=None, help="folder for the outputs (same names as the inputs)")
     fill.add_argument("--rim", choices=("keep", "trim"), default="keep", help="trim: may remove a ragged rim's faces")
-    fill.add_argument("--edge-length", type=float, default=None, help="edge length of the fill (mesh units)")
+    fill.add_argument(
+        "--edge-length",
+        type=_positive_length,
+        default=None,
+        help="edge length of the fill (mesh units, > 0; default: the mean length of each hole's loop edges)",
+    )
     fill.add_argument("--max-hole-edges", type=int, default=None, help="leave loops of more edges open")
     fill.add_argument("--all-borders", action="store_true", help="fill the outer borders of open meshes too")
     _add_fair_options(fill)
@@ -75,6 +101,11 @@ def build_parser():
         "array of vertex indices, a vertex mask (n,) or a face mask (m,) of the file's faces",
     )
     fair.add_argument("--remesh", action="store_true", help="remesh the region before fairing")
+    fair.description = (
+        "Fair the region's free vertices (geofair.fair). The file's polygons are passed as polygon_ids, so "
+        "uniform inner fairness runs over a quad file's polygon edges (geofair.fair's default, polygon_ids=None, "
+        "over the triangles' edges)."
+    )
     _add_fair_options(fair)
     return parser
 
