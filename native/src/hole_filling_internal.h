@@ -68,8 +68,9 @@ class DirectedEdges {
 std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller);
 
 /// The boundary loops of a valid F (checked before) split by `rule` (geofair::holes_to_fill),
-/// with V in the working scale (mesh_scale.h). \throw InvalidInputError, naming `caller`,
-/// as border_loops or for a negative rule.max_hole_edges.
+/// with V in the working scale (mesh_scale.h); a piece of border that passes twice through
+/// a vertex is left open with the reason, not refused. \throw InvalidInputError, naming
+/// `caller`, for a negative rule.max_hole_edges.
 HoleChoice choose_holes(const Positions& V, const Triangles& F, const DirectedEdges& edges,
                         const HoleRule& rule, const char* caller);
 

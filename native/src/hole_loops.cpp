@@ -118,32 +118,10 @@ DirectedEdges::DirectedEdges(const Triangles& F) {
     }
 }
 
-std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller) {
-  std::map<int, int> next;  // loop successor in the direction of the missing face
-  edges.for_each_border_edge([&](int a, int b) {
-    if (!next.emplace(b, a).second)
-      throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(b) +
-                              " lies on the border twice (two holes, or one hole's border, "
-                              "touch there)");
-  });
-  std::vector<std::vector<int>> loops;
-  std::map<int, bool> done;
-  for (const auto& [start, unused] : next) {
-    (void)unused;
-    if (done[start]) continue;
-    std::vector<int> loop;
-    for (int v = start; !done[v]; v = next.at(v)) {
-      done[v] = true;
-      loop.push_back(v);
-    }
-    loops.push_back(std::move(loop));
-  }
-  return loops;
-}
-
-// The border loops as border_loops finds them, except that the border edges of a connected
-// piece of border that passes more than once through a vertex (holes that touch) are not
-// walked: each such piece is returned in `pinched` (its vertices, sorted) with that vertex.
+// The border loops, each in the direction of the missing face, from the smallest start vertex
+// on, except that the border edges of a connected piece of border that passes more than once
+// through a vertex (holes that touch) are not walked: each such piece is returned in
+// `pinched` (its vertices, sorted) with that vertex.
 static std::vector<std::vector<int>> manifold_border_loops(const DirectedEdges& edges,
                                                     std::vector<std::pair<std::vector<int>, int>>& pinched) {
   std::map<int, std::vector<int>> next;
@@ -184,6 +162,15 @@ static std::vector<std::vector<int>> manifold_border_loops(const DirectedEdges& 
     loops.push_back(std::move(loop));
   }
   for (auto& [r, vertices] : pieces) pinched.push_back({std::move(vertices), pinch.at(r)});
+  return loops;
+}
+
+std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const char* caller) {
+  std::vector<std::pair<std::vector<int>, int>> pinched;
+  auto loops = manifold_border_loops(edges, pinched);
+  if (!pinched.empty())
+    throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(pinched.front().second) +
+                            " lies on the border twice (two holes, or one hole's border, touch there)");
   return loops;
 }
 
