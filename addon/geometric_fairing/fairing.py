@@ -418,15 +418,7 @@ class FairingRun(_WorkerThread):
             raise RuntimeError(native.IMPORT_ERROR)
         if obj is None or obj.type != "MESH":
             raise ValueError("fairing needs a mesh object")
-        self.obj = obj
-        self.object_name = obj.name
-        self.mode = obj.mode
-        self.options = options
-        self.user_progress = progress
-        self.timings = {}
-        clock = time.perf_counter()
-        self.mesh = mesh = mesh_io.read(obj, uvs=False)
-        self.timings["read"] = time.perf_counter() - clock
+        mesh = self._read(obj, options, progress)
         clock = time.perf_counter()
         present = np.ones(len(mesh.loop_start), dtype=bool) if options.use_hidden else ~mesh.face_hidden
         faces, pin_selected = _region_faces(obj, options, mesh, faces, present, pin_selected, handle_radius)
@@ -469,7 +461,23 @@ class FairingRun(_WorkerThread):
         self.timings["uv_read"] = time.perf_counter() - clock
         self.uv_before = self._uv_distortion(mesh.vertices)
         self.timings["uv"] = time.perf_counter() - clock
+        self._reset_run()
 
+    def _read(self, obj, options, progress):
+        """Keep the object, its mode, the options and the progress callback; read and return its mesh."""
+        self.obj = obj
+        self.object_name = obj.name
+        self.mode = obj.mode
+        self.options = options
+        self.user_progress = progress
+        self.timings = {}
+        clock = time.perf_counter()
+        self.mesh = mesh_io.read(obj, uvs=False)
+        self.timings["read"] = time.perf_counter() - clock
+        return self.mesh
+
+    def _reset_run(self):
+        """The figures and the state of a run that has not solved yet."""
         self.iteration = 0
         self.residual = float("nan")
         self.first_residual = float("nan")
@@ -481,24 +489,31 @@ class FairingRun(_WorkerThread):
 
     # -- solving -----------------------------------------------------------------------------
 
-    def solve(self):
-        """Solve in this thread; the result or the error is kept for :meth:`finish`."""
-        mesh, fairing_region, options = self.mesh, self.region, self.options
+    def _solve_with(self, call):
+        """``call()``'s result, or the exception it raised, kept for :meth:`finish` (which runs in
+        Blender's thread); its seconds in ``seconds`` and the "solve" timing."""
         start = time.perf_counter()
         try:
-            self.result = native.geofair.fair(
-                mesh.vertices,
-                mesh.triangles[self.present_triangles],
-                fairing_region.free,
-                boundary_normals=self.boundary_normals,
-                polygon_ids=self.polygon_ids,
-                progress=self._progress,
-                **options.library_options(),
-            )
-        except Exception as error:  # kept for finish(), which runs in Blender's thread
+            self.result = call()
+        except Exception as error:
             self.error = error
         self.seconds = time.perf_counter() - start
         self.timings["solve"] = self.seconds
+
+    def solve(self):
+        """Solve in this thread; the result or the error is kept for :meth:`finish`."""
+        mesh = self.mesh
+        self._solve_with(
+            lambda: native.geofair.fair(
+                mesh.vertices,
+                mesh.triangles[self.present_triangles],
+                self.region.free,
+                boundary_normals=self.boundary_normals,
+                polygon_ids=self.polygon_ids,
+                progress=self._progress,
+                **self.options.library_options(),
+            )
+        )
 
     def request_cancel(self):
         """Ask the solver to stop at its next progress call (within about 0.1 s and one iteration)."""

@@ -17,16 +17,12 @@ the hole as it is folds or does not converge, and fill the larger hole; the repo
 (face indices before the fill).
 """
 
-import threading
 import time
 import types
 
 import numpy as np
 
 from . import carry, fairing, mesh_edit, mesh_io, native, properties, region
-
-# The panel's options Fill Holes uses (geofair.fill_holes takes fair's options but the region's).
-FILL_OPTION_NAMES = properties.LIBRARY_OPTION_NAMES
 
 
 class FillRun(fairing.FairingRun):
@@ -59,19 +55,11 @@ class FillRun(fairing.FairingRun):
                 f"Fill Holes needs a mesh without shape keys ('{obj.name}' has some: the new vertices would have no "
                 "shape-key positions)"
             )
-        self.obj = obj
-        self.object_name = obj.name
-        self.mode = obj.mode
-        self.options = options
         self.target_edge_length = float(target_edge_length or 0.0)  # None as geofair's: automatic
         if not (0.0 <= self.target_edge_length < float("inf")):
             raise ValueError(f"target_edge_length must be 0, None or a positive length, got {target_edge_length!r}")
         self.clean_rim = bool(clean_rim)
-        self.user_progress = progress
-        self.timings = {}
-        clock = time.perf_counter()
-        self.mesh = mesh = mesh_io.read(obj, uvs=False)
-        self.timings["read"] = time.perf_counter() - clock
+        mesh = self._read(obj, options, progress)
         n = len(mesh.vertices)
         self.left_open = []  # (loop, reason) of the boundary loops the library's rule leaves open
         if all_holes or not mesh.vertex_selected.any():
@@ -81,14 +69,7 @@ class FillRun(fairing.FairingRun):
             self.loops = region.choose_holes(loops, n, mesh_io.edge_selection(obj), obj.name)
         # What the shared progress and status read: the boundary vertices stand for the region.
         self.region = types.SimpleNamespace(free=np.zeros(sum(len(loop) for loop in self.loops), dtype=bool))
-        self.iteration = 0
-        self.residual = float("nan")
-        self.first_residual = float("nan")
-        self.seconds = 0.0
-        self.result = None
-        self.error = None
-        self._cancel = threading.Event()
-        self._thread = None
+        self._reset_run()
 
     @property
     def holes(self):
@@ -102,19 +83,12 @@ class FillRun(fairing.FairingRun):
             options["target_edge_length"] = self.target_edge_length
         if self.clean_rim:
             options["rim"] = "trim"
-        start = time.perf_counter()
-        try:
-            self.result = native.geofair.fill_holes(
-                self.mesh.vertices,
-                self.mesh.triangles,
-                [loop.tolist() for loop in self.loops],
-                progress=self._progress,
-                **options,
+        loops = [loop.tolist() for loop in self.loops]
+        self._solve_with(
+            lambda: native.geofair.fill_holes(
+                self.mesh.vertices, self.mesh.triangles, loops, progress=self._progress, **options
             )
-        except Exception as error:  # kept for finish(), which runs in Blender's thread
-            self.error = error
-        self.seconds = time.perf_counter() - start
-        self.timings["solve"] = self.seconds
+        )
 
     def finish(self):
         """Write the fill unless cancelled or discarded; return the :class:`fairing.FairingReport`.
@@ -213,7 +187,8 @@ def fill_holes(
     import bpy
 
     context = context or bpy.context
-    fairing.check_option_names("fill_holes", options, (*FILL_OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES))
+    names = (*properties.LIBRARY_OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES)
+    fairing.check_option_names("fill_holes", options, names)
     run_options = fairing.default_options(context, **options)
     run = FillRun(
         obj,

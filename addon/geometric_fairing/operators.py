@@ -278,10 +278,7 @@ class MESH_OT_geometric_fairing(FairingProperties, _SolvingOperator, bpy.types.O
 
     def resolve_options(self, context):
         """Options given to the operator; the others from the panel (which follows the preferences)."""
-        settings = context.scene.geometric_fairing
-        for name in OPTION_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
+        self.inherit_panel(context.scene.geometric_fairing, OPTION_NAMES)
         return fairing.FairingOptions(**option_values(self), keep_unconverged=self.keep_unconverged)
 
     def make_run(self, obj, options):
@@ -344,12 +341,8 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
 
     def resolve_options(self, context):
         """Options given to the operator; the others from the panel (which follows the preferences)."""
-        settings = context.scene.geometric_fairing
-        for name in holes.FILL_OPTION_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
-        values = {name: getattr(self, name) for name in holes.FILL_OPTION_NAMES}
-        values["time_limit"] = values["time_limit"] or None
+        self.inherit_panel(context.scene.geometric_fairing, properties.LIBRARY_OPTION_NAMES)
+        values = option_values(self, properties.LIBRARY_OPTION_NAMES)
         return fairing.FairingOptions(**values, keep_unconverged=self.keep_unconverged)
 
     def make_run(self, obj, options):
@@ -536,16 +529,12 @@ class MESH_OT_geometric_fairing_live(SolverProperties, bpy.types.Operator):
     def resolve_options(self, context):
         """Options given to the operator; the others from the panel, as Fair's (Remesh stays off)."""
         settings = context.scene.geometric_fairing
-        for name in properties.LIVE_OPTION_NAMES:
-            if not self.properties.is_property_set(name):
-                setattr(self, name, getattr(settings, name))
+        self.inherit_panel(settings, properties.LIVE_OPTION_NAMES)
         if not self.properties.is_property_set("details"):
             self.details = settings.live_details
         if not self.properties.is_property_set("radius"):
             self.radius = settings.live_radius
-        values = {name: getattr(self, name) for name in properties.LIVE_OPTION_NAMES}
-        values["time_limit"] = values["time_limit"] or None
-        return fairing.FairingOptions(**values)
+        return fairing.FairingOptions(**option_values(self, properties.LIVE_OPTION_NAMES))
 
     def prepare(self, context):
         """Read the active mesh, its region and handle, and prepare LiveFairing; the

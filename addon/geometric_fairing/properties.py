@@ -161,11 +161,11 @@ def property_value(name, value):
     return 0.0 if name == "time_limit" and value is None else value
 
 
-def option_values(owner):
-    """The options of ``owner`` (the panel's settings, the operator) by the library's values, as
-    :class:`fairing.FairingOptions` holds them: the properties' values, but a time limit of 0 is
-    None (automatic)."""
-    options = {name: getattr(owner, name) for name in OPTION_NAMES}
+def option_values(owner, names=OPTION_NAMES):
+    """The options ``names`` of ``owner`` (the panel's settings, the operator) by the library's
+    values, as :class:`fairing.FairingOptions` holds them: the properties' values, but a time
+    limit of 0 is None (automatic)."""
+    options = {name: getattr(owner, name) for name in names}
     options["time_limit"] = options["time_limit"] or None
     return options
 
@@ -431,6 +431,12 @@ class SolverProperties:
     levels: _levels(options={"SKIP_SAVE"})
     iteration: _iteration(options={"SKIP_SAVE"})
     time_limit: _time_limit(options={"SKIP_SAVE"})
+
+    def inherit_panel(self, settings, names):
+        """Set each option of ``names`` that the operator was not given from the panel's ``settings``."""
+        for name in names:
+            if not self.properties.is_property_set(name):
+                setattr(self, name, getattr(settings, name))
 
     def draw(self, context):
         """The redo panel: the operator's properties in order, ADVANCED_OPTION_NAMES in a closed Advanced
