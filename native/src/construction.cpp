@@ -13,12 +13,6 @@
 #include <string>
 
 namespace geofair {
-
-// Solves on a warm run's factorization (a LiveFairing frame's Newton preconditioner or
-// polish) before its factors are copied out of UMFPACK (PatternLU::copy_factors_after): the
-// copy costs about what 17 solves save, and a factorization that has served 8 in a drag
-// serves many more.
-constexpr int kWarmCopyAfter = 8;
 namespace {
 
 // Levels with at least this many free vertices factorize the first Newton step's
@@ -246,7 +240,6 @@ double Construction::polish(Positions& X, bool warm) {
   // before the steps (lagged); a warm run's solves to its own tolerance.
   const OneRings& rings = region_.rings;
   const Positions before = X;
-  if (warm) tangential_solver_.copy_factors_after(kWarmCopyAfter);  // see run_newton
   tangential_solver_.relax(lambda_, N_, X, /*lagged=*/true, TangentPlanes::Turning,
                            warm ? options_.tuning.tangential.warm_lagged_tolerance : 0.0);
   double move = 0.0;  // the largest move, in mean distances to the neighbours
@@ -340,10 +333,6 @@ IterationReport Construction::run_newton(Positions& X, const NewtonRun& newton_r
   IterationReport report;
   Laps laps;  // report's relax, step and polish seconds
   LoopThreadsRestore threads(overlap_threads_);  // after the local step, or on leaving
-  // A drag's frames take their Newton steps on a lagged preconditioner (refactorized every
-  // few frames) and polish on one lagged tangential factorization: past a few solves their
-  // factors are copied for Eigen's faster triangular solves.
-  if (newton_run.warm) newton_.copy_factors_after(kWarmCopyAfter);
   const bool relaxed =
       !tangential_ || newton_run.skip_relaxation ||
       relax_before_steps(X, newton_run);

@@ -167,9 +167,6 @@ class TangentialSolver {
   double relax(const InnerFairnessWeights& lambda, const Positions& N, Positions& X,
                bool lagged = false, TangentPlanes planes = TangentPlanes::Fixed,
                double lagged_tolerance = 0.0);
-  /// The direct factorization's solves after `solves` of them on one factorization
-  /// (PatternLU::copy_factors_after): for a lagged factorization that serves many solves.
-  void copy_factors_after(int solves) { direct_.copy_factors_after(solves); }
 
   /// Gives relax a coarse space (the next coarser level of a progressive mesh, whose
   /// vertices are vertices of this one): relax then solves by GMRES preconditioned by a

@@ -155,9 +155,6 @@ class NewtonStep {
                     const std::vector<double>& w, bool async);
   /// Waits for prefactorize()'s factorization and drops it: the next solve() factorizes.
   void discard_prefactorization();
-  /// The preconditioner's solves after `solves` of them on one factorization
-  /// (PatternLU::copy_factors_after).
-  void copy_factors_after(int solves) { lu_.copy_factors_after(solves); }
 
  private:
   // Fills A_ = D J_1 at X (the preconditioner's matrix, see the class comment).

@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <memory>
-#include <vector>
 
 #include "geofair/blas.h"
 
@@ -77,58 +75,6 @@ BlasThreads::~BlasThreads() {
 
 namespace {
 
-#ifndef GEOFAIR_PORTABLE
-// Eigen's UmfPackLU with its Numeric object reachable, for umfpack_*_get_numeric.
-template <class Matrix>
-struct UmfPackWithNumeric : Eigen::UmfPackLU<Matrix> {
-  void* numeric() const { return this->m_numeric; }
-};
-
-// UMFPACK's factors P R A Q = L U copied out (PatternLU::copy_factors_after): L unit lower
-// and U upper, both by rows with sorted columns, for Eigen's sparse triangular solves.
-template <class Index>
-struct CopiedFactors {
-  using Rows = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
-  Rows L, U;
-  std::vector<Index> P, Q;  // row k of L U is row P[k] of R A; column k, column Q[k] of A
-  std::vector<double> Rs;   // R: row i of A times Rs[i] (do_recip), else divided by it
-  bool multiply = true;
-
-  bool copy(void* numeric, Index n) {
-    Index lnz = 0, unz = 0, rows = 0, cols = 0, diagonal = 0;
-    if (Eigen::umfpack_get_lunz(&lnz, &unz, &rows, &cols, &diagonal, numeric, 0.0) != UMFPACK_OK)
-      return false;
-    Eigen::SparseMatrix<double, Eigen::ColMajor, Index> by_columns(n, n);
-    L.resize(n, n);
-    L.resizeNonZeros(lnz);
-    by_columns.resizeNonZeros(unz);
-    P.resize(std::size_t(n)), Q.resize(std::size_t(n)), Rs.resize(std::size_t(n));
-    Index do_recip = 0;
-    if (Eigen::umfpack_get_numeric(L.outerIndexPtr(), L.innerIndexPtr(), L.valuePtr(),
-                                   by_columns.outerIndexPtr(), by_columns.innerIndexPtr(),
-                                   by_columns.valuePtr(), P.data(), Q.data(), (double*)nullptr,
-                                   &do_recip, Rs.data(), numeric) != UMFPACK_OK)
-      return false;
-    U = by_columns;  // by rows: the backward solve reads each row once
-    multiply = do_recip != 0;
-    return true;
-  }
-
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
-    const Eigen::Index n = b.size();
-    Eigen::VectorXd c(n), x(n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Index i = P[std::size_t(k)];
-      c(k) = multiply ? b(i) * Rs[std::size_t(i)] : b(i) / Rs[std::size_t(i)];
-    }
-    L.template triangularView<Eigen::UnitLower>().solveInPlace(c);
-    U.template triangularView<Eigen::Upper>().solveInPlace(c);
-    for (Eigen::Index k = 0; k < n; ++k) x(Q[std::size_t(k)]) = c(k);
-    return x;
-  }
-};
-#endif
-
 // UMFPACK with Index as its index type: int (umfpack_di_*) or SuiteSparse_long
 // (umfpack_dl_*); in a portable build (GEOFAIR_PORTABLE) Eigen's SparseLU with COLAMD.
 template <class Index>
@@ -138,30 +84,9 @@ struct IndexedFactors {
 #ifdef GEOFAIR_PORTABLE
   Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<Index>> lu;
 #else
-  UmfPackWithNumeric<Matrix> lu;
-  // Solves since the last factorization, and its factors once copied (copy_after solves).
-  mutable int solves = 0;
-  mutable std::unique_ptr<CopiedFactors<Index>> copied;
-  mutable bool copy_failed = false;
+  Eigen::UmfPackLU<Matrix> lu;
 #endif
   bool analyzed = false, factorized = false;
-
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, int copy_after) const {
-#ifndef GEOFAIR_PORTABLE
-    if (copy_after > 0 && !copied && !copy_failed && matrix.rows() < kCopyMaxUnknowns &&
-        ++solves > copy_after) {
-      auto factors = std::make_unique<CopiedFactors<Index>>();
-      if (factors->copy(lu.numeric(), Index(matrix.rows())))
-        copied = std::move(factors);
-      else
-        copy_failed = true;
-    }
-    if (copied) return copied->solve(b);
-#else
-    (void)copy_after;
-#endif
-    return lu.solve(b);
-  }
 
   void analyze(const Eigen::SparseMatrix<double>& pattern, bool nested_dissection) {
     matrix = pattern;
@@ -183,11 +108,6 @@ struct IndexedFactors {
     if (!analyzed) analyze_matrix();
     lu.factorize(matrix);
     factorized = lu.info() == Eigen::Success;
-#ifndef GEOFAIR_PORTABLE
-    solves = 0;
-    copied.reset();
-    copy_failed = false;
-#endif
     return factorized;
   }
   // The symbolic analysis of matrix's pattern; solves without iterative refinement.
@@ -241,18 +161,8 @@ bool PatternLU::factorized() const {
 }
 
 Eigen::VectorXd PatternLU::solve(const Eigen::VectorXd& b) const {
-  if (factors_->wide_in_use) return factors_->wide.solve(b, 0);  // wide: memory before speed
-  return factors_->narrow.solve(b, copy_after_);
-}
-
-void PatternLU::copy_factors_after(int solves) { copy_after_ = std::max(solves, 0); }
-
-bool PatternLU::solves_on_copy() const {
-#ifdef GEOFAIR_PORTABLE
-  return false;
-#else
-  return !factors_->wide_in_use && factors_->narrow.copied != nullptr;
-#endif
+  if (factors_->wide_in_use) return factors_->wide.lu.solve(b);
+  return factors_->narrow.lu.solve(b);
 }
 
 }  // namespace geofair

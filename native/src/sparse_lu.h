@@ -49,10 +49,6 @@ constexpr int kNestedDissectionMin = 10000;
 /// large factorizations failed for lack of them. Below, int indices, which are faster (docs/DESIGN_NOTES.md).
 constexpr int kWideIndexMin = 500000;
 
-/// PatternLU::copy_factors_after copies the factors of systems below this many unknowns
-/// only: above, the copy's memory (hundreds of MB) outweighs its speed.
-constexpr int kCopyMaxUnknowns = 100000;
-
 /// SuiteSparse's UMFPACK (through Eigen's UmfPackSupport, with BLAS) for square sparse
 /// matrices that change values but not pattern from one factorization to the next: the
 /// symbolic analysis (ordering) runs at the first factorization only (and again if the
@@ -80,22 +76,12 @@ class PatternLU {
   bool factorized() const;
   /// x with A x = b for the last factorized A (requires factorized()).
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
-  /// For a factorization that serves many solves: once `solves` solves have run on one
-  /// factorization its factors are copied out of UMFPACK (umfpack_*_get_numeric, about half
-  /// a factorization's time, and their memory again) and the later solves are Eigen's
-  /// sparse triangular solves on the copy, about 1.6 times faster than UMFPACK's own at
-  /// 20,000-40,000 unknowns (docs/LIVE.md). 0 (the default): never. Only below
-  /// kCopyMaxUnknowns unknowns and not in the portable build.
-  void copy_factors_after(int solves);
-  /// Whether the solves of the current factorization run on the copy now.
-  bool solves_on_copy() const;
 
  private:
   // The factorizations (sparse_lu.cpp, the one place that names the sparse solver, with
   // bilaplacian.cpp): UMFPACK, or Eigen's SparseLU in a portable build (GEOFAIR_PORTABLE).
   struct Factors;
   std::unique_ptr<Factors> factors_;
-  int copy_after_ = 0;
 };
 
 /// An Eigen iterative solver's preconditioner (the interface of Eigen's preconditioners)

@@ -8,7 +8,6 @@
 #include "laplace_beltrami.h"
 #include "meshes.h"
 #include "region.h"
-#include "sparse_lu.h"
 
 #include <gtest/gtest.h>
 
@@ -70,57 +69,6 @@ TEST(NewtonStep, PreconditionerIsTheJacobianWhereNoSpiralSampleReachesFarther) {
   Eigen::VectorXd Jt;
   product(t, Jt);
   EXPECT_LT((Jt + d0).norm() / d0.norm(), 1e-4);
-}
-
-
-// PatternLU::copy_factors_after: past the given number of solves on one factorization the
-// factors are copied out of UMFPACK and solved by Eigen; the solutions agree with UMFPACK's
-// to rounding, on a nonsymmetric matrix with pivoting and row scaling, and a new
-// factorization starts the count again (its solves are its own, not the copy's).
-TEST(PatternLU, CopiedFactorsSolveAsUmfpackDoes) {
-  const int n = 400;
-  auto matrix = [&](double shift) {
-    std::vector<Eigen::Triplet<double>> t;
-    for (int i = 0; i < n; ++i) {
-      t.emplace_back(i, i, 4.0 + shift + 0.01 * (i % 7));
-      t.emplace_back(i, (i + 1) % n, -1.0 - 0.3 * std::sin(i));  // nonsymmetric
-      t.emplace_back((i + 1) % n, i, -0.7);
-      t.emplace_back(i, (i * 37 + 11) % n, 0.5 * std::cos(i));
-      t.emplace_back(i, (i + 20) % n, i % 3 == 0 ? 5.0 : 0.1);  // some rows pivot off the diagonal
-    }
-    Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(t.begin(), t.end());
-    A.makeCompressed();
-    return A;
-  };
-  const Eigen::SparseMatrix<double> A = matrix(0.0), B = matrix(1.0);
-  PatternLU plain, copied;
-  copied.copy_factors_after(2);
-  ASSERT_TRUE(plain.factorize(A));
-  ASSERT_TRUE(copied.factorize(A));
-#ifdef GEOFAIR_PORTABLE
-  const bool copies = false;  // Eigen's SparseLU: nothing to copy
-#else
-  const bool copies = true;
-#endif
-  for (int k = 0; k < 5; ++k) {  // solves 3 to 5 on the copy
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-    const Eigen::VectorXd x = copied.solve(b), y = plain.solve(b);
-    EXPECT_EQ(copied.solves_on_copy(), copies && k >= 2) << "solve " << k;
-    EXPECT_FALSE(plain.solves_on_copy());
-    EXPECT_LT((x - y).norm(), 1e-12 * y.norm()) << "solve " << k;
-    EXPECT_LT((A * x - b).norm(), 1e-10 * b.norm()) << "solve " << k;
-  }
-  ASSERT_TRUE(copied.factorize(B));  // the copy of A's factors is dropped
-  EXPECT_FALSE(copied.solves_on_copy());
-  ASSERT_TRUE(plain.factorize(B));
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-    const Eigen::VectorXd x = copied.solve(b);
-    EXPECT_EQ(copied.solves_on_copy(), copies && k >= 2) << "solve " << k;
-    EXPECT_LT((x - plain.solve(b)).norm(), 1e-12 * x.norm()) << "solve " << k;
-    EXPECT_LT((B * x - b).norm(), 1e-10 * b.norm()) << "solve " << k;
-  }
 }
 
 }  // namespace
