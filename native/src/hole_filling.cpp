@@ -156,7 +156,8 @@ LocalRing local_ring(const Triangles& F, const std::vector<int>& ring,
 // vertex per two triangles of area sqrt(3)/4 L²); empty when it is not.
 std::string fill_size_refusal(const Positions& X, const Triangles& T, double L, double unit) {
   double area = 0.0;
-  for (int t = 0; t < T.rows(); ++t) area += 0.5 * triangle_normal(X, T(t, 0), T(t, 1), T(t, 2)).norm();
+  for (int t = 0; t < T.rows(); ++t)
+    area += 0.5 * triangle_normal(X, T(t, 0), T(t, 1), T(t, 2)).norm();
   const double estimate = area / (std::sqrt(3.0) / 2.0 * L * L);
   if (estimate <= kMaxFillVertices) return {};
   char text[160];

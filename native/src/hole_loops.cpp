@@ -169,8 +169,10 @@ std::vector<std::vector<int>> border_loops(const DirectedEdges& edges, const cha
   std::vector<std::pair<std::vector<int>, int>> pinched;
   auto loops = manifold_border_loops(edges, pinched);
   if (!pinched.empty())
-    throw InvalidInputError(std::string(caller) + ": vertex " + std::to_string(pinched.front().second) +
-                            " lies on the border twice (two holes, or one hole's border, touch there)");
+    throw InvalidInputError(std::string(caller) + ": vertex " +
+                            std::to_string(pinched.front().second) +
+                            " lies on the border twice (two holes, or one hole's border, "
+                            "touch there)");
   return loops;
 }
 
