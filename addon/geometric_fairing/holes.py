@@ -187,6 +187,8 @@ def fill_holes(
     import bpy
 
     context = context or bpy.context
+    if "rim" in options:  # geofair.fill_holes' keyword: the add-on's is the Clean Rim option's
+        raise TypeError("fill_holes: unknown option 'rim'; pass clean_rim=True for geofair's rim='trim'")
     names = (*properties.LIBRARY_OPTION_NAMES, *properties.SCRIPT_OPTION_NAMES)
     fairing.check_option_names("fill_holes", options, names)
     run_options = fairing.default_options(context, **options)

@@ -319,7 +319,8 @@ class MESH_OT_geometric_fairing_fill_holes(SolverProperties, _SolvingOperator, b
     )
     edge_length: FloatProperty(
         name="Edge Length",
-        description="Edge length of the fill's triangles; 0: the mean length of each hole's boundary edges",
+        description="Edge length of the fill's triangles, in the object's own units (before its scale); 0: the mean "
+        "length of each hole's boundary edges",
         default=0.0,
         min=0.0,
         subtype="DISTANCE",

@@ -343,7 +343,8 @@ def _live_details(**options):
 def _live_radius(**options):
     return FloatProperty(
         name="Radius",
-        description="Live Fair Drag's region: the faces within this distance of the handle along the surface, the "
+        description="Live Fair Drag's region: the faces within this distance (the object's own units, before its "
+        "scale) of the handle along the surface, the "
         "handle being the selected vertices (Proportional Editing's way; the mouse wheel or Page Up/Down changes it "
         "during the drag). 0: Fair's region (the selected faces or the Region vertex group) and the Pin group's handle",
         default=0.0,

@@ -469,6 +469,11 @@ def check_fill_sphere(addon):
         raise AssertionError("fill_holes took a negative target_edge_length")
     except ValueError as error:
         assert "target_edge_length must be 0, None or a positive length" in str(error), error
+    try:  # geofair's rim keyword: the add-on's is clean_rim, and the error says so
+        addon.fill_holes(obj, rim="trim")
+        raise AssertionError("fill_holes took rim=")
+    except TypeError as error:
+        assert "pass clean_rim=True" in str(error), error
     report = addon.fill_holes(obj, target_edge_length=None)
     assert report.converged and report.holes == 1 and (STAND_IN or report.triangles_added > deleted), report
     assert len(obj.data.polygons) == f0 + report.triangles_added
